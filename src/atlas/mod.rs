@@ -1,0 +1,1 @@
+//! Drawing pavings and phase portraits (SVG and PNG).

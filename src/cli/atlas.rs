@@ -1,0 +1,1 @@
+//! `detach atlas`, `detach pave`, `detach scenes`.

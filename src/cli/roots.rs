@@ -1,0 +1,1 @@
+//! `detach roots`, `detach kappa0`, `detach critical-curve`.

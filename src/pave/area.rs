@@ -1,0 +1,99 @@
+//! Rigorous area bounds of regions and partition cells from a paving.
+
+use super::{Label, Leaf, Paving};
+use inari::{const_interval, Interval};
+use serde::Serialize;
+
+/// A set built from the constraints: each entry says whether the point must be
+/// inside (`Some(true)`), outside (`Some(false)`) or is free (`None`).
+/// `[Some(true), None]` is Ω; `[Some(false), Some(true)]` is Ω̄ ∩ Ω₀.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CellSpec(pub [Option<bool>; super::MAX_CONSTRAINTS]);
+
+impl CellSpec {
+    pub fn of(literals: &[Option<bool>]) -> CellSpec {
+        let mut c = [None; super::MAX_CONSTRAINTS];
+        c[..literals.len()].copy_from_slice(literals);
+        CellSpec(c)
+    }
+
+    /// Every literal proved on the leaf: the whole box lies in the set.
+    pub fn proved_in(&self, leaf: &Leaf) -> bool {
+        self.0.iter().zip(&leaf.labels).all(|(want, l)| match want {
+            None => true,
+            Some(true) => *l == Label::ProvedIn,
+            Some(false) => *l == Label::ProvedOut,
+        })
+    }
+
+    /// Some literal disproved on the leaf: the box misses the set entirely.
+    pub fn proved_out(&self, leaf: &Leaf) -> bool {
+        self.0.iter().zip(&leaf.labels).any(|(want, l)| match want {
+            None => false,
+            Some(true) => *l == Label::ProvedOut,
+            Some(false) => *l == Label::ProvedIn,
+        })
+    }
+}
+
+/// Region and the four cells for two constraints (Ω, Ω₀), in the order of
+/// [`crate::scene::REGION_NAMES`].
+pub fn standard_cells() -> [CellSpec; 6] {
+    let (t, f) = (Some(true), Some(false));
+    [
+        CellSpec::of(&[t, None]),
+        CellSpec::of(&[None, t]),
+        CellSpec::of(&[t, t]),
+        CellSpec::of(&[f, f]),
+        CellSpec::of(&[f, t]),
+        CellSpec::of(&[t, f]),
+    ]
+}
+
+/// `inner_area ≤ true area ≤ outer_area`, with box counts.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+pub struct AreaBounds {
+    pub inner_area: f64,
+    pub outer_area: f64,
+    /// Leaves proved inside.
+    pub inner_boxes: usize,
+    /// Leaves not proved outside (a superset of the inner ones).
+    pub outer_boxes: usize,
+}
+
+impl AreaBounds {
+    pub fn undecided_area(&self) -> f64 {
+        self.outer_area - self.inner_area
+    }
+    pub fn undecided_boxes(&self) -> usize {
+        self.outer_boxes - self.inner_boxes
+    }
+}
+
+const ZERO: Interval = const_interval!(0.0, 0.0);
+
+impl Paving {
+    /// Area bounds of a set. `uncovered_sup` bounds the area of the true domain
+    /// outside the root box (it is added to the outer bound only).
+    pub fn area_bounds(&self, cell: &CellSpec, uncovered_sup: f64) -> AreaBounds {
+        let (mut inner, mut outer) = (ZERO, ZERO);
+        let (mut ni, mut no) = (0, 0);
+        for leaf in &self.leaves {
+            if cell.proved_in(leaf) {
+                inner = inner + leaf.bx.area();
+                ni += 1;
+            }
+            if !cell.proved_out(leaf) {
+                outer = outer + leaf.bx.area();
+                no += 1;
+            }
+        }
+        let extra = Interval::try_from((0.0, uncovered_sup)).unwrap_or(ZERO);
+        AreaBounds {
+            inner_area: inner.inf(),
+            outer_area: (outer + extra).sup(),
+            inner_boxes: ni,
+            outer_boxes: no,
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! Certified isolation of real roots of scalar equations.

@@ -1,0 +1,153 @@
+//! §3: disc with a sharp edge on ice, (2.8), (3.1)–(3.5).
+//!
+//! # Derivation (the `derived` variant)
+//!
+//! Let `e₁` be the disc's horizontal diameter (the line of nodes), `n` the
+//! horizontal unit vector normal to it and `k` the disc's axis, so the lowest
+//! point is `P = G − a u`, `u = cos θ n + sin θ e_z`. The velocity of the
+//! material point P is `v_G − a θ̇ k + a ω₃ e₁` (`ω₃ = p_φ/C`). The blade
+//! forbids sideways slip: `v_P · n = 0`, i.e. `v_n = −a θ̇ sin θ` for the
+//! centre's velocity component along n. The ice exerts `N e_z + R n` at P;
+//! neither works on the contact motion.
+//!
+//! * Torques `−a u × (N e_z + R n)` are along `e₁`, so `p_φ` and `p_ψ` (2.3)
+//!   stay integrals and `ψ̇ sin θ = τ` as in §2.
+//! * Horizontal momentum along `e₁`: `v̇_x − v_n ψ̇ = 0`, so `dv_x/dθ = −a τ` and
+//!   (3.1) follows by integrating `τ`.
+//! * Along n: `R = m(v̇_n + v_x ψ̇)`. The θ equation:
+//!   `A θ̈ = −A τ τ' − a N cos θ + a R sin θ`; vertical: `m z̈ = N − m g`.
+//!
+//! Eliminating R: `(A + m a² sin²θ) θ̈ = −A τ τ' − a N cos θ − m a² θ̇² sin θ
+//! cos θ + m a v_x τ`, and `Λ̈ = U₀ + V₀ N` with
+//! `V₀ = 1/m + a² cos²θ/(A + m a² sin²θ)` — not the printed `V₀ = 1/m` of (3.4).
+//!
+//! In contact (`Λ̈ = 0`) this gives (3.3),
+//! `(A + m a²) θ̈ = −m g a cos θ + m a v_x τ − A τ τ'`, and the reaction
+//! `N/m = g − a θ̇² sin θ + a cos θ θ̈`; `N ≥ 0` is exactly the printed (3.5).
+//! Ω is Λ̈ in free flight (`N = R = 0`, so `θ̈ = −τ τ'`): `U` of (2.7), as the
+//! paper says. Energy (3.2):
+//! `½(A + m a²) θ̇² + m g a sin θ + ½ m v_x² + ½ A τ²` (+ the constant `p_φ²/2C`).
+
+use super::smooth::{SmoothDisc, SMOOTH_PARAMS};
+use super::{Angle, Constraints, Domain, Model, Quadratic, Variant};
+use crate::param::{ParamError, ParamSet, ParamSpec, Sign};
+use crate::scalar::Scalar;
+use inari::Interval;
+
+#[derive(Clone, Debug)]
+pub struct IceDisc {
+    pub disc: SmoothDisc,
+    pub c0: Interval,
+}
+
+const ICE_PARAMS: [ParamSpec; 8] = {
+    let s = SMOOTH_PARAMS;
+    [
+        s[0],
+        s[1],
+        s[2],
+        s[3],
+        s[4],
+        s[5],
+        s[6],
+        ParamSpec {
+            name: "c0",
+            default: "0",
+            sign: Sign::Any,
+            meaning: "constant c₀ of the integral (3.1)",
+        },
+    ]
+};
+
+impl IceDisc {
+    /// v_x of (3.1): `c₀ − (a/A)(p_ψ ln tg(θ/2) − p_φ ln sin θ)`, with
+    /// `ln tg(θ/2) = ln sin θ − ln(1 + cos θ)`.
+    pub fn v_x<T: Scalar>(&self, an: &Angle<T>) -> T {
+        let d = &self.disc;
+        let (a, big_a) = (T::lift(d.a), T::lift(d.big_a));
+        let (pf, ps) = (T::lift(d.p_phi), T::lift(d.p_psi));
+        let ln_sin = an.sin.ln();
+        let ln_tan_half = ln_sin - (T::int(1) + an.cos).ln();
+        T::lift(self.c0) - a / big_a * (ps * ln_tan_half - pf * ln_sin)
+    }
+
+    /// The coefficient V₀ of N in Λ̈ = U₀ + V₀ N (3.4).
+    pub fn reaction_coefficient<T: Scalar>(&self, v: Variant, an: &Angle<T>) -> T {
+        let d = &self.disc;
+        let (m, a, big_a) = (T::lift(d.m), T::lift(d.a), T::lift(d.big_a));
+        match v {
+            Variant::Printed => T::int(1) / m,
+            Variant::Derived => {
+                T::int(1) / m + a.sqr() * an.cos.sqr() / (big_a + m * a.sqr() * an.sin.sqr())
+            }
+        }
+    }
+}
+
+impl Model for IceDisc {
+    const NAME: &'static str = "ice-disc";
+    const TITLE: &'static str = "§3: disc with a sharp edge on ice";
+    const PARAMS: &'static [ParamSpec] = &ICE_PARAMS;
+
+    fn from_params(p: &ParamSet) -> Result<Self, ParamError> {
+        Ok(IceDisc {
+            disc: SmoothDisc::from_param_set(p),
+            c0: p.get("c0"),
+        })
+    }
+
+    fn domain(&self) -> Domain {
+        self.disc.domain()
+    }
+
+    fn constraints<T: Scalar>(&self, v: Variant, an: &Angle<T>) -> Constraints<T> {
+        let d = &self.disc;
+        let (m, a, g, big_a) = (T::lift(d.m), T::lift(d.a), T::lift(d.g), T::lift(d.big_a));
+        let omega0 = match v {
+            // (3.5): a θ̇² sin θ − g + a cos θ/(A + m a²)·(m g a cos θ − m a v_x τ + A τ τ') < 0
+            Variant::Printed => {
+                let t = d.tau(an);
+                let vx = self.v_x(an);
+                let bracket = m * g * a * an.cos - m * a * vx * t.tau + big_a * t.tau * t.tau1;
+                Quadratic {
+                    c2: a * an.sin,
+                    c1: T::int(0),
+                    c0: a * an.cos / (big_a + m * a.sqr()) * bracket - g,
+                }
+            }
+            // −N/m = −g + a θ̇² sin θ − a cos θ θ̈, θ̈ from (3.3)
+            Variant::Derived => Quadratic {
+                c2: a * an.sin,
+                c1: T::int(0),
+                c0: -g - a * an.cos * self.acceleration(v, an, T::int(0)),
+            },
+        };
+        Constraints {
+            omega: d.omega(v, an),
+            omega0,
+        }
+    }
+
+    /// (3.3); θ̈ does not depend on θ̇.
+    fn acceleration<T: Scalar>(&self, _: Variant, an: &Angle<T>, _: T) -> T {
+        let d = &self.disc;
+        let (m, a, g, big_a) = (T::lift(d.m), T::lift(d.a), T::lift(d.g), T::lift(d.big_a));
+        let t = d.tau(an);
+        (-(m * g * a * an.cos) + m * a * self.v_x(an) * t.tau - big_a * t.tau * t.tau1)
+            / (big_a + m * a.sqr())
+    }
+
+    /// (3.2) without the constant `p_φ²/2C`.
+    fn energy<T: Scalar>(&self, an: &Angle<T>, w: T) -> Option<T> {
+        let d = &self.disc;
+        let (m, a, g, big_a) = (T::lift(d.m), T::lift(d.a), T::lift(d.g), T::lift(d.big_a));
+        let half = T::int(1) / T::int(2);
+        let t = d.tau(an);
+        Some(
+            half * (big_a + m * a.sqr()) * w.sqr()
+                + m * g * a * an.sin
+                + half * m * self.v_x(an).sqr()
+                + half * big_a * t.tau.sqr(),
+        )
+    }
+}

@@ -1,0 +1,297 @@
+//! The three systems of the paper as reduced phase-plane models.
+//!
+//! Every region here is `{g(θ, θ̇) < 0}` with `g` quadratic in θ̇ for fixed θ,
+//! so a scene gives each constraint as θ-dependent coefficients
+//! ([`Quadratic`]). That is the same formula on points, boxes and duals, and it
+//! lets the paver share every trigonometric and logarithmic value across all
+//! boxes of one θ-slab.
+
+pub mod ice;
+pub mod smooth;
+pub mod viscous;
+
+use crate::param::{ParamError, ParamSet, ParamSpec};
+use crate::scalar::Scalar;
+use inari::{const_interval, DecInterval, Interval};
+use serde::Serialize;
+use std::fmt;
+use std::str::FromStr;
+
+pub use ice::IceDisc;
+pub use smooth::SmoothDisc;
+pub use viscous::ViscousDisc;
+
+/// Which reading of the paper a formula follows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Variant {
+    /// The formulas exactly as PAPER.md transcribes them.
+    Printed,
+    /// Re-derived from the mechanics the paper states (see each scene's docs).
+    Derived,
+}
+
+impl fmt::Display for Variant {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str(match self {
+            Variant::Printed => "printed",
+            Variant::Derived => "derived",
+        })
+    }
+}
+
+/// `c2·θ̇² + c1·θ̇ + c0`, the coefficients depending on θ only.
+#[derive(Clone, Copy, Debug)]
+pub struct Quadratic<T> {
+    pub c2: T,
+    pub c1: T,
+    pub c0: T,
+}
+
+impl<T: Scalar> Quadratic<T> {
+    pub fn eval(&self, theta_dot: T) -> T {
+        self.c2 * theta_dot.sqr() + self.c1 * theta_dot + self.c0
+    }
+}
+
+/// θ with its sine and cosine, computed once and shared by every formula.
+#[derive(Clone, Copy, Debug)]
+pub struct Angle<T> {
+    pub theta: T,
+    pub sin: T,
+    pub cos: T,
+}
+
+impl<T: Scalar> Angle<T> {
+    pub fn new(theta: T) -> Self {
+        let (sin, cos) = theta.sin_cos();
+        Angle { theta, sin, cos }
+    }
+}
+
+/// The two constraints of a scene, each `{g < 0}`: Ω (no detachment) and Ω₀
+/// (the normal reaction keeps its sign).
+#[derive(Clone, Copy, Debug)]
+pub struct Constraints<T> {
+    pub omega: Quadratic<T>,
+    pub omega0: Quadratic<T>,
+}
+
+/// A rectangle of the phase plane whose endpoints are exact reals given as
+/// enclosures (e.g. θ ∈ [0, π]).
+#[derive(Clone, Copy, Debug)]
+pub struct Domain {
+    pub theta: [Interval; 2],
+    pub theta_dot: [Interval; 2],
+}
+
+impl Domain {
+    /// The largest double box inside the domain: pavings start here, so every
+    /// proved-inside box lies in the true domain.
+    pub fn inner_box(&self) -> [[f64; 2]; 2] {
+        [
+            [self.theta[0].sup(), self.theta[1].inf()],
+            [self.theta_dot[0].sup(), self.theta_dot[1].inf()],
+        ]
+    }
+
+    /// Upper bound on the area of the true domain not covered by
+    /// [`Domain::inner_box`] (non-zero when an endpoint such as π is not a double).
+    pub fn uncovered_area_sup(&self) -> f64 {
+        let b = self.inner_box();
+        let iv = |lo: f64, hi: f64| Interval::try_from((lo, hi)).unwrap();
+        let w_true = self.theta[1] - self.theta[0];
+        let h_true = self.theta_dot[1] - self.theta_dot[0];
+        let whole = w_true * h_true;
+        let inner = (iv(b[0][0], b[0][0]) - iv(b[0][1], b[0][1]))
+            * (iv(b[1][0], b[1][0]) - iv(b[1][1], b[1][1]));
+        (whole - inner).sup().max(0.0)
+    }
+
+    /// Exact area enclosure of the true domain.
+    pub fn area(&self) -> Interval {
+        (self.theta[1] - self.theta[0]) * (self.theta_dot[1] - self.theta_dot[0])
+    }
+
+    pub fn is_empty(&self) -> bool {
+        let b = self.inner_box();
+        !(b[0][0] < b[0][1] && b[1][0] < b[1][1])
+    }
+}
+
+/// π as an enclosure.
+pub const PI: Interval = Interval::PI;
+const ZERO: Interval = const_interval!(0.0, 0.0);
+
+fn int(n: f64) -> Interval {
+    Interval::try_from((n, n)).expect("exact small number")
+}
+
+/// What a system of the paper provides; formulas generic over [`Scalar`].
+pub trait Model: Sized {
+    /// `viscous-disc`, `smooth-disc`, `ice-disc`.
+    const NAME: &'static str;
+    /// Which part of the paper it is.
+    const TITLE: &'static str;
+    const PARAMS: &'static [ParamSpec];
+    fn from_params(p: &ParamSet) -> Result<Self, ParamError>;
+    fn domain(&self) -> Domain;
+    /// Ω and Ω₀ as `{g < 0}` quadratics in θ̇.
+    fn constraints<T: Scalar>(&self, v: Variant, a: &Angle<T>) -> Constraints<T>;
+    /// θ̈ of the equation of motion in contact.
+    fn acceleration<T: Scalar>(&self, v: Variant, a: &Angle<T>, theta_dot: T) -> T;
+    /// A conserved energy whose level lines are the phase curves, if the paper
+    /// has one ((2.11), (3.2)).
+    fn energy<T: Scalar>(&self, a: &Angle<T>, theta_dot: T) -> Option<T>;
+}
+
+/// Scene identifiers, as spelled on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum SceneId {
+    ViscousDisc,
+    SmoothDisc,
+    IceDisc,
+}
+
+impl SceneId {
+    pub const ALL: [SceneId; 3] = [SceneId::ViscousDisc, SceneId::SmoothDisc, SceneId::IceDisc];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            SceneId::ViscousDisc => ViscousDisc::NAME,
+            SceneId::SmoothDisc => SmoothDisc::NAME,
+            SceneId::IceDisc => IceDisc::NAME,
+        }
+    }
+    pub fn title(self) -> &'static str {
+        match self {
+            SceneId::ViscousDisc => ViscousDisc::TITLE,
+            SceneId::SmoothDisc => SmoothDisc::TITLE,
+            SceneId::IceDisc => IceDisc::TITLE,
+        }
+    }
+    pub fn params(self) -> &'static [ParamSpec] {
+        match self {
+            SceneId::ViscousDisc => ViscousDisc::PARAMS,
+            SceneId::SmoothDisc => SmoothDisc::PARAMS,
+            SceneId::IceDisc => IceDisc::PARAMS,
+        }
+    }
+}
+
+impl fmt::Display for SceneId {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for SceneId {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        SceneId::ALL
+            .into_iter()
+            .find(|id| id.name() == s)
+            .ok_or_else(|| {
+                format!(
+                    "unknown scene `{s}` (known: {})",
+                    SceneId::ALL.map(|i| i.name()).join(", ")
+                )
+            })
+    }
+}
+
+/// A scene with validated parameters.
+#[derive(Clone, Debug)]
+pub enum Scene {
+    Viscous(ViscousDisc),
+    Smooth(SmoothDisc),
+    Ice(IceDisc),
+}
+
+/// Calls `$body` with `$m` bound to the concrete model.
+macro_rules! with_model {
+    ($scene:expr, $m:ident => $body:expr) => {
+        match $scene {
+            Scene::Viscous($m) => $body,
+            Scene::Smooth($m) => $body,
+            Scene::Ice($m) => $body,
+        }
+    };
+}
+
+impl Scene {
+    /// Builds a scene from defaults overridden by `name=value` pairs.
+    pub fn build(
+        id: SceneId,
+        overrides: &[(String, String)],
+    ) -> Result<(Scene, ParamSet), ParamError> {
+        let params = ParamSet::build(id.name(), id.params(), overrides)?;
+        let scene = match id {
+            SceneId::ViscousDisc => Scene::Viscous(ViscousDisc::from_params(&params)?),
+            SceneId::SmoothDisc => Scene::Smooth(SmoothDisc::from_params(&params)?),
+            SceneId::IceDisc => Scene::Ice(IceDisc::from_params(&params)?),
+        };
+        Ok((scene, params))
+    }
+
+    /// The scene at its default parameters.
+    pub fn default_of(id: SceneId) -> Scene {
+        Scene::build(id, &[]).expect("defaults are valid").0
+    }
+
+    pub fn id(&self) -> SceneId {
+        match self {
+            Scene::Viscous(_) => SceneId::ViscousDisc,
+            Scene::Smooth(_) => SceneId::SmoothDisc,
+            Scene::Ice(_) => SceneId::IceDisc,
+        }
+    }
+
+    pub fn domain(&self) -> Domain {
+        with_model!(self, m => m.domain())
+    }
+
+    pub fn constraints<T: Scalar>(&self, v: Variant, a: &Angle<T>) -> Constraints<T> {
+        with_model!(self, m => m.constraints(v, a))
+    }
+
+    /// Certified coefficient enclosures over a θ-interval (decorated: a slab
+    /// touching a singular line comes back with a decoration below `def`).
+    pub fn constraints_on(&self, v: Variant, theta: Interval) -> Constraints<DecInterval> {
+        self.constraints(v, &Angle::new(DecInterval::new(theta)))
+    }
+
+    pub fn acceleration<T: Scalar>(&self, v: Variant, a: &Angle<T>, theta_dot: T) -> T {
+        with_model!(self, m => m.acceleration(v, a, theta_dot))
+    }
+
+    pub fn energy<T: Scalar>(&self, a: &Angle<T>, theta_dot: T) -> Option<T> {
+        with_model!(self, m => m.energy(a, theta_dot))
+    }
+}
+
+/// Region and partition-cell names, in the order used everywhere.
+pub const REGION_NAMES: [&str; 6] = [
+    "omega",
+    "omega0",
+    "omega_and_omega0",
+    "not_omega_and_not_omega0",
+    "not_omega_and_omega0",
+    "omega_and_not_omega0",
+];
+
+/// Human-readable form of [`REGION_NAMES`].
+pub const REGION_LABELS: [&str; 6] = ["Ω", "Ω₀", "Ω∩Ω₀", "Ω̄∩Ω̄₀", "Ω̄∩Ω₀", "Ω∩Ω̄₀"];
+
+pub(crate) fn positive_gap(lo: Interval, hi: Interval) -> bool {
+    lo.sup() < hi.inf()
+}
+
+pub(crate) fn theta_range_0_pi() -> [Interval; 2] {
+    [ZERO, PI]
+}
+
+pub(crate) fn symmetric(r: f64) -> [Interval; 2] {
+    [int(-r), int(r)]
+}

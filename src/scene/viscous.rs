@@ -1,0 +1,189 @@
+//! Example 1: heavy non-uniform disc on a plane with viscous friction, (1.3)–(1.11).
+//!
+//! # Derivation (the `derived` variant)
+//!
+//! Coordinates `y` (height of the centre of mass G, which moves on a fixed
+//! vertical line) and θ (angle of the vector CG with the x axis, C the
+//! geometric centre). With `G = C + b(cos θ, sin θ)` the lowest point P of the
+//! rim is at height `y − b sin θ − a`, so `Λ = y − h(θ)`, `h = a + b sin θ` (1.3).
+//!
+//! * Kinetic energy `T = ½ m ẏ² + ½ C θ̇²` (the paper prints `½ m ẏ`), `Π = m g y`.
+//! * Velocity of the material point P: horizontal `θ̇ h` (the slip ν of (1.4)),
+//!   vertical `ẏ − h' θ̇ = Λ̇`.
+//! * Forces at P: normal reaction `N` (generalised force `(N, −N h')` on
+//!   `(y, θ)`) and viscous friction `F = −μ ν` (generalised force
+//!   `(0, −μ h² θ̇)`). The guide of G does no work.
+//! * Equations: `m ÿ = −m g + N`, `C θ̈ = −N h' − μ h² θ̇`, and
+//!   `Λ̈ = ÿ − h' θ̈ − h'' θ̇²` (1.8).
+//!
+//! **Contact** (`Λ̈ = 0`) eliminates `N = m(g + h'' θ̇² + h' θ̈)`:
+//! `(C + m h'²) θ̈ + m h' h'' θ̇² = −m g h' − μ h² θ̇`. The paper's (1.7) has an
+//! extra factor 2 on the left side only; the kinetic-energy theorem (1.6)
+//! with `T = ½(C + m h'²) θ̇²` gives the equation above.
+//!
+//! **Ω**: Λ̈ with zero constraint reaction, i.e. in free flight (no normal force
+//! and, with no contact, no friction either): `ÿ = −g`, `θ̈ = 0`, hence
+//! `Λ̈ = −g − h'' θ̇²` and Ω = `{−g − h'' θ̇² < 0}`.
+//!
+//! **Ω₀**: the contact reaction is positive:
+//! `N (C + m h'²)/m = C(g + h'' θ̇²) − μ h² h' θ̇ > 0`, so Ω₀ =
+//! `{μ h² h' θ̇ − C g − C h'' θ̇² < 0}` (a positive multiple of `−N`).
+//!
+//! The printed (1.10) and (1.11) carry `2C` and `g(2C + m h'²)` instead: they
+//! follow from the printed (1.7) with its factor 2. The sets differ; see the
+//! witnesses in `tests/findings.rs`.
+
+use super::{symmetric, Angle, Constraints, Domain, Model, Quadratic, Variant, PI};
+use crate::param::{ParamError, ParamSet, ParamSpec, Sign};
+use crate::scalar::Scalar;
+use inari::Interval;
+
+#[derive(Clone, Debug)]
+pub struct ViscousDisc {
+    pub a: Interval,
+    pub b: Interval,
+    pub m: Interval,
+    pub c: Interval,
+    pub mu: Interval,
+    pub g: Interval,
+}
+
+impl ViscousDisc {
+    /// `(h, h', h'')` of (1.3).
+    fn h<T: Scalar>(&self, an: &Angle<T>) -> (T, T, T) {
+        let (a, b) = (T::lift(self.a), T::lift(self.b));
+        (a + b * an.sin, b * an.cos, -(b * an.sin))
+    }
+}
+
+impl Model for ViscousDisc {
+    const NAME: &'static str = "viscous-disc";
+    const TITLE: &'static str = "Example 1: non-uniform disc, viscous friction";
+    const PARAMS: &'static [ParamSpec] = &[
+        ParamSpec {
+            name: "a",
+            default: "1",
+            sign: Sign::Positive,
+            meaning: "disc radius",
+        },
+        ParamSpec {
+            name: "b",
+            default: "0.5",
+            sign: Sign::NonNegative,
+            meaning: "offset |GC| of the centre of mass (b < a)",
+        },
+        ParamSpec {
+            name: "m",
+            default: "1",
+            sign: Sign::Positive,
+            meaning: "mass",
+        },
+        ParamSpec {
+            name: "C",
+            default: "0.3",
+            sign: Sign::Positive,
+            meaning: "moment of inertia about G",
+        },
+        ParamSpec {
+            name: "mu",
+            default: "0.8",
+            sign: Sign::NonNegative,
+            meaning: "viscous friction coefficient",
+        },
+        ParamSpec {
+            name: "g",
+            default: "9.81",
+            sign: Sign::Positive,
+            meaning: "gravity",
+        },
+    ];
+
+    fn from_params(p: &ParamSet) -> Result<Self, ParamError> {
+        let s = ViscousDisc {
+            a: p.get("a"),
+            b: p.get("b"),
+            m: p.get("m"),
+            c: p.get("C"),
+            mu: p.get("mu"),
+            g: p.get("g"),
+        };
+        if !super::positive_gap(s.b, s.a) {
+            return Err(ParamError::Invalid {
+                name: "b".into(),
+                reason: "the centre of mass must lie inside the disc: b < a".into(),
+            });
+        }
+        Ok(s)
+    }
+
+    /// θ ∈ [−π, π], θ̇ ∈ [−10, 10].
+    fn domain(&self) -> Domain {
+        Domain {
+            theta: [-PI, PI],
+            theta_dot: symmetric(10.0),
+        }
+    }
+
+    fn constraints<T: Scalar>(&self, v: Variant, an: &Angle<T>) -> Constraints<T> {
+        let (h, h1, h2) = self.h(an);
+        let (m, c, mu, g) = (
+            T::lift(self.m),
+            T::lift(self.c),
+            T::lift(self.mu),
+            T::lift(self.g),
+        );
+        let friction = mu * h.sqr() * h1;
+        let zero = T::int(0);
+        match v {
+            Variant::Printed => {
+                // (1.10), (1.11)
+                let c2 = -(T::int(2) * c * h2);
+                let c0 = -(g * (T::int(2) * c + m * h1.sqr()));
+                Constraints {
+                    omega: Quadratic { c2, c1: zero, c0 },
+                    omega0: Quadratic {
+                        c2,
+                        c1: friction,
+                        c0,
+                    },
+                }
+            }
+            Variant::Derived => Constraints {
+                // free-flight Λ̈ = −g − h''θ̇²
+                omega: Quadratic {
+                    c2: -h2,
+                    c1: zero,
+                    c0: -g,
+                },
+                // −N(C + m h'²)/m = μh²h'θ̇ − C g − C h''θ̇²
+                omega0: Quadratic {
+                    c2: -(c * h2),
+                    c1: friction,
+                    c0: -(c * g),
+                },
+            },
+        }
+    }
+
+    fn acceleration<T: Scalar>(&self, v: Variant, an: &Angle<T>, w: T) -> T {
+        let (h, h1, h2) = self.h(an);
+        let (m, c, mu, g) = (
+            T::lift(self.m),
+            T::lift(self.c),
+            T::lift(self.mu),
+            T::lift(self.g),
+        );
+        let rhs = -(m * g * h1) - mu * h.sqr() * w;
+        let inertia = c + m * h1.sqr();
+        match v {
+            // (1.7) as printed: 2(C + m h'²)θ̈ + 2 m h' h'' θ̇² = −m g h' − μ h² θ̇
+            Variant::Printed => (rhs - T::int(2) * m * h1 * h2 * w.sqr()) / (T::int(2) * inertia),
+            Variant::Derived => (rhs - m * h1 * h2 * w.sqr()) / inertia,
+        }
+    }
+
+    /// Dissipative: no conserved energy; the portrait draws trajectories.
+    fn energy<T: Scalar>(&self, _: &Angle<T>, _: T) -> Option<T> {
+        None
+    }
+}
