@@ -1,1 +1,395 @@
 //! `detach atlas`, `detach pave`, `detach scenes`.
+
+use super::{CliError, CliResult};
+use detach::atlas::{draw_atlas, plot_area_pixels, AtlasStyle, PictureInfo};
+use detach::param::{parse_assignment, ParamSet};
+use detach::pave::{pave_scene, standard_cells, AreaBounds, PaveOptions, Paving};
+use detach::scene::{Scene, SceneId, Variant, REGION_LABELS, REGION_NAMES};
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Options shared by `atlas` and `pave`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct PaveFlags {
+    /// Which reading of the paper: `derived` (re-derived mechanics) or `printed`.
+    #[arg(long, value_enum, default_value_t = Variant::Derived)]
+    pub variant: Variant,
+    /// Override a parameter, as decimal text: `--param mu=0.5` (repeatable).
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    pub params: Vec<String>,
+    /// Resolution relative to the domain (a box stops splitting along an axis at
+    /// eps × the domain's width). Default: about one pixel of the picture for
+    /// `atlas`, 1/1024 for `pave`.
+    #[arg(long)]
+    pub eps: Option<f64>,
+    /// Most leaves per paving; when reached the result is coarser but valid.
+    #[arg(long, default_value_t = 4_000_000)]
+    pub max_boxes: usize,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct AtlasArgs {
+    /// Output directory.
+    #[arg(long, default_value = "out/atlas")]
+    pub out: PathBuf,
+    /// Only these scenes (repeatable); default: all three.
+    #[arg(long, value_name = "SCENE")]
+    pub scene: Vec<String>,
+    #[command(flatten)]
+    pub flags: PaveFlags,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct PaveArgs {
+    /// The scene: viscous-disc, smooth-disc or ice-disc.
+    #[arg(long)]
+    pub scene: String,
+    #[command(flatten)]
+    pub flags: PaveFlags,
+    /// Print the result as JSON instead of a table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct ScenesArgs {
+    /// Print as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// One region or cell in the summary.
+#[derive(Serialize)]
+struct RegionReport {
+    name: &'static str,
+    label: &'static str,
+    inner_area: f64,
+    outer_area: f64,
+    undecided_area: f64,
+    boxes: BoxCounts,
+}
+
+#[derive(Serialize)]
+struct BoxCounts {
+    inner: usize,
+    outer: usize,
+    undecided: usize,
+}
+
+#[derive(Serialize)]
+struct DomainReport {
+    theta: [f64; 2],
+    theta_dot: [f64; 2],
+    /// Area of the true domain not covered by the paved box (endpoints such as
+    /// π are not doubles); added to every outer bound.
+    uncovered_area_sup: f64,
+}
+
+/// What `pave --json` prints and `atlas` writes to `summary.json`.
+#[derive(Serialize)]
+pub struct PaveReport {
+    scene: &'static str,
+    variant: Variant,
+    params: serde_json::Map<String, serde_json::Value>,
+    domain: DomainReport,
+    eps: f64,
+    max_boxes: usize,
+    complete: bool,
+    elapsed_s: f64,
+    leaves: usize,
+    stats: detach::pave::PaveStats,
+    regions: Vec<RegionReport>,
+}
+
+fn parse_overrides(texts: &[String]) -> Result<Vec<(String, String)>, CliError> {
+    texts
+        .iter()
+        .map(|t| parse_assignment(t).map_err(CliError::usage))
+        .collect()
+}
+
+fn progress_bar(levels: u64, label: &str) -> ProgressBar {
+    let bar = ProgressBar::new(levels);
+    bar.set_style(
+        ProgressStyle::with_template("{prefix:>14} [{bar:30}] level {pos}/{len} {msg}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_prefix(label.to_string());
+    bar
+}
+
+/// Paves one scene with a progress bar, and summarises it.
+fn pave_and_report(
+    scene: &Scene,
+    params: &ParamSet,
+    variant: Variant,
+    opts: PaveOptions,
+) -> Result<(Paving, PaveReport), CliError> {
+    let levels = 2 * (1.0 / opts.eps).log2().ceil().max(0.0) as u64 + 1;
+    let bar = progress_bar(levels, scene.id().name());
+    let start = Instant::now();
+    let paving = pave_scene(scene, variant, opts, |level, open, leaves| {
+        bar.set_position(level as u64);
+        bar.set_message(format!("{open} open, {leaves} leaves"));
+    })
+    .map_err(CliError::usage)?;
+    let elapsed_s = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let report = summarise(scene, params, variant, opts, &paving, elapsed_s);
+    Ok((paving, report))
+}
+
+fn summarise(
+    scene: &Scene,
+    params: &ParamSet,
+    variant: Variant,
+    opts: PaveOptions,
+    paving: &Paving,
+    elapsed_s: f64,
+) -> PaveReport {
+    let domain = scene.domain();
+    let uncovered = domain.uncovered_area_sup();
+    let regions = standard_cells()
+        .iter()
+        .enumerate()
+        .map(|(i, cell)| {
+            let b: AreaBounds = paving.area_bounds(cell, uncovered);
+            RegionReport {
+                name: REGION_NAMES[i],
+                label: REGION_LABELS[i],
+                inner_area: b.inner_area,
+                outer_area: b.outer_area,
+                undecided_area: b.undecided_area(),
+                boxes: BoxCounts {
+                    inner: b.inner_boxes,
+                    outer: b.outer_boxes,
+                    undecided: b.undecided_boxes(),
+                },
+            }
+        })
+        .collect();
+    PaveReport {
+        scene: scene.id().name(),
+        variant,
+        params: params
+            .texts()
+            .into_iter()
+            .map(|(n, t)| (n.to_string(), serde_json::Value::String(t)))
+            .collect(),
+        domain: DomainReport {
+            theta: paving.root.theta,
+            theta_dot: paving.root.theta_dot,
+            uncovered_area_sup: uncovered,
+        },
+        eps: opts.eps,
+        max_boxes: opts.max_boxes,
+        complete: paving.complete,
+        elapsed_s,
+        leaves: paving.leaves.len(),
+        stats: paving.stats,
+        regions,
+    }
+}
+
+fn print_table(r: &PaveReport) {
+    let params: Vec<String> = r
+        .params
+        .iter()
+        .map(|(k, v)| format!("{k}={}", v.as_str().unwrap_or("")))
+        .collect();
+    println!(
+        "{} ({})  {}  eps={:.3e}  {} leaves  {:.2} s{}",
+        r.scene,
+        r.variant,
+        params.join(" "),
+        r.eps,
+        r.leaves,
+        r.elapsed_s,
+        if r.complete {
+            ""
+        } else {
+            "  [budget reached: coarser result]"
+        }
+    );
+    println!(
+        "  {:<7} {:>12} {:>12} {:>12} {:>9} {:>9} {:>9}",
+        "region", "inner area", "outer area", "undecided", "in boxes", "out boxes", "undec."
+    );
+    for g in &r.regions {
+        println!(
+            "  {:<7} {:>12.6} {:>12.6} {:>12.6} {:>9} {:>9} {:>9}",
+            g.label,
+            g.inner_area,
+            g.outer_area,
+            g.undecided_area,
+            g.boxes.inner,
+            g.boxes.outer,
+            g.boxes.undecided
+        );
+    }
+}
+
+fn options(flags: &PaveFlags, default_eps: f64) -> Result<PaveOptions, CliError> {
+    let eps = flags.eps.unwrap_or(default_eps);
+    if !(eps.is_finite() && eps > 0.0 && eps <= 1.0) {
+        return Err(CliError::usage(format!(
+            "--eps must be a finite number in (0, 1], got {eps}"
+        )));
+    }
+    if flags.max_boxes == 0 {
+        return Err(CliError::usage("--max-boxes must be at least 1"));
+    }
+    Ok(PaveOptions {
+        eps,
+        max_boxes: flags.max_boxes,
+    })
+}
+
+pub fn run_pave(args: &PaveArgs) -> CliResult {
+    let id: SceneId = args.scene.parse().map_err(CliError::usage)?;
+    let overrides = parse_overrides(&args.flags.params)?;
+    let (scene, params) = Scene::build(id, &overrides).map_err(CliError::usage)?;
+    let opts = options(&args.flags, PaveOptions::default().eps)?;
+    let (_, report) = pave_and_report(&scene, &params, args.flags.variant, opts)?;
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).expect("serialisable")
+        );
+    } else {
+        print_table(&report);
+    }
+    Ok(())
+}
+
+/// Parameter overrides for one scene of a multi-scene run: only the names it
+/// declares.
+fn overrides_for(id: SceneId, all: &[(String, String)]) -> Vec<(String, String)> {
+    all.iter()
+        .filter(|(n, _)| id.params().iter().any(|s| s.name == n))
+        .cloned()
+        .collect()
+}
+
+pub fn run_atlas(args: &AtlasArgs) -> CliResult {
+    let ids: Vec<SceneId> = if args.scene.is_empty() {
+        SceneId::ALL.to_vec()
+    } else {
+        args.scene
+            .iter()
+            .map(|s| s.parse().map_err(CliError::usage))
+            .collect::<Result<_, _>>()?
+    };
+    let overrides = parse_overrides(&args.flags.params)?;
+    for (name, _) in &overrides {
+        if !ids
+            .iter()
+            .any(|id| id.params().iter().any(|s| s.name == name))
+        {
+            return Err(CliError::usage(format!(
+                "unknown parameter `{name}` for the scenes paved"
+            )));
+        }
+    }
+    let style = AtlasStyle::default();
+    let (w, h) = plot_area_pixels(&style);
+    // About one pixel: the largest power of two not above 1/max(w, h).
+    let pixel_eps = (1.0 / w.max(h) as f64).log2().floor().exp2();
+    let opts = options(&args.flags, pixel_eps)?;
+    // Validate every scene before the long work starts.
+    let scenes = ids
+        .iter()
+        .map(|&id| Scene::build(id, &overrides_for(id, &overrides)).map_err(CliError::usage))
+        .collect::<Result<Vec<_>, _>>()?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", args.out.display())))?;
+    let mut reports = Vec::new();
+    for (scene, params) in &scenes {
+        let (paving, report) = pave_and_report(scene, params, args.flags.variant, opts)?;
+        print_table(&report);
+        let info = PictureInfo {
+            scene,
+            variant: args.flags.variant,
+            params: params.texts(),
+            complete: paving.complete,
+        };
+        let stem = args.out.join(scene.id().name());
+        draw(&paving, &info, &style, &stem)?;
+        println!("  wrote {}.svg and .png", stem.display());
+        reports.push(report);
+    }
+    let summary = args.out.join("summary.json");
+    let text = serde_json::to_string_pretty(&serde_json::json!({ "scenes": reports }))
+        .expect("serialisable");
+    std::fs::write(&summary, text)
+        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", summary.display())))?;
+    println!("wrote {}", summary.display());
+    Ok(())
+}
+
+fn draw(paving: &Paving, info: &PictureInfo, style: &AtlasStyle, stem: &Path) -> CliResult {
+    draw_atlas(
+        paving,
+        info,
+        style,
+        &stem.with_extension("svg"),
+        &stem.with_extension("png"),
+    )
+    .map_err(|e| CliError::runtime(format!("drawing {}: {e}", stem.display())))
+}
+
+pub fn run_scenes(args: &ScenesArgs) -> CliResult {
+    #[derive(Serialize)]
+    struct SceneInfo {
+        name: &'static str,
+        title: &'static str,
+        params: &'static [detach::param::ParamSpec],
+        domain: DomainText,
+        variants: [Variant; 2],
+    }
+    #[derive(Serialize)]
+    struct DomainText {
+        theta: [f64; 2],
+        theta_dot: [f64; 2],
+    }
+    let infos: Vec<SceneInfo> = SceneId::ALL
+        .iter()
+        .map(|&id| {
+            let b = Scene::default_of(id).domain().inner_box();
+            SceneInfo {
+                name: id.name(),
+                title: id.title(),
+                params: id.params(),
+                domain: DomainText {
+                    theta: b[0],
+                    theta_dot: b[1],
+                },
+                variants: [Variant::Derived, Variant::Printed],
+            }
+        })
+        .collect();
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&infos).expect("serialisable")
+        );
+        return Ok(());
+    }
+    for s in &infos {
+        println!("{} — {}", s.name, s.title);
+        println!(
+            "  domain θ ∈ [{:.6}, {:.6}], θ̇ ∈ [{}, {}]; variants: derived (default), printed",
+            s.domain.theta[0], s.domain.theta[1], s.domain.theta_dot[0], s.domain.theta_dot[1]
+        );
+        for p in s.params {
+            println!(
+                "  {:<6} = {:<6} {:?}: {}",
+                p.name, p.default, p.sign, p.meaning
+            );
+        }
+    }
+    Ok(())
+}

@@ -18,7 +18,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::HashMap;
 
-pub use area::{AreaBounds, CellSpec};
+pub use area::{standard_cells, AreaBounds, CellSpec};
 
 /// Most constraints one paving can carry.
 pub const MAX_CONSTRAINTS: usize = 4;
