@@ -3,8 +3,8 @@
 use super::{CliError, CliResult};
 use detach::atlas::{draw_atlas, plot_area_pixels, AtlasStyle, PictureInfo};
 use detach::param::{parse_assignment, ParamSet};
-use detach::pave::{pave_scene, standard_cells, AreaBounds, PaveOptions, Paving};
-use detach::scene::{Scene, SceneId, Variant, REGION_LABELS, REGION_NAMES};
+use detach::pave::{pave_scene_in, standard_cells, AreaBounds, PaveOptions, Paving};
+use detach::scene::{Domain, Scene, SceneId, Variant, REGION_LABELS, REGION_NAMES};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -22,7 +22,7 @@ pub struct PaveFlags {
     /// Resolution relative to the domain (a box stops splitting along an axis at
     /// eps × the domain's width). Default: about one pixel of the picture for
     /// `atlas`, 1/1024 for `pave`.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub eps: Option<f64>,
     /// Most leaves per paving; when reached the result is coarser but valid.
     #[arg(long, default_value_t = 4_000_000)]
@@ -48,9 +48,27 @@ pub struct PaveArgs {
     pub scene: String,
     #[command(flatten)]
     pub flags: PaveFlags,
+    /// Restrict θ to a window `LO:HI` (decimal text) inside the scene's domain.
+    #[arg(long, value_name = "LO:HI", allow_hyphen_values = true)]
+    pub theta: Option<String>,
+    /// Restrict θ̇ to a window `LO:HI` (decimal text) inside the scene's domain.
+    #[arg(long = "theta-dot", value_name = "LO:HI", allow_hyphen_values = true)]
+    pub theta_dot: Option<String>,
     /// Print the result as JSON instead of a table.
     #[arg(long)]
     pub json: bool,
+}
+
+fn split_window(flag: &str, text: &Option<String>) -> Result<Option<[String; 2]>, CliError> {
+    match text {
+        None => Ok(None),
+        Some(t) => match t.split_once(':') {
+            Some((lo, hi)) => Ok(Some([lo.trim().to_string(), hi.trim().to_string()])),
+            None => Err(CliError::usage(format!(
+                "--{flag} must be LO:HI, got `{t}`"
+            ))),
+        },
+    }
 }
 
 #[derive(clap::Args, Debug)]
@@ -124,6 +142,7 @@ fn progress_bar(levels: u64, label: &str) -> ProgressBar {
 /// Paves one scene with a progress bar, and summarises it.
 fn pave_and_report(
     scene: &Scene,
+    domain: &Domain,
     params: &ParamSet,
     variant: Variant,
     opts: PaveOptions,
@@ -131,26 +150,26 @@ fn pave_and_report(
     let levels = 2 * (1.0 / opts.eps).log2().ceil().max(0.0) as u64 + 1;
     let bar = progress_bar(levels, scene.id().name());
     let start = Instant::now();
-    let paving = pave_scene(scene, variant, opts, |level, open, leaves| {
+    let paving = pave_scene_in(scene, variant, domain, opts, |level, open, leaves| {
         bar.set_position(level as u64);
         bar.set_message(format!("{open} open, {leaves} leaves"));
     })
     .map_err(CliError::usage)?;
     let elapsed_s = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
-    let report = summarise(scene, params, variant, opts, &paving, elapsed_s);
+    let report = summarise(scene, domain, params, variant, opts, &paving, elapsed_s);
     Ok((paving, report))
 }
 
 fn summarise(
     scene: &Scene,
+    domain: &Domain,
     params: &ParamSet,
     variant: Variant,
     opts: PaveOptions,
     paving: &Paving,
     elapsed_s: f64,
 ) -> PaveReport {
-    let domain = scene.domain();
     let uncovered = domain.uncovered_area_sup();
     let regions = standard_cells()
         .iter()
@@ -253,7 +272,18 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
     let overrides = parse_overrides(&args.flags.params)?;
     let (scene, params) = Scene::build(id, &overrides).map_err(CliError::usage)?;
     let opts = options(&args.flags, PaveOptions::default().eps)?;
-    let (_, report) = pave_and_report(&scene, &params, args.flags.variant, opts)?;
+    let (th, thd) = (
+        split_window("theta", &args.theta)?,
+        split_window("theta-dot", &args.theta_dot)?,
+    );
+    fn as_refs(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
+        w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()])
+    }
+    let domain = scene
+        .domain()
+        .window(as_refs(&th), as_refs(&thd))
+        .map_err(CliError::usage)?;
+    let (_, report) = pave_and_report(&scene, &domain, &params, args.flags.variant, opts)?;
     if args.json {
         println!(
             "{}",
@@ -308,7 +338,8 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
         .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", args.out.display())))?;
     let mut reports = Vec::new();
     for (scene, params) in &scenes {
-        let (paving, report) = pave_and_report(scene, params, args.flags.variant, opts)?;
+        let (paving, report) =
+            pave_and_report(scene, &scene.domain(), params, args.flags.variant, opts)?;
         print_table(&report);
         let info = PictureInfo {
             scene,

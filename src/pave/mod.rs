@@ -12,7 +12,7 @@
 pub mod area;
 
 use crate::scalar::is_defined;
-use crate::scene::{Constraints, Scene, Variant};
+use crate::scene::{Constraints, Domain, Scene, Variant};
 use inari::{DecInterval, Interval};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -404,14 +404,24 @@ impl Paving {
     }
 }
 
-/// Paves Ω and Ω₀ of a scene over its domain.
+/// Paves Ω and Ω₀ of a scene over its whole domain.
 pub fn pave_scene(
     scene: &Scene,
     variant: Variant,
     opts: PaveOptions,
     progress: impl FnMut(u32, usize, usize),
 ) -> Result<Paving, PaveError> {
-    let domain = scene.domain();
+    pave_scene_in(scene, variant, &scene.domain(), opts, progress)
+}
+
+/// Paves Ω and Ω₀ of a scene over a window of the phase plane.
+pub fn pave_scene_in(
+    scene: &Scene,
+    variant: Variant,
+    domain: &Domain,
+    opts: PaveOptions,
+    progress: impl FnMut(u32, usize, usize),
+) -> Result<Paving, PaveError> {
     if domain.is_empty() {
         return Err(PaveError::EmptyDomain);
     }

@@ -10,7 +10,7 @@ pub mod ice;
 pub mod smooth;
 pub mod viscous;
 
-use crate::param::{ParamError, ParamSet, ParamSpec};
+use crate::param::{enclose_decimal, ParamError, ParamSet, ParamSpec};
 use crate::scalar::Scalar;
 use inari::{const_interval, DecInterval, Interval};
 use serde::Serialize;
@@ -111,6 +111,43 @@ impl Domain {
     /// Exact area enclosure of the true domain.
     pub fn area(&self) -> Interval {
         (self.theta[1] - self.theta[0]) * (self.theta_dot[1] - self.theta_dot[0])
+    }
+
+    /// A window of this domain from decimal text (`None` keeps the side).
+    /// The window must be non-empty and lie inside the domain.
+    pub fn window(
+        &self,
+        theta: Option<[&str; 2]>,
+        theta_dot: Option<[&str; 2]>,
+    ) -> Result<Domain, ParamError> {
+        let side = |name: &str,
+                    full: [Interval; 2],
+                    given: Option<[&str; 2]>|
+         -> Result<[Interval; 2], ParamError> {
+            let Some([lo, hi]) = given else {
+                return Ok(full);
+            };
+            let (lo, hi) = (enclose_decimal(name, lo)?, enclose_decimal(name, hi)?);
+            let invalid = |reason: &str| ParamError::Invalid {
+                name: name.into(),
+                reason: reason.into(),
+            };
+            if !(lo.sup() < hi.inf()) {
+                return Err(invalid("the window is empty (need lo < hi)"));
+            }
+            if lo.inf() < full[0].sup() || hi.sup() > full[1].inf() {
+                return Err(invalid(&format!(
+                    "the window must lie inside the scene's domain [{:.6}, {:.6}]",
+                    full[0].inf() + 0.0,
+                    full[1].sup()
+                )));
+            }
+            Ok([lo, hi])
+        };
+        Ok(Domain {
+            theta: side("theta", self.theta, theta)?,
+            theta_dot: side("theta-dot", self.theta_dot, theta_dot)?,
+        })
     }
 
     pub fn is_empty(&self) -> bool {

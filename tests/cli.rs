@@ -1,0 +1,192 @@
+//! The command line: bad input gets one clear line and exit code 2; good input
+//! gives the documented JSON.
+
+use std::process::Command;
+
+fn detach(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_detach"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+fn assert_bad_input(args: &[&str], needle: &str) {
+    let out = detach(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: stderr {err}");
+    assert!(err.contains(needle), "{args:?}: `{needle}` not in {err}");
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+}
+
+#[test]
+fn bad_input_is_a_clear_error_with_exit_code_2() {
+    assert_bad_input(&["pave", "--scene", "brick"], "unknown scene `brick`");
+    assert_bad_input(
+        &["pave", "--scene", "smooth-disc", "--param", "q=1"],
+        "unknown parameter `q`",
+    );
+    assert_bad_input(
+        &["pave", "--scene", "smooth-disc", "--param", "g=NaN"],
+        "not a finite decimal",
+    );
+    assert_bad_input(
+        &["pave", "--scene", "smooth-disc", "--param", "g=inf"],
+        "not a finite decimal",
+    );
+    assert_bad_input(
+        &["pave", "--scene", "smooth-disc", "--param", "m=0"],
+        "`m` must be positive",
+    );
+    assert_bad_input(
+        &["pave", "--scene", "viscous-disc", "--param", "m=-1"],
+        "`m` must be positive",
+    );
+    assert_bad_input(
+        &["pave", "--scene", "viscous-disc", "--param", "mu=-0.1"],
+        "`mu` must be zero or positive",
+    );
+    assert_bad_input(
+        &["pave", "--scene", "viscous-disc", "--param", "b=2"],
+        "b < a",
+    );
+    assert_bad_input(
+        &["pave", "--scene", "viscous-disc", "--param", "mu"],
+        "name=value",
+    );
+    assert_bad_input(&["pave", "--scene", "smooth-disc", "--eps", "0"], "--eps");
+    assert_bad_input(&["pave", "--scene", "smooth-disc", "--eps", "-1"], "--eps");
+    assert_bad_input(&["pave", "--scene", "smooth-disc", "--eps", "NaN"], "--eps");
+    assert_bad_input(
+        &["pave", "--scene", "smooth-disc", "--max-boxes", "0"],
+        "max-boxes",
+    );
+    assert_bad_input(
+        &["pave", "--scene", "smooth-disc", "--theta", "1:1"],
+        "empty",
+    );
+    assert_bad_input(
+        &["pave", "--scene", "smooth-disc", "--theta-dot", "3:-3"],
+        "empty",
+    );
+    assert_bad_input(
+        &["pave", "--scene", "smooth-disc", "--theta", "-1:1"],
+        "inside the scene's domain",
+    );
+    assert_bad_input(&["pave", "--scene", "smooth-disc", "--theta", "1"], "LO:HI");
+    assert_bad_input(&["atlas", "--scene", "nope"], "unknown scene");
+    assert_bad_input(&["atlas", "--param", "zz=1"], "unknown parameter `zz`");
+    assert_bad_input(&["pave"], "--scene");
+}
+
+#[test]
+fn pave_json_has_the_documented_fields() {
+    let out = detach(&[
+        "pave",
+        "--scene",
+        "viscous-disc",
+        "--eps",
+        "0.01",
+        "--param",
+        "mu=0.5",
+        "--json",
+    ]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["scene"], "viscous-disc");
+    assert_eq!(v["variant"], "derived");
+    assert_eq!(v["params"]["mu"], "0.5");
+    assert_eq!(v["params"]["g"], "9.81");
+    assert_eq!(v["eps"], 0.01);
+    assert_eq!(v["complete"], true);
+    assert!(v["elapsed_s"].as_f64().unwrap() >= 0.0);
+    assert!(v["domain"]["theta"][0].as_f64().unwrap() > -3.1416);
+    let names: Vec<&str> = v["regions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "omega",
+            "omega0",
+            "omega_and_omega0",
+            "not_omega_and_not_omega0",
+            "not_omega_and_omega0",
+            "omega_and_not_omega0"
+        ]
+    );
+    for r in v["regions"].as_array().unwrap() {
+        let (i, o) = (
+            r["inner_area"].as_f64().unwrap(),
+            r["outer_area"].as_f64().unwrap(),
+        );
+        assert!(0.0 <= i && i <= o && o <= 20.0 * 2.0 * std::f64::consts::PI + 1e-9);
+        let b = &r["boxes"];
+        assert_eq!(
+            b["outer"].as_u64().unwrap() - b["inner"].as_u64().unwrap(),
+            b["undecided"].as_u64().unwrap()
+        );
+    }
+}
+
+#[test]
+fn a_budget_is_reported_and_the_result_kept() {
+    let out = detach(&[
+        "pave",
+        "--scene",
+        "ice-disc",
+        "--max-boxes",
+        "100",
+        "--json",
+    ]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["complete"], false);
+    assert!(v["leaves"].as_u64().unwrap() <= 100);
+    let table = detach(&["pave", "--scene", "ice-disc", "--max-boxes", "100"]);
+    assert!(String::from_utf8_lossy(&table.stdout).contains("budget reached"));
+}
+
+#[test]
+fn atlas_writes_pictures_and_summary() {
+    let dir = std::env::temp_dir().join(format!("detach-atlas-{}", std::process::id()));
+    let out = detach(&[
+        "atlas",
+        "--out",
+        dir.to_str().unwrap(),
+        "--scene",
+        "smooth-disc",
+        "--eps",
+        "0.02",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for f in ["smooth-disc.svg", "smooth-disc.png", "summary.json"] {
+        assert!(dir.join(f).metadata().unwrap().len() > 0, "{f}");
+    }
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(v["scenes"][0]["scene"], "smooth-disc");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn scenes_lists_every_scene_with_defaults() {
+    let out = detach(&["scenes", "--json"]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let names: Vec<&str> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["viscous-disc", "smooth-disc", "ice-disc"]);
+    assert_eq!(v[2]["params"][7]["name"], "c0");
+    assert_eq!(v[0]["params"][4]["default"], "0.8");
+}
