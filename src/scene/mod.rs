@@ -132,7 +132,7 @@ impl Domain {
                 name: name.into(),
                 reason: reason.into(),
             };
-            if !(lo.sup() < hi.inf()) {
+            if lo.sup() >= hi.inf() {
                 return Err(invalid("the window is empty (need lo < hi)"));
             }
             if lo.inf() < full[0].sup() || hi.sup() > full[1].inf() {
