@@ -4,7 +4,8 @@
 //! interior meets the pixel's interior is proved in that cell. The leaves tile
 //! the root box, so the whole pixel then lies in the cell. Any other pixel is
 //! shown as undefined (if an undefined leaf meets it) or undecided: the
-//! picture may exaggerate uncertainty, it never overclaims.
+//! picture may exaggerate uncertainty, it never overclaims. Pixels are boxes
+//! with double edges, compared exactly with the leaves' double edges.
 
 use crate::pave::area::standard_cells;
 use crate::pave::{Label, Leaf, Paving, PhaseBox};
@@ -109,39 +110,36 @@ impl Class {
 
 /// A paving rasterised on `width × height` pixels covering its root box;
 /// row 0 is the top (largest θ̇), column 0 the left (smallest θ).
+///
+/// Pixel `(col, row)` *is* the box `[θ_col, θ_col+1] × [θ̇_row+1, θ̇_row]` of
+/// the stored edge lists (doubles, increasing in θ, decreasing in θ̇, the
+/// first and last equal to the root box's edges). Leaves are compared with
+/// these edges exactly, so no rounding enters the classification.
 #[derive(Clone, Debug)]
 pub struct Raster {
     pub width: u32,
     pub height: u32,
     pub root: PhaseBox,
+    /// `width + 1` column edges in θ, increasing.
+    pub theta_edges: Vec<f64>,
+    /// `height + 1` row edges in θ̇, decreasing (row 0 at the top).
+    pub theta_dot_edges: Vec<f64>,
     /// Row-major; `None` only where no leaf meets the pixel (never inside the
     /// root box of a valid paving).
     pub pixels: Vec<Option<Class>>,
 }
-
-/// Slack, in pixels, by which leaf extents are widened before finding the
-/// pixels they meet: rounding can then only add leaves to a pixel, which can
-/// only turn it from a cell into undecided.
-const SLACK: f64 = 1e-6;
 
 impl Raster {
     pub fn get(&self, col: u32, row: u32) -> Option<Class> {
         self.pixels[(row * self.width + col) as usize]
     }
 
-    /// The pixel's rectangle in the phase plane (computed in f64; the
-    /// classification itself is safe against that rounding, see [`SLACK`]).
+    /// The pixel's box in the phase plane.
     pub fn pixel_box(&self, col: u32, row: u32) -> PhaseBox {
-        let r = &self.root;
-        let x =
-            |i: u32| r.theta[0] + (r.theta[1] - r.theta[0]) * f64::from(i) / f64::from(self.width);
-        let y = |j: u32| {
-            r.theta_dot[1]
-                - (r.theta_dot[1] - r.theta_dot[0]) * f64::from(j) / f64::from(self.height)
-        };
+        let (c, r) = (col as usize, row as usize);
         PhaseBox {
-            theta: [x(col), x(col + 1)],
-            theta_dot: [y(row + 1), y(row)],
+            theta: [self.theta_edges[c], self.theta_edges[c + 1]],
+            theta_dot: [self.theta_dot_edges[r + 1], self.theta_dot_edges[r]],
         }
     }
 
@@ -155,41 +153,39 @@ impl Raster {
     }
 }
 
-/// Columns (or rows) `lo..hi` whose open interval meets the open interval
-/// `(a, b)` given in pixel units, widened by [`SLACK`] and clamped to `0..n`.
-fn span(a: f64, b: f64, n: u32) -> (u32, u32) {
-    let lo = (a - SLACK).floor().max(0.0);
-    let hi = (b + SLACK).ceil().min(f64::from(n));
-    if hi <= lo {
-        return (0, 0);
+/// `n + 1` edges from `lo` to `hi` (exactly at both ends), monotone.
+fn edges(lo: f64, hi: f64, n: u32) -> Vec<f64> {
+    let mut e: Vec<f64> = (0..=n)
+        .map(|i| lo + (hi - lo) * f64::from(i) / f64::from(n))
+        .collect();
+    e[n as usize] = hi;
+    // Rounding is monotone, but keep the last step monotone too.
+    for i in (0..n as usize).rev() {
+        e[i] = e[i].min(e[i + 1]);
     }
-    (lo as u32, hi as u32)
+    e
 }
 
 /// Rasterises `paving` on a `width × height` grid over its root box.
 pub fn rasterize(paving: &Paving, width: u32, height: u32) -> Raster {
     let root = paving.root;
-    let (w, h) = (f64::from(width), f64::from(height));
-    let sx = w / (root.theta[1] - root.theta[0]);
-    let sy = h / (root.theta_dot[1] - root.theta_dot[0]);
-    // Bit i set: some leaf of class Class::ALL[i] meets the pixel.
-    let mut bits = vec![0u8; width as usize * height as usize];
+    let xs = edges(root.theta[0], root.theta[1], width);
+    let mut ys = edges(root.theta_dot[0], root.theta_dot[1], height);
+    ys.reverse();
+    let (w, h) = (width as usize, height as usize);
+    // Bit i set: some leaf of class Class::ALL[i] meets the pixel's interior.
+    let mut bits = vec![0u8; w * h];
     for leaf in &paving.leaves {
         let bit = 1u8 << Class::of_leaf(leaf).index();
         let b = &leaf.bx;
-        let (c0, c1) = span(
-            (b.theta[0] - root.theta[0]) * sx,
-            (b.theta[1] - root.theta[0]) * sx,
-            width,
-        );
-        let (r0, r1) = span(
-            (root.theta_dot[1] - b.theta_dot[1]) * sy,
-            (root.theta_dot[1] - b.theta_dot[0]) * sy,
-            height,
-        );
+        // Column i meets (θ_lo, θ_hi) iff xs[i] < θ_hi and xs[i+1] > θ_lo.
+        let c0 = xs[1..].partition_point(|&e| e <= b.theta[0]);
+        let c1 = xs[..w].partition_point(|&e| e < b.theta[1]);
+        // Row j meets (θ̇_lo, θ̇_hi) iff ys[j+1] < θ̇_hi and ys[j] > θ̇_lo.
+        let r0 = ys[1..].partition_point(|&e| e >= b.theta_dot[1]);
+        let r1 = ys[..h].partition_point(|&e| e > b.theta_dot[0]);
         for row in r0..r1 {
-            let base = row as usize * width as usize;
-            for m in &mut bits[base + c0 as usize..base + c1 as usize] {
+            for m in &mut bits[row * w + c0..row * w + c1.max(c0)] {
                 *m |= bit;
             }
         }
@@ -208,6 +204,8 @@ pub fn rasterize(paving: &Paving, width: u32, height: u32) -> Raster {
         width,
         height,
         root,
+        theta_edges: xs,
+        theta_dot_edges: ys,
         pixels,
     }
 }
