@@ -1,12 +1,38 @@
 //! Drawing pavings and phase portraits (SVG and PNG).
+//!
+//! [`draw_atlas`] draws one paving of Ω and Ω₀ as a map of the four partition
+//! cells of the paper, with the undecided and undefined leaves, axes, a
+//! legend and a phase portrait on top. The cells are rasterised
+//! conservatively ([`rasterize`]): a pixel is drawn in a cell colour only when
+//! it is wholly covered by leaves proved in that cell. The phase portrait is
+//! computed in plain `f64` and labelled as not certified.
+//!
+//! Both files have the same content; the SVG merges equal pixels into
+//! rectangles, so its size depends on the picture, not on the leaf count.
+
+mod portrait;
+mod raster;
+
+pub use portrait::{level_lines, phase_portrait, trajectories, Polyline};
+pub use raster::{merge_rects, rasterize, Class, PixelRect, Raster};
+
 use crate::pave::Paving;
 use crate::scene::{Scene, Variant};
-use std::path::Path;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use plotters::style::FontStyle;
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
+/// Size of the whole picture in pixels (PNG pixels; SVG user units).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AtlasStyle {
     pub width: u32,
     pub height: u32,
 }
+
 impl Default for AtlasStyle {
     fn default() -> Self {
         AtlasStyle {
@@ -15,24 +41,472 @@ impl Default for AtlasStyle {
         }
     }
 }
+
+/// What the picture is of: shown in the title, and used for the phase portrait.
+#[derive(Clone, Debug)]
 pub struct PictureInfo<'a> {
     pub scene: &'a Scene,
     pub variant: Variant,
+    /// `(name, decimal text)` pairs, e.g. from [`crate::param::ParamSet::texts`].
     pub params: Vec<(&'static str, String)>,
+    /// Whether the paving finished; a note is drawn when this or
+    /// [`Paving::complete`] is false.
     pub complete: bool,
 }
-pub fn plot_area_pixels(style: &AtlasStyle) -> (u32, u32) {
-    (style.width - 200, style.height - 150)
-}
+
 #[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct AtlasError(String);
+pub enum AtlasError {
+    #[error("picture size {0}×{1} is too small (at least {MIN_WIDTH}×{MIN_HEIGHT})")]
+    TooSmall(u32, u32),
+    #[error("cannot create directory {path}: {source}")]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("drawing failed: {0}")]
+    Draw(String),
+    #[error("the embedded font could not be registered")]
+    Font,
+}
+
+/// Smallest accepted picture.
+pub const MIN_WIDTH: u32 = 640;
+pub const MIN_HEIGHT: u32 = 400;
+
+// Layout in pixels, independent of the picture size.
+const TITLE_H: u32 = 62;
+const LEGEND_W: u32 = 300;
+const MARGIN_TOP: u32 = 6;
+const MARGIN_RIGHT: u32 = 14;
+const MARGIN_BOTTOM: u32 = 8;
+const X_LABELS_H: u32 = 46;
+const Y_LABELS_W: u32 = 64;
+
+/// The plot area (the part showing the paving) in pixels for a style, so the
+/// caller can choose `eps` of about one pixel. Zero if the style is too small.
+pub fn plot_area_pixels(style: &AtlasStyle) -> (u32, u32) {
+    (
+        style
+            .width
+            .saturating_sub(LEGEND_W + Y_LABELS_W + MARGIN_RIGHT),
+        style
+            .height
+            .saturating_sub(TITLE_H + MARGIN_TOP + X_LABELS_H + MARGIN_BOTTOM),
+    )
+}
+
+static FONTS: OnceLock<bool> = OnceLock::new();
+
+/// Registers the embedded DejaVu Sans (regular and bold) as `sans-serif` for
+/// PNG text. Runs once per process; called by [`draw_atlas`].
+pub fn register_fonts() -> Result<(), AtlasError> {
+    let ok = *FONTS.get_or_init(|| {
+        plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
+            .is_ok()
+            && plotters::style::register_font("sans-serif", FontStyle::Bold, dejavu::sans::bold())
+                .is_ok()
+    });
+    if ok {
+        Ok(())
+    } else {
+        Err(AtlasError::Font)
+    }
+}
+
+/// Everything drawn, computed once for both files.
+struct Prepared {
+    raster: Raster,
+    rects: Vec<PixelRect>,
+    /// Phase curves in plot-area pixel coordinates.
+    lines: Vec<Vec<(i32, i32)>>,
+    /// Share of the root box's area in each class, in [`Class::ALL`] order.
+    shares: [f64; 6],
+    title: String,
+    subtitle: String,
+    incomplete: bool,
+}
+
+/// Draws `paving` with its phase portrait to an SVG and a PNG file (parent
+/// directories are created). The picture is `style.width × style.height`.
 pub fn draw_atlas(
-    _: &Paving,
-    _: &PictureInfo,
-    _: &AtlasStyle,
-    _: &Path,
-    _: &Path,
+    paving: &Paving,
+    info: &PictureInfo,
+    style: &AtlasStyle,
+    svg_path: &Path,
+    png_path: &Path,
 ) -> Result<(), AtlasError> {
+    if style.width < MIN_WIDTH || style.height < MIN_HEIGHT {
+        return Err(AtlasError::TooSmall(style.width, style.height));
+    }
+    register_fonts()?;
+    for p in [svg_path, png_path] {
+        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|source| AtlasError::Io {
+                path: dir.to_path_buf(),
+                source,
+            })?;
+        }
+    }
+    let prep = prepare(paving, info, style);
+    let size = (style.width, style.height);
+    {
+        let root = SVGBackend::new(svg_path, size).into_drawing_area();
+        render(&root, paving, &prep)?;
+        root.present().map_err(draw_err)?;
+    }
+    {
+        let root = BitMapBackend::new(png_path, size).into_drawing_area();
+        render(&root, paving, &prep)?;
+        root.present().map_err(draw_err)?;
+    }
+    Ok(())
+}
+
+fn draw_err(e: impl std::fmt::Display) -> AtlasError {
+    AtlasError::Draw(e.to_string())
+}
+
+fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared {
+    let (pw, ph) = plot_area_pixels(style);
+    let raster = rasterize(paving, pw, ph);
+    let rects = merge_rects(&raster);
+    let root = paving.root;
+    let (w, h) = (
+        root.theta[1] - root.theta[0],
+        root.theta_dot[1] - root.theta_dot[0],
+    );
+    let to_px = |(t, v): (f64, f64)| {
+        (
+            ((t - root.theta[0]) / w * f64::from(pw)).round() as i32,
+            ((root.theta_dot[1] - v) / h * f64::from(ph)).round() as i32,
+        )
+    };
+    let lines = phase_portrait(info.scene, info.variant, &root)
+        .into_iter()
+        .map(|l| {
+            let mut px: Vec<(i32, i32)> = l.into_iter().map(to_px).collect();
+            px.dedup();
+            px
+        })
+        .filter(|l| l.len() > 1)
+        .collect();
+    let mut shares = [0.0; 6];
+    for leaf in &paving.leaves {
+        let i = Class::ALL
+            .iter()
+            .position(|&c| c == Class::of_leaf(leaf))
+            .expect("listed");
+        shares[i] +=
+            (leaf.bx.theta[1] - leaf.bx.theta[0]) * (leaf.bx.theta_dot[1] - leaf.bx.theta_dot[0]);
+    }
+    for s in &mut shares {
+        *s /= w * h;
+    }
+    let params: Vec<String> = info
+        .params
+        .iter()
+        .map(|(n, v)| format!("{n}={v}"))
+        .collect();
+    let title = format!(
+        "{} ({})   {}",
+        info.scene.id().name(),
+        info.variant,
+        params.join("  ")
+    );
+    let subtitle = format!(
+        "{}  ·  eps = {}  ·  {} leaves",
+        info.scene.id().title(),
+        eps_text(paving.eps),
+        paving.leaves.len()
+    );
+    Prepared {
+        raster,
+        rects,
+        lines,
+        shares,
+        title,
+        subtitle,
+        incomplete: !(info.complete && paving.complete),
+    }
+}
+
+/// `2^-10` for powers of two, the decimal otherwise.
+fn eps_text(eps: f64) -> String {
+    let l = eps.log2();
+    if l.fract() == 0.0 && l < 0.0 {
+        format!("1/{}", 2f64.powi(-(l as i32)))
+    } else {
+        format!("{eps}")
+    }
+}
+
+/// θ tick label for multiples of π/4.
+fn pi_label(v: f64) -> String {
+    let k = (v / (PI / 4.0)).round() as i64;
+    let sign = if k < 0 { "−" } else { "" };
+    let (num, den) = {
+        let g = gcd(k.unsigned_abs(), 4);
+        (k.unsigned_abs() / g, 4 / g)
+    };
+    match (num, den) {
+        (0, _) => "0".into(),
+        (1, 1) => format!("{sign}π"),
+        (n, 1) => format!("{sign}{n}π"),
+        (1, d) => format!("{sign}π/{d}"),
+        (n, d) => format!("{sign}{n}π/{d}"),
+    }
+}
+
+fn gcd(a: u64, b: u64) -> u64 {
+    if b == 0 {
+        a
+    } else {
+        gcd(b, a % b)
+    }
+}
+
+fn rgb(c: Class) -> RGBColor {
+    let (r, g, b) = c.rgb();
+    RGBColor(r, g, b)
+}
+
+const INK: RGBColor = RGBColor(0x22, 0x22, 0x22);
+const LINE: RGBColor = RGBColor(0x10, 0x10, 0x30);
+const WARN: RGBColor = RGBColor(0xB0, 0x20, 0x20);
+
+fn render<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    paving: &Paving,
+    prep: &Prepared,
+) -> Result<(), AtlasError> {
+    let (width, height) = root.dim_in_pixel();
+    root.fill(&WHITE).map_err(draw_err)?;
+
+    // Title and subtitle.
+    let title_font = ("sans-serif", 21).into_font().style(FontStyle::Bold);
+    root.draw_text(&prep.title, &title_font.color(&INK), (16, 10))
+        .map_err(draw_err)?;
+    let sub_font = ("sans-serif", 15).into_font();
+    root.draw_text(&prep.subtitle, &sub_font.color(&INK), (16, 38))
+        .map_err(draw_err)?;
+
+    // Chart: axes and plot area.
+    let chart_area = root
+        .clone()
+        .shrink((0, TITLE_H), (width - LEGEND_W, height - TITLE_H));
+    let r = paving.root;
+    let key_points: Vec<f64> = {
+        let (lo, hi) = (
+            (r.theta[0] / (PI / 4.0)).ceil(),
+            (r.theta[1] / (PI / 4.0)).floor(),
+        );
+        let tol = 1e-9;
+        (lo as i64 - 1..=hi as i64 + 1)
+            .map(|k| k as f64 * PI / 4.0)
+            .filter(|&t| t >= r.theta[0] - tol && t <= r.theta[1] + tol)
+            .map(|t| t.clamp(r.theta[0], r.theta[1]))
+            .collect()
+    };
+    let mut chart = ChartBuilder::on(&chart_area)
+        .margin_top(MARGIN_TOP)
+        .margin_right(MARGIN_RIGHT)
+        .margin_bottom(MARGIN_BOTTOM)
+        .x_label_area_size(X_LABELS_H)
+        .y_label_area_size(Y_LABELS_W)
+        .build_cartesian_2d(r.theta[0]..r.theta[1], r.theta_dot[0]..r.theta_dot[1])
+        .map_err(draw_err)?;
+    let plot = chart.plotting_area().strip_coord_spec();
+    debug_assert_eq!(
+        plot.dim_in_pixel(),
+        (prep.raster.width, prep.raster.height),
+        "plot_area_pixels out of step with the layout"
+    );
+
+    // Cells, undecided and undefined pixels.
+    for pr in &prep.rects {
+        plot.draw(&Rectangle::new(
+            [(pr.x0 as i32, pr.y0 as i32), (pr.x1 as i32, pr.y1 as i32)],
+            rgb(pr.class).filled(),
+        ))
+        .map_err(draw_err)?;
+    }
+
+    // Phase portrait.
+    for l in &prep.lines {
+        plot.draw(&PathElement::new(l.clone(), LINE.mix(0.75).stroke_width(1)))
+            .map_err(draw_err)?;
+    }
+
+    // Axes.
+    let label_font = ("sans-serif", 15).into_font();
+    let num_fmt = |v: &f64| {
+        let s = format!("{v:.2}");
+        let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
+        if s == "-0" {
+            "0".into()
+        } else {
+            s.replace('-', "−")
+        }
+    };
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("θ")
+        .y_desc("dθ/dt")
+        .axis_desc_style(("sans-serif", 18))
+        .label_style(label_font.color(&INK))
+        .x_labels(0)
+        .y_label_formatter(&num_fmt)
+        .y_labels(11)
+        .axis_style(INK)
+        .draw()
+        .map_err(draw_err)?;
+    let (pw, ph) = plot.dim_in_pixel();
+    // θ ticks at multiples of π/4, drawn by hand below the plot area.
+    let below = chart_area
+        .clone()
+        .shrink((Y_LABELS_W, MARGIN_TOP + ph), (pw, X_LABELS_H));
+    let tick_font = label_font
+        .color(&INK)
+        .pos(Pos::new(HPos::Center, VPos::Top));
+    for t in key_points {
+        let x = ((t - r.theta[0]) / (r.theta[1] - r.theta[0]) * f64::from(pw)).round() as i32;
+        let x = x.min(pw as i32 - 1);
+        below
+            .draw(&PathElement::new(vec![(x, 0), (x, 5)], INK.stroke_width(1)))
+            .map_err(draw_err)?;
+        below
+            .draw_text(&pi_label(t), &tick_font, (x, 8))
+            .map_err(draw_err)?;
+    }
+    plot.draw(&Rectangle::new(
+        [(0, 0), (pw as i32 - 1, ph as i32 - 1)],
+        INK.stroke_width(1),
+    ))
+    .map_err(draw_err)?;
+
+    // Legend.
+    let legend = root
+        .clone()
+        .shrink((width - LEGEND_W, TITLE_H), (LEGEND_W, height - TITLE_H));
+    draw_legend(&legend, prep)?;
+    Ok(())
+}
+
+/// Draws the symbol of a class at `pos` (top left), complements with an
+/// overbar drawn as a line (combining marks do not render reliably in PNG
+/// text). Returns the x coordinate where the symbol ends.
+fn draw_symbol<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    class: Class,
+    pos: (i32, i32),
+    font: &FontDesc,
+) -> Result<i32, AtlasError> {
+    let (not_omega, not_omega0) = match class {
+        Class::Persists => (false, false),
+        Class::Released => (true, true),
+        Class::NonUniqueness => (true, false),
+        Class::NonExistence => (false, true),
+        Class::Undecided | Class::Undefined => {
+            area.draw_text(class.symbol(), &font.color(&INK), pos)
+                .map_err(draw_err)?;
+            let (w, _) = area
+                .estimate_text_size(class.symbol(), &font.color(&INK))
+                .map_err(draw_err)?;
+            return Ok(pos.0 + w as i32);
+        }
+    };
+    let mut x = pos.0;
+    for (token, bar) in [("Ω", not_omega), (" ∩ ", false), ("Ω₀", not_omega0)] {
+        area.draw_text(token, &font.color(&INK), (x, pos.1))
+            .map_err(draw_err)?;
+        let (w, _) = area
+            .estimate_text_size(token, &font.color(&INK))
+            .map_err(draw_err)?;
+        if bar {
+            area.draw(&PathElement::new(
+                vec![(x + 1, pos.1 - 4), (x + w as i32 - 1, pos.1 - 4)],
+                INK.stroke_width(1),
+            ))
+            .map_err(draw_err)?;
+        }
+        x += w as i32;
+    }
+    Ok(x)
+}
+
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    prep: &Prepared,
+) -> Result<(), AtlasError> {
+    let head = ("sans-serif", 16).into_font().style(FontStyle::Bold);
+    let name = ("sans-serif", 15).into_font().style(FontStyle::Bold);
+    let body = ("sans-serif", 13).into_font();
+    let (x0, sw, sh) = (12, 34, 24);
+    let mut y = MARGIN_TOP as i32 + 2;
+    area.draw_text("Certified cells", &head.color(&INK), (x0, y))
+        .map_err(draw_err)?;
+    y += 26;
+    for (i, class) in Class::ALL.into_iter().enumerate() {
+        if i == 4 {
+            y += 6;
+            area.draw_text("Not certified", &head.color(&INK), (x0, y))
+                .map_err(draw_err)?;
+            y += 26;
+        }
+        area.draw(&Rectangle::new(
+            [(x0, y), (x0 + sw, y + sh)],
+            rgb(class).filled(),
+        ))
+        .map_err(draw_err)?;
+        area.draw(&Rectangle::new(
+            [(x0, y), (x0 + sw, y + sh)],
+            INK.stroke_width(1),
+        ))
+        .map_err(draw_err)?;
+        let tx = x0 + sw + 10;
+        let share = format!("{:.1} % of box", 100.0 * prep.shares[i]);
+        let end = draw_symbol(area, class, (tx, y - 2), &name)?;
+        area.draw_text(&share, &body.color(&INK), (end.max(tx + 70) + 12, y))
+            .map_err(draw_err)?;
+        area.draw_text(class.meaning(), &body.color(&INK), (tx, y + 15))
+            .map_err(draw_err)?;
+        y += sh + 22;
+    }
+    y += 4;
+    let ly = y + sh / 2;
+    area.draw(&PathElement::new(
+        vec![(x0, ly), (x0 + sw, ly)],
+        LINE.mix(0.75).stroke_width(1),
+    ))
+    .map_err(draw_err)?;
+    let tx = x0 + sw + 10;
+    area.draw_text("phase portrait", &name.color(&INK), (tx, y - 2))
+        .map_err(draw_err)?;
+    area.draw_text("f64, not certified", &body.color(&INK), (tx, y + 15))
+        .map_err(draw_err)?;
+    y += sh + 26;
+    let notes = [
+        "A pixel has a cell colour only if",
+        "leaves proved in that cell cover it;",
+        "shares are leaf areas (f64 sums).",
+    ];
+    for n in notes {
+        area.draw_text(n, &body.color(&INK), (x0, y))
+            .map_err(draw_err)?;
+        y += 17;
+    }
+    if prep.incomplete {
+        y += 10;
+        let warn = ("sans-serif", 14).into_font().style(FontStyle::Bold);
+        for n in [
+            "INCOMPLETE: box budget reached,",
+            "refinement stopped early",
+        ] {
+            area.draw_text(n, &warn.color(&WARN), (x0, y))
+                .map_err(draw_err)?;
+            y += 18;
+        }
+    }
     Ok(())
 }

@@ -1,0 +1,277 @@
+//! Atlas pictures: files written, and the rasteriser never overclaims.
+
+use detach::atlas::{
+    draw_atlas, merge_rects, plot_area_pixels, rasterize, AtlasStyle, Class, PictureInfo, Raster,
+};
+use detach::pave::{
+    pave_scene, Label, Leaf, PaveOptions, PaveStats, Paving, PhaseBox, MAX_CONSTRAINTS,
+};
+use detach::scene::{Scene, SceneId, Variant};
+use std::path::PathBuf;
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("detach-atlas-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn png_size(bytes: &[u8]) -> (u32, u32) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "PNG signature");
+    assert_eq!(&bytes[12..16], b"IHDR");
+    let be = |r: std::ops::Range<usize>| u32::from_be_bytes(bytes[r].try_into().unwrap());
+    (be(16..20), be(20..24))
+}
+
+fn paving_of(
+    id: SceneId,
+    variant: Variant,
+    eps: f64,
+) -> (Scene, Vec<(&'static str, String)>, Paving) {
+    let (scene, params) = Scene::build(id, &[]).unwrap();
+    let paving = pave_scene(
+        &scene,
+        variant,
+        PaveOptions {
+            eps,
+            max_boxes: 1_000_000,
+        },
+        |_, _, _| {},
+    )
+    .unwrap();
+    (scene, params.texts(), paving)
+}
+
+#[test]
+fn draws_svg_and_png_with_legend() {
+    let dir = temp_dir("draw");
+    for id in SceneId::ALL {
+        let (scene, params, paving) = paving_of(id, Variant::Derived, 1.0 / 64.0);
+        let info = PictureInfo {
+            scene: &scene,
+            variant: Variant::Derived,
+            params,
+            complete: paving.complete,
+        };
+        let style = AtlasStyle::default();
+        let (svg, png) = (
+            dir.join(format!("{}.svg", id.name())),
+            dir.join(format!("{}.png", id.name())),
+        );
+        draw_atlas(&paving, &info, &style, &svg, &png).unwrap();
+        let bytes = std::fs::read(&png).unwrap();
+        assert_eq!(png_size(&bytes), (style.width, style.height));
+        let text = std::fs::read_to_string(&svg).unwrap();
+        assert!(text.starts_with("<svg"), "an SVG document");
+        for needle in [
+            id.name(),
+            "contact persists",
+            "constraint released",
+            "non-uniqueness paradox",
+            "non-existence paradox",
+            "undecided",
+            "undefined",
+            "phase portrait",
+            "f64, not certified",
+        ] {
+            assert!(text.contains(needle), "{} lacks {needle:?}", svg.display());
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn incomplete_paving_is_flagged_and_small_styles_rejected() {
+    let dir = temp_dir("incomplete");
+    let (scene, params) = Scene::build(SceneId::IceDisc, &[]).unwrap();
+    let paving = pave_scene(
+        &scene,
+        Variant::Printed,
+        PaveOptions {
+            eps: 1.0 / 256.0,
+            max_boxes: 200,
+        },
+        |_, _, _| {},
+    )
+    .unwrap();
+    assert!(!paving.complete);
+    let info = PictureInfo {
+        scene: &scene,
+        variant: Variant::Printed,
+        params: params.texts(),
+        complete: paving.complete,
+    };
+    let (svg, png) = (dir.join("a.svg"), dir.join("a.png"));
+    draw_atlas(&paving, &info, &AtlasStyle::default(), &svg, &png).unwrap();
+    assert!(std::fs::read_to_string(&svg)
+        .unwrap()
+        .contains("INCOMPLETE"));
+    let tiny = AtlasStyle {
+        width: 100,
+        height: 100,
+    };
+    assert!(draw_atlas(&paving, &info, &tiny, &svg, &png).is_err());
+    assert_eq!(plot_area_pixels(&tiny), (0, 0));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+fn overlap(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[1].min(b[1]) - a[0].max(b[0])).max(0.0)
+}
+
+/// Every pixel in a cell colour is covered by leaves proved in that cell:
+/// all leaves meeting it are of that class, and they cover its whole area.
+fn assert_sound(paving: &Paving, raster: &Raster) {
+    let mut cell_pixels = 0;
+    for row in 0..raster.height {
+        for col in 0..raster.width {
+            let Some(class) = raster.get(col, row) else {
+                panic!("pixel ({col}, {row}) inside the root box left blank");
+            };
+            if !class.is_cell() {
+                continue;
+            }
+            cell_pixels += 1;
+            let p = raster.pixel_box(col, row);
+            let mut covered = 0.0;
+            for leaf in &paving.leaves {
+                let a = overlap(p.theta, leaf.bx.theta) * overlap(p.theta_dot, leaf.bx.theta_dot);
+                if a > 0.0 {
+                    assert_eq!(
+                        Class::of_leaf(leaf),
+                        class,
+                        "pixel ({col}, {row}) drawn {class:?} meets a leaf of another class"
+                    );
+                    covered += a;
+                }
+            }
+            let area = (p.theta[1] - p.theta[0]) * (p.theta_dot[1] - p.theta_dot[0]);
+            assert!(
+                (covered - area).abs() <= 1e-9 * area,
+                "pixel ({col}, {row}) not wholly covered: {covered} of {area}"
+            );
+        }
+    }
+    assert!(cell_pixels > 0, "some pixels are certified");
+}
+
+fn assert_rects_cover(raster: &Raster) {
+    let mut seen = vec![0u8; (raster.width * raster.height) as usize];
+    for r in merge_rects(raster) {
+        for row in r.y0..r.y1 {
+            for col in r.x0..r.x1 {
+                assert_eq!(raster.get(col, row), Some(r.class));
+                seen[(row * raster.width + col) as usize] += 1;
+            }
+        }
+    }
+    assert!(seen.iter().all(|&n| n == 1), "rectangles tile the raster");
+}
+
+#[test]
+fn raster_of_real_pavings_never_overclaims() {
+    for (id, variant) in [
+        (SceneId::ViscousDisc, Variant::Derived),
+        (SceneId::SmoothDisc, Variant::Printed),
+        (SceneId::IceDisc, Variant::Derived),
+    ] {
+        let (_, _, paving) = paving_of(id, variant, 1.0 / 32.0);
+        // Pixel edges deliberately not aligned with the dyadic leaf edges.
+        for (w, h) in [(97, 61), (150, 110), (16, 16)] {
+            let raster = rasterize(&paving, w, h);
+            assert_sound(&paving, &raster);
+            assert_rects_cover(&raster);
+        }
+    }
+}
+
+fn leaf(theta: [f64; 2], theta_dot: [f64; 2], l0: Label, l1: Label) -> Leaf {
+    let mut labels = [Label::ProvedOut; MAX_CONSTRAINTS];
+    labels[0] = l0;
+    labels[1] = l1;
+    Leaf {
+        bx: PhaseBox { theta, theta_dot },
+        labels,
+    }
+}
+
+fn synthetic(leaves: Vec<Leaf>) -> Paving {
+    Paving {
+        root: PhaseBox {
+            theta: [0.0, 1.0],
+            theta_dot: [0.0, 1.0],
+        },
+        names: vec!["omega".into(), "omega0".into()],
+        eps: 1.0 / 8.0,
+        nodes: Vec::new(),
+        leaves,
+        complete: true,
+        stats: PaveStats::default(),
+    }
+}
+
+#[test]
+fn synthetic_raster_classes() {
+    use Label::{ProvedIn as In, ProvedOut as Out, Undecided as U, Undefined as X};
+    // Left half: contact persists. Right half: four quarter-size leaves, three
+    // released and one (top right) split into a non-existence leaf and a tiny
+    // undecided one, plus an undefined strip at the far right bottom.
+    let leaves = vec![
+        leaf([0.0, 0.5], [0.0, 1.0], In, In),
+        leaf([0.5, 0.75], [0.0, 0.5], Out, Out),
+        leaf([0.75, 1.0], [0.0, 0.5], X, Out),
+        leaf([0.5, 0.75], [0.5, 1.0], Out, Out),
+        leaf([0.75, 0.875], [0.5, 1.0], In, Out),
+        leaf([0.875, 1.0], [0.5, 1.0], In, U),
+    ];
+    for l in &leaves[..2] {
+        assert!(Class::of_leaf(l).is_cell());
+    }
+    assert_eq!(Class::of_leaf(&leaves[2]), Class::Undefined);
+    assert_eq!(Class::of_leaf(&leaves[4]), Class::NonExistence);
+    assert_eq!(Class::of_leaf(&leaves[5]), Class::Undecided);
+    let paving = synthetic(leaves);
+
+    // 4 × 2 pixels: edges align with the leaves.
+    let r = rasterize(&paving, 4, 2);
+    let top: Vec<_> = (0..4).map(|c| r.get(c, 0).unwrap()).collect();
+    let bottom: Vec<_> = (0..4).map(|c| r.get(c, 1).unwrap()).collect();
+    assert_eq!(
+        top,
+        [
+            Class::Persists,
+            Class::Persists,
+            Class::Released,
+            // Non-existence and undecided leaves share this pixel.
+            Class::Undecided
+        ]
+    );
+    assert_eq!(
+        bottom,
+        [
+            Class::Persists,
+            Class::Persists,
+            Class::Released,
+            Class::Undefined
+        ]
+    );
+    assert_sound(&paving, &r);
+
+    // 3 × 3 pixels: the middle column straddles θ = 1/2 and may not be a cell.
+    let r = rasterize(&paving, 3, 3);
+    for row in 0..3 {
+        assert_eq!(r.get(0, row), Some(Class::Persists));
+        assert!(!r.get(1, row).unwrap().is_cell());
+    }
+    assert_sound(&paving, &r);
+
+    // One pixel covering several leaves of one cell is that cell.
+    let mut many = Vec::new();
+    for i in 0..4 {
+        for j in 0..4 {
+            let (t, w) = (f64::from(i) / 4.0, f64::from(j) / 4.0);
+            many.push(leaf([t, t + 0.25], [w, w + 0.25], Out, In));
+        }
+    }
+    let r = rasterize(&synthetic(many), 1, 1);
+    assert_eq!(r.get(0, 0), Some(Class::NonUniqueness));
+}
