@@ -53,7 +53,7 @@ proptest! {
     /// Example 1: Newton's equations with the contact condition, solved for
     /// (ÿ, θ̈, N), against the derived θ̈ and Ω₀; free flight against Ω.
     #[test]
-    fn viscous_disc_matches_newton(th in -3.14f64..3.14, w in -10.0f64..10.0) {
+    fn viscous_disc_matches_newton(th in -3.1f64..3.1, w in -10.0f64..10.0) {
         let d = viscous();
         let (m, c, mu, g) = (d.m.mid(), d.c.mid(), d.mu.mid(), d.g.mid());
         let hd = h_of(&d, DD::variable(D::variable(th, 0), 0));
@@ -82,7 +82,7 @@ proptest! {
     /// Example 1: dE/dt = F ν along the derived equation of motion, with
     /// E = ½ m ẏ² + ½ C θ̇² + m g y, y = h(θ), ẏ = h'(θ) θ̇ in contact.
     #[test]
-    fn viscous_disc_energy_balance(th in -3.14f64..3.14, w in -10.0f64..10.0) {
+    fn viscous_disc_energy_balance(th in -3.1f64..3.1, w in -10.0f64..10.0) {
         let d = viscous();
         let (m, c, mu, g) = (d.m.mid(), d.c.mid(), d.mu.mid(), d.g.mid());
         let thv = DD { value: D::variable(th, 0), grad: [D::constant(1.0), D::constant(0.0)] };

@@ -90,7 +90,8 @@ impl Paving {
         }
         let extra = Interval::try_from((0.0, uncovered_sup)).unwrap_or(ZERO);
         AreaBounds {
-            inner_area: inner.inf(),
+            // `+ 0.0` turns the −0 of an empty sum into +0.
+            inner_area: inner.inf() + 0.0,
             outer_area: (outer + extra).sup(),
             inner_boxes: ni,
             outer_boxes: no,
