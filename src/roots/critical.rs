@@ -184,7 +184,12 @@ pub fn critical_curve(n_alpha: usize, n_kappa: usize, kappa_max: f64) -> Critica
     let s_tol = 1e-7;
     let edge = |i: usize| i as f64 / n_alpha as f64;
     let band: Vec<BandCell> = (0..n_alpha)
-        .map(|i| band_cell(Interval::try_from((edge(i), edge(i + 1))).expect("valid"), s_tol))
+        .map(|i| {
+            band_cell(
+                Interval::try_from((edge(i), edge(i + 1))).expect("valid"),
+                s_tol,
+            )
+        })
         .collect();
     let max_band_width = band.iter().map(|c| c.upper - c.lower).fold(0.0, f64::max);
     let at_alpha_1 = band_cell(point(1.0), 1e-9);

@@ -337,7 +337,14 @@ fn scene_edges(
     enclose: impl Fn(Interval, Interval, bool) -> Interval,
     what: &str,
 ) -> ([f64; 2], Vec<EdgeProof>, Vec<RootEnclosure>) {
-    let deltas = [0.25, 0.0625, 2f64.powi(-7), 2f64.powi(-10), 2f64.powi(-14), 2f64.powi(-20)];
+    let deltas = [
+        0.25,
+        0.0625,
+        2f64.powi(-7),
+        2f64.powi(-10),
+        2f64.powi(-14),
+        2f64.powi(-20),
+    ];
     let mut bounds = [0.0; 2];
     let mut edges = Vec::new();
     let mut fragments = Vec::new();
@@ -470,7 +477,12 @@ mod tests {
         let r = solve_2_9(k, a, &Budget::default()).unwrap();
         assert!(r.complete);
         assert_eq!(r.roots.len(), 2);
-        let p = isolate(&Eq29TanHalf { kappa: k, alpha: a }, 1e-3, 1e3, &Budget::default());
+        let p = isolate(
+            &Eq29TanHalf { kappa: k, alpha: a },
+            1e-3,
+            1e3,
+            &Budget::default(),
+        );
         assert!(p.complete);
         assert_eq!(p.roots.len(), 2);
         for (t, s) in r.roots.iter().zip(&p.roots) {
@@ -507,9 +519,7 @@ mod tests {
             // θ̈ changes sign across each unique enclosure (checked with the
             // unscaled scene formula, 1e-9 outside the endpoints: a few-ulp
             // enclosure is narrower than the rounding of f at its endpoints).
-            let f = |x: f64| {
-                ice.acceleration(Variant::Derived, &Angle::new(point(x)), point(0.0))
-            };
+            let f = |x: f64| ice.acceleration(Variant::Derived, &Angle::new(point(x)), point(0.0));
             let (l, h) = (f(root.lo - 1e-9), f(root.hi + 1e-9));
             assert!(l.sup() < 0.0 && h.inf() > 0.0 || l.inf() > 0.0 && h.sup() < 0.0);
         }

@@ -5,7 +5,8 @@
 //! for each box `X`:
 //!
 //! 1. **exclusion**: if the decorated enclosure `f(X)` is defined (`≥ def`)
-//!    and does not contain 0, `X` is proved root-free;
+//!    and does not contain 0, or `f` is C¹ on X (`≥ dac`) and the mean-value
+//!    form `f(m) + f'(X)(X − m)` excludes 0, `X` is proved root-free;
 //! 2. **interval Newton**: if `f` is continuously differentiable on `X`
 //!    (value and derivative enclosures from [`Dual`] numbers decorated
 //!    `≥ dac`) and `0 ∉ f'(X)`, the operator `N(X) = m − f(m)/f'(X)` is
@@ -201,31 +202,47 @@ impl<F: RealFn> Engine<'_, F> {
     }
 
     fn newton(&mut self, x: Interval) -> Newton {
+        self.newton_or_exclude(x).0
+    }
+
+    /// One interval Newton step on `x`; also reports whether the natural or
+    /// the mean-value enclosure `f(m) + f'(X)(X − m)` already excludes 0.
+    fn newton_or_exclude(&mut self, x: Interval) -> (Newton, bool) {
         self.stats.evaluations += 1;
         self.stats.newton_steps += 1;
         let y = self.f.eval(Dual::variable(DecInterval::new(x), 0));
+        // The value part of the dual is the natural decorated extension.
+        if is_defined(y.value) && !y.value.interval().expect("defined").contains(0.0) {
+            return (Newton::NoRoot, true);
+        }
         let smooth = |d: DecInterval| d.decoration() >= Decoration::Dac && d.interval().is_some();
         if !smooth(y.value) || !smooth(y.grad[0]) {
-            return Newton::NotSmooth;
+            return (Newton::NotSmooth, false);
         }
         let d = y.grad[0].interval().expect("checked");
-        if d.contains(0.0) {
-            return Newton::DerivativeMayVanish;
-        }
         let m = x.mid();
         let fm = self.enclose(point(m));
         if !is_defined(fm) {
-            return Newton::NotSmooth;
+            return (Newton::NotSmooth, false);
         }
-        let n = point(m) - fm.interval().expect("defined") / d;
+        let fm = fm.interval().expect("defined");
+        // Mean-value form (f is C¹ on X): exclusion near flat extrema.
+        let mv = fm + d * (x - point(m));
+        if !mv.contains(0.0) {
+            return (Newton::NoRoot, true);
+        }
+        if d.contains(0.0) {
+            return (Newton::DerivativeMayVanish, false);
+        }
+        let n = point(m) - fm / d;
         if n.interior(x) {
-            return Newton::Unique(n);
+            return (Newton::Unique(n), false);
         }
         let c = n.intersection(x);
         if c.is_empty() {
-            Newton::NoRoot
+            (Newton::NoRoot, false)
         } else {
-            Newton::Contracted(c)
+            (Newton::Contracted(c), false)
         }
     }
 
@@ -282,11 +299,7 @@ pub fn isolate<F: RealFn>(f: &F, lo: f64, hi: f64, budget: &Budget) -> Isolation
             ));
             continue;
         }
-        let fx = eng.enclose(x);
-        if is_defined(fx) && !fx.interval().expect("defined").contains(0.0) {
-            continue;
-        }
-        let reason = match eng.newton(x) {
+        let reason = match eng.newton_or_exclude(x).0 {
             Newton::NoRoot => continue,
             Newton::Unique(n) => {
                 out.push(RootEnclosure::unique(eng.refine(n)));

@@ -336,6 +336,9 @@ mod tests {
             proof.classify(k("0.19245008972987")),
             Kappa0Class::TwoSimpleRoots
         );
-        assert_eq!(proof.classify(proof.kappa0.interval()), Kappa0Class::Undecided);
+        assert_eq!(
+            proof.classify(proof.kappa0.interval()),
+            Kappa0Class::Undecided
+        );
     }
 }

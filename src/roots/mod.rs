@@ -25,11 +25,10 @@ pub mod tangency;
 pub use equations::{
     solve_2_10, solve_2_12, solve_2_9, solve_3_3, EdgeProof, EquationId, EquationRoots,
 };
-pub use kappa0::{prove_kappa0, Kappa0Proof};
 pub use isolate::{
     isolate, Budget, Isolation, RealFn, RootEnclosure, RootStatus, Stats, UndecidedReason,
 };
-
+pub use kappa0::{prove_kappa0, Kappa0Proof};
 
 use thiserror::Error;
 
