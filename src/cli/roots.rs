@@ -1,5 +1,8 @@
 //! `detach roots`, `detach kappa0`, `detach critical-curve`, `detach tangency`.
 
+// Until `main.rs` wires these subcommands they are reachable only from tests.
+#![allow(dead_code)]
+
 use super::{CliError, CliResult};
 use detach::param::{enclose_decimal, parse_assignment, ParamSet};
 use detach::roots::critical::critical_curve;
@@ -159,7 +162,7 @@ fn solve(args: &RootsArgs) -> Result<(EquationRoots, RootsOutputParts), CliError
             .as_deref()
             .ok_or_else(|| CliError::usage(format!("equation ({eq}) needs --kappa K")))?;
         let k = decimal("kappa", text)?;
-        if !(k.inf() > 0.0) {
+        if k.inf() <= 0.0 {
             return Err(CliError::usage(format!(
                 "κ must be positive (and at least the smallest positive double), got {}",
                 text.trim()
@@ -421,7 +424,7 @@ pub fn run_critical_curve(args: &CriticalCurveArgs) -> CliResult {
     power_of_two("alpha-boxes", args.alpha_boxes)?;
     power_of_two("kappa-boxes", args.kappa_boxes)?;
     let km = decimal("kappa_max", &args.kappa_max)?;
-    if !(km.inf() > 0.0) {
+    if km.inf() <= 0.0 {
         return Err(CliError::usage(format!(
             "--kappa-max must be positive, got {}",
             args.kappa_max
@@ -525,6 +528,18 @@ pub fn run_tangency(args: &TangencyArgs) -> CliResult {
         println!("wrote {}", f.display());
     }
     Ok(())
+}
+
+/// Prints a failure of one of these subcommands on stderr and gives the
+/// process exit code (0 on success, 2 for bad input, 1 otherwise).
+pub fn exit_code(result: CliResult) -> i32 {
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("error: {}", e.message);
+            e.code
+        }
+    }
 }
 
 #[cfg(test)]

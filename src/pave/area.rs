@@ -80,11 +80,11 @@ impl Paving {
         let (mut ni, mut no) = (0, 0);
         for leaf in &self.leaves {
             if cell.proved_in(leaf) {
-                inner = inner + leaf.bx.area();
+                inner += leaf.bx.area();
                 ni += 1;
             }
             if !cell.proved_out(leaf) {
-                outer = outer + leaf.bx.area();
+                outer += leaf.bx.area();
                 no += 1;
             }
         }

@@ -103,7 +103,7 @@ fn enc(x: Interval) -> [f64; 2] {
 }
 
 fn check_kappa(kappa: Interval) -> Result<(), RootsError> {
-    if kappa.is_empty() || !(kappa.inf() > 0.0) || !kappa.sup().is_finite() {
+    if kappa.is_empty() || kappa.inf() <= 0.0 || !kappa.sup().is_finite() {
         return Err(RootsError::KappaNotPositive(format!("{kappa}")));
     }
     Ok(())
