@@ -634,4 +634,40 @@ mod tests {
         }
         assert_eq!(v["parameters"][0]["text"], "0.1");
     }
+
+    #[test]
+    fn pictures_and_json_are_written() {
+        let dir = std::env::temp_dir().join(format!("detach-roots-cli-{}", std::process::id()));
+        let cc = CriticalCurveArgs {
+            out: dir.join("cc"),
+            alpha_boxes: 8,
+            kappa_boxes: 8,
+            kappa_max: "0.25".into(),
+            json: false,
+        };
+        run_critical_curve(&cc).unwrap();
+        let t = TangencyArgs {
+            out: dir.join("t"),
+            k_max: 2,
+            json: false,
+        };
+        run_tangency(&t).unwrap();
+        for f in [
+            "cc/critical-curve.svg",
+            "cc/critical-curve.png",
+            "cc/critical-curve.json",
+            "t/tangency.svg",
+            "t/tangency.png",
+            "t/tangency.json",
+        ] {
+            let len = std::fs::metadata(dir.join(f)).map(|m| m.len()).unwrap_or(0);
+            assert!(len > 100, "{f} missing or empty");
+        }
+        let bad = CriticalCurveArgs {
+            alpha_boxes: 3,
+            ..cc
+        };
+        assert_eq!(run_critical_curve(&bad).unwrap_err().code, 2);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
