@@ -1,1 +1,673 @@
-//! `detach roots`, `detach kappa0`, `detach critical-curve`.
+//! `detach roots`, `detach kappa0`, `detach critical-curve`, `detach tangency`.
+
+// Until `main.rs` wires these subcommands they are reachable only from tests.
+#![allow(dead_code)]
+
+use super::{CliError, CliResult};
+use detach::param::{enclose_decimal, parse_assignment, ParamSet};
+use detach::roots::critical::critical_curve;
+use detach::roots::equations::kappa_alpha;
+use detach::roots::kappa0::{Bound, Verdict};
+use detach::roots::plot::{plot_critical, plot_tangency};
+use detach::roots::tangency::{tangency_scan, Outcome};
+use detach::roots::{
+    prove_kappa0, solve_2_10, solve_2_12, solve_2_9, solve_3_3, Budget, EquationId, EquationRoots,
+    RootStatus,
+};
+use detach::scene::{Scene, SceneId};
+use inari::Interval;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+
+/// Certified roots of (2.9), (2.10), (2.12) or the equilibria of (3.3).
+#[derive(clap::Args, Debug, Clone)]
+pub struct RootsArgs {
+    /// Equation: 2.9, 2.10, 2.12 or 3.3.
+    #[arg(long)]
+    pub equation: String,
+    /// κ > 0 as decimal text (2.9, 2.10), enclosed exactly.
+    #[arg(long, allow_hyphen_values = true)]
+    pub kappa: Option<String>,
+    /// α ∈ [-1, 1] as decimal text (2.9), enclosed exactly.
+    #[arg(long, allow_hyphen_values = true)]
+    pub alpha: Option<String>,
+    /// Scene for 2.12 (smooth-disc, ice-disc), 3.3 (ice-disc), or 2.9 (κ, α of the disc).
+    #[arg(long)]
+    pub scene: Option<String>,
+    /// Scene parameter override, repeatable.
+    #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
+    pub params: Vec<String>,
+    /// Most function evaluations.
+    #[arg(long, default_value_t = 200_000)]
+    pub max_evaluations: usize,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The enclosure of κ₀ = √3/9 and the proof of the root count of (2.10).
+#[derive(clap::Args, Debug, Clone)]
+pub struct Kappa0Args {
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The critical curve κ_crit(α) of (2.9) and the certified (α, κ) atlas.
+#[derive(clap::Args, Debug, Clone)]
+pub struct CriticalCurveArgs {
+    /// Output directory for critical-curve.{svg,png,json}.
+    #[arg(long, default_value = "out/critical-curve")]
+    pub out: PathBuf,
+    /// Number of α-boxes of [0, 1] (a power of two).
+    #[arg(long, default_value_t = 128)]
+    pub alpha_boxes: usize,
+    /// Number of κ-boxes of (0, κ_max] (a power of two).
+    #[arg(long, default_value_t = 128)]
+    pub kappa_boxes: usize,
+    /// Top of the κ range (decimal; the grid uses the double below it).
+    #[arg(long, default_value = "0.25")]
+    pub kappa_max: String,
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// (2.10) at κ = κ₀ and at κ = κ₀(1 ± 10⁻ᵏ): what the isolator certifies.
+#[derive(clap::Args, Debug, Clone)]
+pub struct TangencyArgs {
+    /// Output directory for tangency.{svg,png,json}.
+    #[arg(long, default_value = "out/tangency")]
+    pub out: PathBuf,
+    /// Largest k (1 ≤ k ≤ 17).
+    #[arg(long, default_value_t = 15)]
+    pub k_max: i32,
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Serialize)]
+struct ParamOut {
+    name: String,
+    text: String,
+    enclosure: [f64; 2],
+}
+
+#[derive(Serialize)]
+struct RootsOutput<'a> {
+    #[serde(flatten)]
+    result: &'a EquationRoots,
+    scene: Option<&'static str>,
+    parameters: Vec<ParamOut>,
+    /// κ and α of (2.9) derived from the scene, when relevant.
+    derived: Vec<ParamOut>,
+}
+
+fn param(name: &str, text: &str, x: Interval) -> ParamOut {
+    ParamOut {
+        name: name.into(),
+        text: text.into(),
+        enclosure: [x.inf(), x.sup()],
+    }
+}
+
+fn decimal(name: &str, text: &str) -> Result<Interval, CliError> {
+    enclose_decimal(name, text).map_err(CliError::usage)
+}
+
+fn to_json<T: Serialize>(x: &T) -> Result<String, CliError> {
+    serde_json::to_string_pretty(x).map_err(|e| CliError::runtime(format!("JSON: {e}")))
+}
+
+fn build_scene(args: &RootsArgs, default: SceneId) -> Result<(Scene, ParamSet), CliError> {
+    let id = match &args.scene {
+        Some(s) => SceneId::from_str(s).map_err(CliError::usage)?,
+        None => default,
+    };
+    let overrides = args
+        .params
+        .iter()
+        .map(|p| parse_assignment(p))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(CliError::usage)?;
+    Scene::build(id, &overrides).map_err(CliError::usage)
+}
+
+/// Solves one equation from command-line arguments (no printing).
+fn solve(args: &RootsArgs) -> Result<(EquationRoots, RootsOutputParts), CliError> {
+    let eq = EquationId::parse(&args.equation).ok_or_else(|| {
+        CliError::usage(format!(
+            "unknown equation `{}` (known: 2.9, 2.10, 2.12, 3.3)",
+            args.equation
+        ))
+    })?;
+    if args.max_evaluations == 0 {
+        return Err(CliError::usage("--max-evaluations must be positive"));
+    }
+    let budget = Budget {
+        max_evaluations: args.max_evaluations,
+        ..Budget::default()
+    };
+    let mut parts = RootsOutputParts::default();
+    let no_scene_flags = |what: &str| -> Result<(), CliError> {
+        if args.scene.is_some() || !args.params.is_empty() {
+            return Err(CliError::usage(format!(
+                "equation ({eq}) takes {what}, not --scene/--param"
+            )));
+        }
+        Ok(())
+    };
+    let kappa_of = |parts: &mut RootsOutputParts| -> Result<Interval, CliError> {
+        let text = args
+            .kappa
+            .as_deref()
+            .ok_or_else(|| CliError::usage(format!("equation ({eq}) needs --kappa K")))?;
+        let k = decimal("kappa", text)?;
+        if k.inf() <= 0.0 {
+            return Err(CliError::usage(format!(
+                "κ must be positive (and at least the smallest positive double), got {}",
+                text.trim()
+            )));
+        }
+        parts.parameters.push(param("kappa", text.trim(), k));
+        Ok(k)
+    };
+    let result = match eq {
+        EquationId::E2_10 => {
+            no_scene_flags("--kappa")?;
+            if args.alpha.is_some() {
+                return Err(CliError::usage(
+                    "equation (2.10) is (2.9) at α = 1: drop --alpha",
+                ));
+            }
+            let k = kappa_of(&mut parts)?;
+            solve_2_10(k, &budget).map_err(CliError::usage)?
+        }
+        EquationId::E2_9 if args.scene.is_some() => {
+            if args.kappa.is_some() || args.alpha.is_some() {
+                return Err(CliError::usage(
+                    "equation (2.9): give either --kappa/--alpha or --scene, not both",
+                ));
+            }
+            let (scene, set) = build_scene(args, SceneId::SmoothDisc)?;
+            let disc = match &scene {
+                Scene::Smooth(d) => d,
+                Scene::Ice(i) => &i.disc,
+                Scene::Viscous(_) => {
+                    return Err(CliError::usage(
+                        "equation (2.9) needs scene smooth-disc or ice-disc",
+                    ))
+                }
+            };
+            parts.scene = Some(scene.id().name());
+            parts.set_params(&set);
+            let (k, a) = kappa_alpha(disc).map_err(CliError::usage)?;
+            parts.derived.push(param("kappa", "g A^2/(a p_M^2)", k));
+            parts.derived.push(param("alpha", "p_m/p_M", a));
+            solve_2_9(k, a, &budget).map_err(CliError::usage)?
+        }
+        EquationId::E2_9 => {
+            let k = kappa_of(&mut parts)?;
+            let text = args
+                .alpha
+                .as_deref()
+                .ok_or_else(|| CliError::usage("equation (2.9) needs --alpha A (or --scene)"))?;
+            let a = decimal("alpha", text)?;
+            if !(a.inf() >= -1.0 && a.sup() <= 1.0) {
+                return Err(CliError::usage(format!(
+                    "α must lie in [-1, 1], got {}",
+                    text.trim()
+                )));
+            }
+            parts.parameters.push(param("alpha", text.trim(), a));
+            solve_2_9(k, a, &budget).map_err(CliError::usage)?
+        }
+        EquationId::E2_12 | EquationId::E3_3 => {
+            if args.kappa.is_some() || args.alpha.is_some() {
+                return Err(CliError::usage(format!(
+                    "equation ({eq}) takes --scene and --param, not --kappa/--alpha"
+                )));
+            }
+            let default = if eq == EquationId::E2_12 {
+                SceneId::SmoothDisc
+            } else {
+                SceneId::IceDisc
+            };
+            let (scene, set) = build_scene(args, default)?;
+            parts.scene = Some(scene.id().name());
+            parts.set_params(&set);
+            match (eq, &scene) {
+                (EquationId::E2_12, Scene::Smooth(d)) => solve_2_12(d, &budget),
+                (EquationId::E2_12, Scene::Ice(i)) => solve_2_12(&i.disc, &budget),
+                (EquationId::E3_3, Scene::Ice(i)) => solve_3_3(i, &budget),
+                _ => {
+                    return Err(CliError::usage(format!(
+                        "equation ({eq}) needs scene {}, got {}",
+                        if eq == EquationId::E2_12 {
+                            "smooth-disc or ice-disc"
+                        } else {
+                            "ice-disc"
+                        },
+                        scene.id()
+                    )))
+                }
+            }
+        }
+    };
+    Ok((result, parts))
+}
+
+#[derive(Default)]
+struct RootsOutputParts {
+    scene: Option<&'static str>,
+    parameters: Vec<ParamOut>,
+    derived: Vec<ParamOut>,
+}
+
+impl RootsOutputParts {
+    fn set_params(&mut self, set: &ParamSet) {
+        for ((name, text), p) in set.texts().into_iter().zip(&set.values) {
+            self.parameters.push(param(name, &text, p.value));
+        }
+    }
+}
+
+fn fmt_enc(b: [f64; 2]) -> String {
+    format!("[{:e}, {:e}]", b[0], b[1])
+}
+
+/// `detach roots`.
+pub fn run_roots(args: &RootsArgs) -> CliResult {
+    let (result, parts) = solve(args)?;
+    if args.json {
+        let out = RootsOutput {
+            result: &result,
+            scene: parts.scene,
+            parameters: parts.parameters,
+            derived: parts.derived,
+        };
+        println!("{}", to_json(&out)?);
+        return Ok(());
+    }
+    println!(
+        "equation ({}) for {} in {}{}",
+        result.equation,
+        result.variable,
+        result.domain_text,
+        parts
+            .scene
+            .map(|s| format!(", scene {s}"))
+            .unwrap_or_default()
+    );
+    for p in parts.parameters.iter().chain(&parts.derived) {
+        println!(
+            "  {:<6} = {:<18} ∈ {}",
+            p.name,
+            p.text,
+            fmt_enc(p.enclosure)
+        );
+    }
+    println!(
+        "  {:>3}  {:<24} {:<24} {:>10}  status",
+        "#", "lo", "hi", "width/ulp"
+    );
+    for (i, r) in result.roots.iter().enumerate() {
+        let status = match r.status {
+            RootStatus::Unique => "unique (exactly one root, simple)".to_string(),
+            RootStatus::Undecided => format!(
+                "undecided ({})",
+                r.reason
+                    .map(|x| format!("{x:?}"))
+                    .unwrap_or_default()
+                    .to_lowercase()
+            ),
+        };
+        println!(
+            "  {:>3}  {:<24} {:<24} {:>10}  {}",
+            i + 1,
+            format!("{:?}", r.lo),
+            format!("{:?}", r.hi),
+            r.width_ulps(),
+            status
+        );
+    }
+    if result.roots.is_empty() {
+        println!("  (no root)");
+    }
+    for e in &result.edges {
+        println!(
+            "  edge {:<13} {}: {}",
+            e.end,
+            fmt_enc(e.part),
+            if e.proved {
+                "proved root-free"
+            } else {
+                "NOT proved"
+            }
+        );
+    }
+    println!(
+        "complete: {} — {}",
+        if result.complete { "yes" } else { "no" },
+        if result.complete {
+            format!(
+                "exactly {} root(s), all simple; the rest of the domain is proved root-free",
+                result.roots.len()
+            )
+        } else {
+            "every root lies in the enclosures above; undecided ones may hold any number".into()
+        }
+    );
+    println!(
+        "work: {} evaluations, {} bisections, {} Newton steps",
+        result.stats.evaluations, result.stats.bisections, result.stats.newton_steps
+    );
+    Ok(())
+}
+
+/// `detach kappa0`.
+pub fn run_kappa0(args: &Kappa0Args) -> CliResult {
+    let proof = prove_kappa0();
+    if args.json {
+        println!("{}", to_json(&proof)?);
+    } else {
+        let b = |x: Bound| format!("[{:?}, {:?}]", x.lo, x.hi);
+        println!(
+            "κ₀ ∈ {}  ({} ulp wide; √3/9 in intervals: {})",
+            b(proof.kappa0),
+            proof.kappa0_width_ulps,
+            b(proof.sqrt3_over_9)
+        );
+        println!(
+            "μ* ∈ {}, 2κ₀ = p(μ*) ∈ {}",
+            b(proof.mu_star),
+            b(proof.max_value)
+        );
+        for s in proof.steps.iter().chain(&proof.statements) {
+            let v = if s.verdict == Verdict::Proved {
+                "PROVED"
+            } else {
+                "NOT PROVED"
+            };
+            println!("[{v}] {}: {}", s.id, s.statement);
+            for (k, x) in &s.enclosures {
+                println!("         {k} ∈ {}", b(*x));
+            }
+        }
+    }
+    if proof.all_proved() {
+        Ok(())
+    } else {
+        Err(CliError::runtime("the κ₀ proof did not go through"))
+    }
+}
+
+fn write_json<T: Serialize>(dir: &Path, name: &str, x: &T) -> Result<PathBuf, CliError> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", dir.display())))?;
+    let path = dir.join(name);
+    std::fs::write(&path, to_json(x)? + "\n")
+        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
+    Ok(path)
+}
+
+fn power_of_two(name: &str, n: usize) -> Result<(), CliError> {
+    if n == 0 || !n.is_power_of_two() || n > 4096 {
+        return Err(CliError::usage(format!(
+            "--{name} must be a power of two between 1 and 4096, got {n}"
+        )));
+    }
+    Ok(())
+}
+
+/// `detach critical-curve`.
+pub fn run_critical_curve(args: &CriticalCurveArgs) -> CliResult {
+    power_of_two("alpha-boxes", args.alpha_boxes)?;
+    power_of_two("kappa-boxes", args.kappa_boxes)?;
+    let km = decimal("kappa_max", &args.kappa_max)?;
+    if km.inf() <= 0.0 {
+        return Err(CliError::usage(format!(
+            "--kappa-max must be positive, got {}",
+            args.kappa_max
+        )));
+    }
+    let cc = critical_curve(args.alpha_boxes, args.kappa_boxes, km.inf());
+    let mut files = vec![write_json(&args.out, "critical-curve.json", &cc)?];
+    files.extend(plot_critical(&cc, &args.out).map_err(CliError::runtime)?);
+    if args.json {
+        println!("{}", to_json(&cc)?);
+    } else {
+        println!("κ_crit(α) on {} α-boxes of [0, 1]", cc.band.len());
+        println!("  max band width (upper − lower): {:e}", cc.max_band_width);
+        println!(
+            "  at α = 1: κ_crit ∈ [{:?}, {:?}], κ₀ ∈ [{:?}, {:?}] inside: {}",
+            cc.at_alpha_1.lower,
+            cc.at_alpha_1.upper,
+            cc.kappa0.lo,
+            cc.kappa0.hi,
+            cc.kappa0_inside_band_at_1
+        );
+        for c in cc.band.iter().step_by((cc.band.len() / 8).max(1)) {
+            println!(
+                "  α ∈ [{:.4}, {:.4}]: κ_crit ∈ [{:.6e}, {:.6e}]",
+                c.alpha.lo, c.alpha.hi, c.lower, c.upper
+            );
+        }
+        println!(
+            "atlas (α, κ) ∈ [0, 1] × (0, {}]: {} no root, {} exactly two simple roots, {} undecided",
+            cc.kappa_max, cc.counts.no_root, cc.counts.two_simple_roots, cc.counts.undecided
+        );
+        for f in files {
+            println!("wrote {}", f.display());
+        }
+    }
+    Ok(())
+}
+
+/// `detach tangency`.
+pub fn run_tangency(args: &TangencyArgs) -> CliResult {
+    if !(1..=17).contains(&args.k_max) {
+        return Err(CliError::usage(format!(
+            "--k-max must be between 1 and 17, got {}",
+            args.k_max
+        )));
+    }
+    let rep = tangency_scan(args.k_max, &Budget::default());
+    let mut files = vec![write_json(&args.out, "tangency.json", &rep)?];
+    files.extend(plot_tangency(&rep, &args.out).map_err(CliError::runtime)?);
+    if args.json {
+        println!("{}", to_json(&rep)?);
+        return Ok(());
+    }
+    let dr = &rep.double_root;
+    println!(
+        "κ = [κ₀] = [{:?}, {:?}]: all roots in [{:?}, {:?}] (width {:.2e}), none unique: {}, contains μ*: {}",
+        dr.kappa.lo,
+        dr.kappa.hi,
+        dr.enclosure.lo,
+        dr.enclosure.hi,
+        dr.enclosure_width,
+        dr.none_unique,
+        dr.contains_mu_star
+    );
+    println!(
+        "{:>3} {:>2}  {:<16} {:<14} {:>6} {:>5} {:>10} {:>10} {:>7} {:>7} {:>9}",
+        "k",
+        "±",
+        "by κ₀ proof",
+        "isolator",
+        "unique",
+        "undec",
+        "width/ulp",
+        "width",
+        "evals",
+        "bisect",
+        "time/µs"
+    );
+    for r in &rep.rows {
+        let outcome = match r.outcome {
+            Outcome::NoRootProved => "0 roots proved",
+            Outcome::TwoUnique => "2 unique",
+            Outcome::Undecided => "undecided",
+        };
+        println!(
+            "{:>3} {:>2}  {:<16} {:<14} {:>6} {:>5} {:>10} {:>10.2e} {:>7} {:>7} {:>9.1}",
+            r.k,
+            if r.sign < 0 { "−" } else { "+" },
+            format!("{:?}", r.by_kappa0).to_lowercase(),
+            outcome,
+            r.unique_roots,
+            r.undecided,
+            r.max_width_ulps,
+            r.max_width,
+            r.evaluations,
+            r.bisections,
+            r.time_us
+        );
+    }
+    for f in files {
+        println!("wrote {}", f.display());
+    }
+    Ok(())
+}
+
+/// Prints a failure of one of these subcommands on stderr and gives the
+/// process exit code (0 on success, 2 for bad input, 1 otherwise).
+pub fn exit_code(result: CliResult) -> i32 {
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("error: {}", e.message);
+            e.code
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(eq: &str) -> RootsArgs {
+        RootsArgs {
+            equation: eq.into(),
+            kappa: None,
+            alpha: None,
+            scene: None,
+            params: vec![],
+            max_evaluations: 200_000,
+            json: false,
+        }
+    }
+
+    #[test]
+    fn bad_input_is_a_usage_error() {
+        let cases = [
+            RootsArgs {
+                kappa: Some("0".into()),
+                alpha: Some("0.5".into()),
+                ..args("2.9")
+            },
+            RootsArgs {
+                kappa: Some("nan".into()),
+                alpha: Some("0.5".into()),
+                ..args("2.9")
+            },
+            RootsArgs {
+                kappa: Some("0.1".into()),
+                alpha: Some("1.5".into()),
+                ..args("2.9")
+            },
+            RootsArgs {
+                kappa: Some("0.1".into()),
+                ..args("2.9")
+            },
+            RootsArgs {
+                kappa: Some("-1".into()),
+                ..args("2.10")
+            },
+            args("2.10"),
+            args("2.11"),
+            RootsArgs {
+                scene: Some("no-such".into()),
+                ..args("2.12")
+            },
+            RootsArgs {
+                scene: Some("smooth-disc".into()),
+                ..args("3.3")
+            },
+            RootsArgs {
+                params: vec!["zz=1".into()],
+                ..args("2.12")
+            },
+        ];
+        for a in cases {
+            let e = solve(&a).err().unwrap_or_else(|| panic!("accepted {a:?}"));
+            assert_eq!(e.code, 2, "{a:?}: {}", e.message);
+            assert!(!e.message.contains('\n'));
+        }
+    }
+
+    #[test]
+    fn json_has_the_documented_fields() {
+        let a = RootsArgs {
+            kappa: Some("0.1".into()),
+            ..args("2.10")
+        };
+        let (r, parts) = solve(&a).unwrap();
+        let v: serde_json::Value = serde_json::from_str(
+            &to_json(&RootsOutput {
+                result: &r,
+                scene: parts.scene,
+                parameters: parts.parameters,
+                derived: parts.derived,
+            })
+            .unwrap(),
+        )
+        .unwrap();
+        assert_eq!(v["equation"], "2.10");
+        assert_eq!(v["variable"], "mu");
+        assert_eq!(v["complete"], true);
+        let roots = v["roots"].as_array().unwrap();
+        assert_eq!(roots.len(), 2);
+        for r in roots {
+            assert_eq!(r["status"], "unique");
+            assert!(r["lo"].as_f64().unwrap() <= r["hi"].as_f64().unwrap());
+        }
+        assert_eq!(v["parameters"][0]["text"], "0.1");
+    }
+
+    #[test]
+    fn pictures_and_json_are_written() {
+        let dir = std::env::temp_dir().join(format!("detach-roots-cli-{}", std::process::id()));
+        let cc = CriticalCurveArgs {
+            out: dir.join("cc"),
+            alpha_boxes: 8,
+            kappa_boxes: 8,
+            kappa_max: "0.25".into(),
+            json: false,
+        };
+        run_critical_curve(&cc).unwrap();
+        let t = TangencyArgs {
+            out: dir.join("t"),
+            k_max: 2,
+            json: false,
+        };
+        run_tangency(&t).unwrap();
+        for f in [
+            "cc/critical-curve.svg",
+            "cc/critical-curve.png",
+            "cc/critical-curve.json",
+            "t/tangency.svg",
+            "t/tangency.png",
+            "t/tangency.json",
+        ] {
+            let len = std::fs::metadata(dir.join(f)).map(|m| m.len()).unwrap_or(0);
+            assert!(len > 100, "{f} missing or empty");
+        }
+        let bad = CriticalCurveArgs {
+            alpha_boxes: 3,
+            ..cc
+        };
+        assert_eq!(run_critical_curve(&bad).unwrap_err().code, 2);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
