@@ -4,6 +4,7 @@ mod cli;
 
 use clap::{Parser, Subcommand};
 use cli::atlas::{AtlasArgs, PaveArgs, ScenesArgs};
+use cli::roots::{CriticalCurveArgs, Kappa0Args, RootsArgs, TangencyArgs};
 use cli::CliResult;
 
 /// Certified detachment regions of systems with a unilateral constraint
@@ -23,6 +24,14 @@ enum Command {
     Pave(PaveArgs),
     /// List the scenes, their parameters, defaults, domains and variants.
     Scenes(ScenesArgs),
+    /// Certified roots of (2.9), (2.10), (2.12) or the equilibria of (3.3).
+    Roots(RootsArgs),
+    /// Prove κ₀ = √3/9 and the root counts of (2.10) on both sides of it.
+    Kappa0(Kappa0Args),
+    /// Map the tangency κ → κ₀: what the isolator certifies at κ₀(1 ± 10⁻ᵏ).
+    Tangency(TangencyArgs),
+    /// Certified band of κ_crit(α) and the (α, κ) atlas of (2.9).
+    CriticalCurve(CriticalCurveArgs),
 }
 
 fn run(command: Command) -> CliResult {
@@ -30,6 +39,10 @@ fn run(command: Command) -> CliResult {
         Command::Atlas(a) => cli::atlas::run_atlas(&a),
         Command::Pave(a) => cli::atlas::run_pave(&a),
         Command::Scenes(a) => cli::atlas::run_scenes(&a),
+        Command::Roots(a) => cli::roots::run_roots(&a),
+        Command::Kappa0(a) => cli::roots::run_kappa0(&a),
+        Command::Tangency(a) => cli::roots::run_tangency(&a),
+        Command::CriticalCurve(a) => cli::roots::run_critical_curve(&a),
     }
 }
 

@@ -1,8 +1,5 @@
 //! `detach roots`, `detach kappa0`, `detach critical-curve`, `detach tangency`.
 
-// Until `main.rs` wires these subcommands they are reachable only from tests.
-#![allow(dead_code)]
-
 use super::{CliError, CliResult};
 use detach::param::{enclose_decimal, parse_assignment, ParamSet};
 use detach::roots::critical::critical_curve;
@@ -528,18 +525,6 @@ pub fn run_tangency(args: &TangencyArgs) -> CliResult {
         println!("wrote {}", f.display());
     }
     Ok(())
-}
-
-/// Prints a failure of one of these subcommands on stderr and gives the
-/// process exit code (0 on success, 2 for bad input, 1 otherwise).
-pub fn exit_code(result: CliResult) -> i32 {
-    match result {
-        Ok(()) => 0,
-        Err(e) => {
-            eprintln!("error: {}", e.message);
-            e.code
-        }
-    }
 }
 
 #[cfg(test)]
