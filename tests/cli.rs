@@ -190,3 +190,90 @@ fn scenes_lists_every_scene_with_defaults() {
     assert_eq!(v[2]["params"][7]["name"], "c0");
     assert_eq!(v[0]["params"][4]["default"], "0.8");
 }
+
+#[test]
+fn roots_bad_input_is_a_clear_error_with_exit_code_2() {
+    assert_bad_input(
+        &[
+            "roots",
+            "--equation",
+            "2.9",
+            "--kappa",
+            "0",
+            "--alpha",
+            "0.5",
+        ],
+        "κ must be positive",
+    );
+    assert_bad_input(
+        &[
+            "roots",
+            "--equation",
+            "2.9",
+            "--kappa",
+            "-1",
+            "--alpha",
+            "0.5",
+        ],
+        "κ must be positive",
+    );
+    assert_bad_input(
+        &[
+            "roots",
+            "--equation",
+            "2.9",
+            "--kappa",
+            "NaN",
+            "--alpha",
+            "0.5",
+        ],
+        "not a finite decimal",
+    );
+    assert_bad_input(
+        &[
+            "roots",
+            "--equation",
+            "2.9",
+            "--kappa",
+            "0.1",
+            "--alpha",
+            "1.5",
+        ],
+        "α must lie in [-1, 1]",
+    );
+    assert_bad_input(
+        &["roots", "--equation", "7", "--kappa", "0.1"],
+        "unknown equation",
+    );
+    assert_bad_input(
+        &["roots", "--equation", "2.12", "--scene", "brick"],
+        "unknown scene",
+    );
+}
+
+#[test]
+fn roots_json_reads_back_and_brackets_the_closed_form() {
+    // (2.10) is μ³ − μ + 2κ = 0; for κ = 0.1 the positive roots are
+    // (2/√3) cos(φ/3 − 2πk/3), cos φ = −3√3 κ, k = 0 and 1 (trigonometric form).
+    let out = detach(&["roots", "--equation", "2.10", "--kappa", "0.1", "--json"]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["equation"], "2.10");
+    assert_eq!(v["complete"], true);
+    let phi = (-3.0 * 3f64.sqrt() * 0.1).acos();
+    let mut expect: Vec<f64> = [0.0, 1.0]
+        .iter()
+        .map(|k| 2.0 / 3f64.sqrt() * (phi / 3.0 - 2.0 * std::f64::consts::PI * k / 3.0).cos())
+        .collect();
+    expect.sort_by(f64::total_cmp);
+    let roots = v["roots"].as_array().unwrap();
+    assert_eq!(roots.len(), 2);
+    for (r, e) in roots.iter().zip(expect) {
+        let (lo, hi) = (r["lo"].as_f64().unwrap(), r["hi"].as_f64().unwrap());
+        assert_eq!(r["status"], "unique");
+        assert!(
+            lo - 1e-14 <= e && e <= hi + 1e-14 && hi - lo < 1e-13,
+            "{lo} {hi} {e}"
+        );
+    }
+}

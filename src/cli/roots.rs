@@ -510,7 +510,7 @@ pub fn run_tangency(args: &TangencyArgs) -> CliResult {
             "{:>3} {:>2}  {:<16} {:<14} {:>6} {:>5} {:>10} {:>10.2e} {:>7} {:>7} {:>9.1}",
             r.k,
             if r.sign < 0 { "−" } else { "+" },
-            format!("{:?}", r.by_kappa0).to_lowercase(),
+            r.by_kappa0.to_string(),
             outcome,
             r.unique_roots,
             r.undecided,

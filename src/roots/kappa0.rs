@@ -307,6 +307,16 @@ pub enum Kappa0Class {
     Undecided,
 }
 
+impl std::fmt::Display for Kappa0Class {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str(match self {
+            Kappa0Class::NoRoot => "no root",
+            Kappa0Class::TwoSimpleRoots => "two simple roots",
+            Kappa0Class::Undecided => "undecided",
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
