@@ -47,6 +47,28 @@ fn h_of<T: Scalar>(d: &ViscousDisc, th: T) -> T {
     T::lift(d.a) + T::lift(d.b) * th.sin()
 }
 
+/// (h, h', h'') at θ, from a nested dual number.
+fn h_derivatives(d: &ViscousDisc, th: f64) -> (f64, f64, f64) {
+    let hd = h_of(d, DD::variable(D::variable(th, 0), 0));
+    (hd.value.value, hd.value.grad[0], hd.grad[0].grad[0])
+}
+
+/// ψ̇ from the integrals (2.3), and ∂T/∂θ of T (2.1) at fixed ψ̇, φ̇ (by a
+/// dual in θ): the θ equation of (2.2) is A θ̈ = ∂T/∂θ + generalised forces.
+fn rotation(d: &SmoothDisc, th: f64, w: f64) -> (f64, f64) {
+    let (big_a, big_c, pf, ps) = (d.big_a.mid(), d.big_c.mid(), d.p_phi.mid(), d.p_psi.mid());
+    let (s, c) = th.sin_cos();
+    let psi_dot = (ps - pf * c) / (big_a * s * s);
+    let phi_dot = pf / big_c - psi_dot * c;
+    let (sx, cx) = D::variable(th, 0).sin_cos();
+    let half = D::constant(0.5);
+    let t = half
+        * D::constant(big_a)
+        * (D::constant(w * w) + D::constant(psi_dot * psi_dot) * sx.sqr())
+        + half * D::constant(big_c) * (D::constant(psi_dot) * cx + D::constant(phi_dot)).sqr();
+    (psi_dot, t.grad[0])
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
 
@@ -56,8 +78,7 @@ proptest! {
     fn viscous_disc_matches_newton(th in -3.1f64..3.1, w in -10.0f64..10.0) {
         let d = viscous();
         let (m, c, mu, g) = (d.m.mid(), d.c.mid(), d.mu.mid(), d.g.mid());
-        let hd = h_of(&d, DD::variable(D::variable(th, 0), 0));
-        let (h, h1, h2) = (hd.value.value, hd.value.grad[0], hd.grad[0].grad[0]);
+        let (h, h1, h2) = h_derivatives(&d, th);
         // m ÿ = −m g + N;  C θ̈ = −N h' − μ h² θ̇;  ÿ − h' θ̈ − h'' θ̇² = 0
         let kkt = Matrix3::new(m, 0.0, -1.0, 0.0, c, h1, 1.0, -h1, 0.0);
         let rhs = Vector3::new(-m * g, -mu * h * h * w, h2 * w * w);
@@ -85,12 +106,7 @@ proptest! {
     fn viscous_disc_energy_balance(th in -3.1f64..3.1, w in -10.0f64..10.0) {
         let d = viscous();
         let (m, c, mu, g) = (d.m.mid(), d.c.mid(), d.mu.mid(), d.g.mid());
-        let thv = DD { value: D::variable(th, 0), grad: [D::constant(1.0), D::constant(0.0)] };
-        let hh = h_of(&d, thv);
-        // hh.value.grad[0] is h'(θ) (inner), hh.grad[0].grad[0] is h''(θ)
-        let h_val = hh.value.value;
-        let h1 = hh.value.grad[0];
-        let h2 = hh.grad[0].grad[0];
+        let (h_val, h1, h2) = h_derivatives(&d, th);
         // E and its partial derivatives by hand from T and Π (no scene formula):
         let e_theta = m * h1 * h2 * w * w + m * g * h1;
         let e_w = (m * h1 * h1 + c) * w;
@@ -106,18 +122,9 @@ proptest! {
     #[test]
     fn smooth_disc_matches_lagrange(th in 0.05f64..3.09, w in -10.0f64..10.0) {
         let d = smooth();
-        let (m, a, big_a, big_c, g) = (d.m.mid(), d.a.mid(), d.big_a.mid(), d.big_c.mid(), d.g.mid());
-        let (pf, ps) = (d.p_phi.mid(), d.p_psi.mid());
+        let (m, a, big_a, g) = (d.m.mid(), d.a.mid(), d.big_a.mid(), d.g.mid());
         let (s, c) = th.sin_cos();
-        let psi_dot = (ps - pf * c) / (big_a * s * s);
-        let phi_dot = pf / big_c - psi_dot * c;
-        let t_rot = |x: D| {
-            let (sx, cx) = x.sin_cos();
-            let half = D::constant(0.5);
-            half * D::constant(big_a) * (D::constant(w * w) + D::constant(psi_dot * psi_dot) * sx.sqr())
-                + half * D::constant(big_c) * (D::constant(psi_dot) * cx + D::constant(phi_dot)).sqr()
-        };
-        let dt_dtheta = t_rot(D::variable(th, 0)).grad[0];
+        let (_, dt_dtheta) = rotation(&d, th, w);
         // m z̈ − N = −m g;  A θ̈ + a cos θ N = ∂T/∂θ;  z̈ − a cos θ θ̈ = −a sin θ θ̇²
         let kkt = Matrix3::new(m, 0.0, -1.0, 0.0, big_a, a * c, 1.0, -a * c, 0.0);
         let sol = kkt.lu().solve(&Vector3::new(-m * g, dt_dtheta, -a * s * w * w)).unwrap();
@@ -145,18 +152,9 @@ proptest! {
     fn ice_disc_matches_newton_euler(th in 0.05f64..3.09, w in -10.0f64..10.0, c0 in -3.0f64..3.0) {
         let d = ice(&format!("{c0:.3}"));
         let s0 = &d.disc;
-        let (m, a, big_a, big_c, g) = (s0.m.mid(), s0.a.mid(), s0.big_a.mid(), s0.big_c.mid(), s0.g.mid());
-        let (pf, ps) = (s0.p_phi.mid(), s0.p_psi.mid());
+        let (m, a, big_a, g) = (s0.m.mid(), s0.a.mid(), s0.big_a.mid(), s0.g.mid());
         let (s, c) = th.sin_cos();
-        let psi_dot = (ps - pf * c) / (big_a * s * s);
-        let phi_dot = pf / big_c - psi_dot * c;
-        let t_rot = |x: D| {
-            let (sx, cx) = x.sin_cos();
-            let half = D::constant(0.5);
-            half * D::constant(big_a) * (D::constant(w * w) + D::constant(psi_dot * psi_dot) * sx.sqr())
-                + half * D::constant(big_c) * (D::constant(psi_dot) * cx + D::constant(phi_dot)).sqr()
-        };
-        let dt_dtheta = t_rot(D::variable(th, 0)).grad[0];
+        let (psi_dot, dt_dtheta) = rotation(s0, th, w);
         let an = Angle::new(th);
         let vx = d.v_x(&an);
         // (3.1) integrates the e₁ momentum equation: dv_x/dθ = −a τ, τ = ψ̇ sin θ

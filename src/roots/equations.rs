@@ -403,16 +403,12 @@ pub fn solve_2_12(disc: &SmoothDisc, budget: &Budget) -> EquationRoots {
     let enclose = |s: Interval, c: Interval, _| {
         m * g * a * c * s.sqr() * s + (ps - pf * c) * (pf - ps * c) / big_a
     };
-    let (bounds, edges, fragments) = scene_edges(enclose, "sin³θ·Π̃'(θ)");
-    let iso = isolate(&PotentialSlope(disc), bounds[0], bounds[1], budget);
-    finish(
+    solve_scene_on_theta(
         EquationId::E2_12,
-        "theta",
-        [0.0, Interval::PI.sup()],
-        "(0, pi)",
-        iso,
-        edges,
-        fragments,
+        enclose,
+        "sin³θ·Π̃'(θ)",
+        &PotentialSlope(disc),
+        budget,
     )
 }
 
@@ -437,10 +433,28 @@ pub fn solve_3_3(ice: &IceDisc, budget: &Budget) -> EquationRoots {
         -(m * g * a * c * s2 * s) + m * a / big_a * vx_s2 * (ps - pf * c)
             - (ps - pf * c) * (pf - ps * c) / big_a
     };
-    let (bounds, edges, fragments) = scene_edges(enclose, "(A + m a²) sin³θ·θ̈(θ)");
-    let iso = isolate(&IceAcceleration(ice), bounds[0], bounds[1], budget);
-    finish(
+    solve_scene_on_theta(
         EquationId::E3_3,
+        enclose,
+        "(A + m a²) sin³θ·θ̈(θ)",
+        &IceAcceleration(ice),
+        budget,
+    )
+}
+
+/// A scene equation on θ ∈ (0, π): the open ends proved by `enclose` (the
+/// function with its singular factors cleared), the interior by the isolator.
+fn solve_scene_on_theta<F: RealFn>(
+    equation: EquationId,
+    enclose: impl Fn(Interval, Interval, bool) -> Interval,
+    what: &str,
+    f: &F,
+    budget: &Budget,
+) -> EquationRoots {
+    let (bounds, edges, fragments) = scene_edges(enclose, what);
+    let iso = isolate(f, bounds[0], bounds[1], budget);
+    finish(
+        equation,
         "theta",
         [0.0, Interval::PI.sup()],
         "(0, pi)",
