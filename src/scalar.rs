@@ -31,6 +31,7 @@ pub trait Scalar:
     fn sin(self) -> Self;
     fn cos(self) -> Self;
     fn ln(self) -> Self;
+    fn tan(self) -> Self;
     /// `(sin, cos)` together; duals reuse both for the derivatives.
     fn sin_cos(self) -> (Self, Self) {
         (self.sin(), self.cos())
@@ -59,6 +60,9 @@ impl Scalar for f64 {
     fn ln(self) -> Self {
         f64::ln(self)
     }
+    fn tan(self) -> Self {
+        f64::tan(self)
+    }
     fn sin_cos(self) -> (Self, Self) {
         f64::sin_cos(self)
     }
@@ -86,6 +90,9 @@ impl Scalar for Interval {
     fn ln(self) -> Self {
         Interval::ln(self)
     }
+    fn tan(self) -> Self {
+        Interval::tan(self)
+    }
 }
 
 impl Scalar for DecInterval {
@@ -109,6 +116,9 @@ impl Scalar for DecInterval {
     }
     fn ln(self) -> Self {
         DecInterval::ln(self)
+    }
+    fn tan(self) -> Self {
+        DecInterval::tan(self)
     }
 }
 
@@ -228,6 +238,10 @@ impl<T: Scalar> Scalar for Dual<T> {
     fn ln(self) -> Self {
         self.chain(self.value.ln(), T::int(1) / self.value)
     }
+    fn tan(self) -> Self {
+        let t = self.value.tan();
+        self.chain(t, T::int(1) + t.sqr())
+    }
     fn sin_cos(self) -> (Self, Self) {
         let (s, c) = self.value.sin_cos();
         (self.chain(s, c), self.chain(c, -s))
@@ -247,6 +261,9 @@ mod tests {
         let expect = (2.0 * 2.0 * s + 4.0 * c) / l - 4.0 * s / (2.0 * l * l);
         assert!((f.grad[0] - expect).abs() < 1e-12);
         assert_eq!(f.grad[1], 0.0);
+        // d/dx tan x = 1/cos²x.
+        let t = Dual::<f64>::variable(0.7, 0).tan();
+        assert!((t.grad[0] - 1.0 / 0.7f64.cos().powi(2)).abs() < 1e-12);
     }
 
     #[test]

@@ -29,7 +29,7 @@
 //! `½(A + m a²) θ̇² + m g a sin θ + ½ m v_x² + ½ A τ²` (+ the constant `p_φ²/2C`).
 
 use super::smooth::{SmoothDisc, SMOOTH_PARAMS};
-use super::{Angle, Constraints, Domain, Model, Quadratic, Variant};
+use super::{Angle, Constraints, Domain, Formulas, Model, Quadratic, Variant};
 use crate::param::{ParamError, ParamSet, ParamSpec, Sign};
 use crate::scalar::Scalar;
 use inari::Interval;
@@ -60,14 +60,17 @@ const ICE_PARAMS: [ParamSpec; 8] = {
 };
 
 impl IceDisc {
-    /// v_x of (3.1): `c₀ − (a/A)(p_ψ ln tg(θ/2) − p_φ ln sin θ)`, with
-    /// `ln tg(θ/2) = ln sin θ − ln(1 + cos θ)`.
+    /// v_x of (3.1): `c₀ − (a/A)(p_ψ ln tg(θ/2) − p_φ ln sin θ)`.
+    ///
+    /// `tg(θ/2)` is evaluated directly: on (0, π) it is increasing and
+    /// positive, so its enclosure stays tight and defined up to both ends
+    /// (a form through `ln(1 + cos θ)` reaches `ln 0` next to θ = π).
     pub fn v_x<T: Scalar>(&self, an: &Angle<T>) -> T {
         let d = &self.disc;
         let (a, big_a) = (T::lift(d.a), T::lift(d.big_a));
         let (pf, ps) = (T::lift(d.p_phi), T::lift(d.p_psi));
         let ln_sin = an.sin.ln();
-        let ln_tan_half = ln_sin - (T::int(1) + an.cos).ln();
+        let ln_tan_half = (an.theta / T::int(2)).tan().ln();
         T::lift(self.c0) - a / big_a * (ps * ln_tan_half - pf * ln_sin)
     }
 
@@ -98,6 +101,43 @@ impl Model for IceDisc {
 
     fn domain(&self) -> Domain {
         self.disc.domain()
+    }
+
+    const DOMAIN_TEXT: [[&'static str; 2]; 2] = SmoothDisc::DOMAIN_TEXT;
+
+    fn formulas(v: Variant) -> Formulas {
+        let (mut definitions, omega) = SmoothDisc::omega_formula(v);
+        // Ω₀ needs τ, τ' in both readings; (2.8) alone does not define them.
+        if v == Variant::Printed {
+            definitions.extend(
+                SmoothDisc::omega_formula(Variant::Derived)
+                    .0
+                    .into_iter()
+                    .take(2),
+            );
+        }
+        definitions.push((
+            "vx",
+            "c0 - a/A*(p_psi*ln(tan(t/2)) - p_phi*ln(sin(t)))",
+        ));
+        let omega0 = match v {
+            Variant::Printed => {
+                definitions.push(("bracket", "m*g*a*cos(t) - m*a*vx*tau + A*tau*tau1"));
+                "a*sin(t)*w^2 + (a*cos(t)/(A + m*a^2)*bracket - g)"
+            }
+            Variant::Derived => {
+                definitions.push((
+                    "acc",
+                    "(-(m*g*a*cos(t)) + m*a*vx*tau - A*tau*tau1)/(A + m*a^2)",
+                ));
+                "a*sin(t)*w^2 + (-g - a*cos(t)*acc)"
+            }
+        };
+        Formulas {
+            definitions,
+            omega,
+            omega0,
+        }
     }
 
     fn constraints<T: Scalar>(&self, v: Variant, an: &Angle<T>) -> Constraints<T> {
