@@ -164,6 +164,20 @@ fn int(n: f64) -> Interval {
     Interval::try_from((n, n)).expect("exact small number")
 }
 
+/// The constraints of a scene written out in the proof-file expression
+/// language (`proofs/FORMAT.md`): `t` is θ, `w` is θ̇, names are the scene's
+/// parameters and the definitions, evaluated in order. Each text mirrors the
+/// operation order of the scene's [`Scalar`] code, so an interval evaluation
+/// of the text gives the same enclosure the paver computed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Formulas {
+    pub definitions: Vec<(&'static str, &'static str)>,
+    /// Ω as `{expr < 0}`.
+    pub omega: &'static str,
+    /// Ω₀ as `{expr < 0}`.
+    pub omega0: &'static str,
+}
+
 /// What a system of the paper provides; formulas generic over [`Scalar`].
 pub trait Model: Sized {
     /// `viscous-disc`, `smooth-disc`, `ice-disc`.
@@ -175,6 +189,10 @@ pub trait Model: Sized {
     fn domain(&self) -> Domain;
     /// Ω and Ω₀ as `{g < 0}` quadratics in θ̇.
     fn constraints<T: Scalar>(&self, v: Variant, a: &Angle<T>) -> Constraints<T>;
+    /// The same constraints as text, for proof files.
+    fn formulas(v: Variant) -> Formulas;
+    /// The phase-plane domain as text (`[[θ lo, θ hi], [θ̇ lo, θ̇ hi]]`).
+    const DOMAIN_TEXT: [[&'static str; 2]; 2];
     /// θ̈ of the equation of motion in contact.
     fn acceleration<T: Scalar>(&self, v: Variant, a: &Angle<T>, theta_dot: T) -> T;
     /// A conserved energy whose level lines are the phase curves, if the paper
@@ -206,6 +224,22 @@ impl SceneId {
             SceneId::ViscousDisc => ViscousDisc::TITLE,
             SceneId::SmoothDisc => SmoothDisc::TITLE,
             SceneId::IceDisc => IceDisc::TITLE,
+        }
+    }
+    /// Ω and Ω₀ as text in the proof-file expression language.
+    pub fn formulas(self, v: Variant) -> Formulas {
+        match self {
+            SceneId::ViscousDisc => ViscousDisc::formulas(v),
+            SceneId::SmoothDisc => SmoothDisc::formulas(v),
+            SceneId::IceDisc => IceDisc::formulas(v),
+        }
+    }
+    /// The default phase-plane domain as text.
+    pub fn domain_text(self) -> [[&'static str; 2]; 2] {
+        match self {
+            SceneId::ViscousDisc => ViscousDisc::DOMAIN_TEXT,
+            SceneId::SmoothDisc => SmoothDisc::DOMAIN_TEXT,
+            SceneId::IceDisc => IceDisc::DOMAIN_TEXT,
         }
     }
     pub fn params(self) -> &'static [ParamSpec] {

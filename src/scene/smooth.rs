@@ -24,7 +24,9 @@
 //! `J = A + m a² cos²θ`, `Π̃' = m g a cos θ + A τ τ'` (2.12).
 //! Energy (2.11): `½ J θ̇² + m g a sin θ + ½ A τ²`.
 
-use super::{symmetric, theta_range_0_pi, Angle, Constraints, Domain, Model, Quadratic, Variant};
+use super::{
+    symmetric, theta_range_0_pi, Angle, Constraints, Domain, Formulas, Model, Quadratic, Variant,
+};
 use crate::param::{ParamError, ParamSet, ParamSpec, Sign};
 use crate::scalar::Scalar;
 use inari::Interval;
@@ -147,6 +149,27 @@ impl SmoothDisc {
         }
     }
 
+    /// Ω of (2.8) (printed) or (2.7) (derived) as text, with its definitions.
+    pub fn omega_formula(v: Variant) -> (Vec<(&'static str, &'static str)>, &'static str) {
+        match v {
+            Variant::Printed => (
+                vec![(
+                    "Phi",
+                    "g/(a*sin(t)) - cos(t)/(A^2*(sin(t)^2)^2)*(p_phi - p_psi*cos(t))*(p_psi - p_phi*cos(t))",
+                )],
+                "w^2 - Phi",
+            ),
+            Variant::Derived => (
+                vec![
+                    ("tau", "(p_psi - p_phi*cos(t))/(A*sin(t))"),
+                    ("tau1", "(p_phi - p_psi*cos(t))/(A*sin(t)^2)"),
+                    ("U0", "a*tau*tau1*cos(t) - g"),
+                ],
+                "a*sin(t)*w^2 + U0",
+            ),
+        }
+    }
+
     /// Π̃'(θ) of (2.12).
     pub fn reduced_potential_slope<T: Scalar>(&self, an: &Angle<T>) -> T {
         let (m, a, g, big_a) = (
@@ -174,6 +197,18 @@ impl Model for SmoothDisc {
         Domain {
             theta: theta_range_0_pi(),
             theta_dot: symmetric(10.0),
+        }
+    }
+
+    const DOMAIN_TEXT: [[&'static str; 2]; 2] = [["0", "pi"], ["-10", "10"]];
+
+    /// Ω₀ = Ω: the same text twice.
+    fn formulas(v: Variant) -> Formulas {
+        let (definitions, omega) = Self::omega_formula(v);
+        Formulas {
+            definitions,
+            omega,
+            omega0: omega,
         }
     }
 

@@ -33,7 +33,7 @@
 //! follow from the printed (1.7) with its factor 2. The sets differ; see the
 //! witnesses in `tests/findings.rs`.
 
-use super::{symmetric, Angle, Constraints, Domain, Model, Quadratic, Variant, PI};
+use super::{symmetric, Angle, Constraints, Domain, Formulas, Model, Quadratic, Variant, PI};
 use crate::param::{ParamError, ParamSet, ParamSpec, Sign};
 use crate::scalar::Scalar;
 use inari::Interval;
@@ -161,6 +161,28 @@ impl Model for ViscousDisc {
                     c1: friction,
                     c0: -(c * g),
                 },
+            },
+        }
+    }
+
+    const DOMAIN_TEXT: [[&'static str; 2]; 2] = [["-pi", "pi"], ["-10", "10"]];
+
+    fn formulas(v: Variant) -> Formulas {
+        let definitions = vec![
+            ("h", "a + b*sin(t)"),
+            ("h1", "b*cos(t)"),
+            ("h2", "-(b*sin(t))"),
+        ];
+        match v {
+            Variant::Printed => Formulas {
+                definitions,
+                omega: "-(2*C*h2)*w^2 - g*(2*C + m*h1^2)",
+                omega0: "-(2*C*h2)*w^2 + mu*h^2*h1*w - g*(2*C + m*h1^2)",
+            },
+            Variant::Derived => Formulas {
+                definitions,
+                omega: "-h2*w^2 - g",
+                omega0: "-(C*h2)*w^2 + mu*h^2*h1*w - C*g",
             },
         }
     }

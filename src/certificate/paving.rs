@@ -1,0 +1,210 @@
+//! A paving as a `paving` proof file: the statement (scene, parameters as
+//! text, the constraints as expressions, the domain, the claimed areas) and
+//! the tree in the compact `tree/1` encoding.
+
+use super::numbers::{decimal, hex, Round};
+use crate::param::ParamSet;
+use crate::pave::{CellSpec, Label, Node, Paving};
+use crate::scene::{Domain, SceneId, Variant, REGION_NAMES};
+use serde_json::{json, Map, Value};
+
+/// Significant digits of claimed area bounds.
+const AREA_DIGITS: usize = 10;
+
+/// What a paving proof is about, besides the paving itself.
+pub struct PavingStatement<'a> {
+    pub scene: SceneId,
+    pub variant: Variant,
+    pub params: &'a ParamSet,
+    /// The true domain (for the part outside the root box) and its text.
+    pub domain: &'a Domain,
+    pub domain_text: [[String; 2]; 2],
+    pub title: String,
+}
+
+fn label_bits(l: Label) -> u64 {
+    match l {
+        Label::Undecided => 0b00,
+        Label::ProvedIn => 0b01,
+        Label::ProvedOut => 0b10,
+        Label::Undefined => 0b11,
+    }
+}
+
+/// Appends bits most significant first.
+#[derive(Default)]
+pub(crate) struct BitWriter {
+    bytes: Vec<u8>,
+    used: u32,
+}
+
+impl BitWriter {
+    pub(crate) fn push(&mut self, value: u64, bits: u32) {
+        for i in (0..bits).rev() {
+            if self.used % 8 == 0 {
+                self.bytes.push(0);
+            }
+            let bit = ((value >> i) & 1) as u8;
+            let last = self.bytes.last_mut().expect("pushed above");
+            *last |= bit << (7 - self.used % 8);
+            self.used += 1;
+        }
+    }
+    pub(crate) fn into_bytes(self) -> Vec<u8> {
+        self.bytes
+    }
+}
+
+/// The preorder tree in `tree/1` bits: leaf `0` + 2 bits per constraint,
+/// θ-midpoint split `100`, θ̇-midpoint split `101`.
+pub fn encode_tree(paving: &Paving) -> Vec<u8> {
+    let k = paving.names.len();
+    let mut w = BitWriter::default();
+    for node in &paving.nodes {
+        match *node {
+            Node::Split(axis) => w.push(0b100 | u64::from(axis), 3),
+            Node::Leaf(i) => {
+                w.push(0, 1);
+                for &l in &paving.leaves[i as usize].labels[..k] {
+                    w.push(label_bits(l), 2);
+                }
+            }
+        }
+    }
+    w.into_bytes()
+}
+
+/// Standard base64 with padding (RFC 4648).
+pub fn base64(bytes: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            *chunk.get(1).unwrap_or(&0),
+            *chunk.get(2).unwrap_or(&0),
+        ];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for i in 0..4 {
+            if i <= chunk.len() {
+                out.push(A[((n >> (18 - 6 * i)) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+/// The literals of the six standard sets, in the order of [`REGION_NAMES`].
+fn literals(i: usize) -> Value {
+    let (t, f) = ("in", "out");
+    match i {
+        0 => json!({ "omega": t }),
+        1 => json!({ "omega0": t }),
+        2 => json!({ "omega": t, "omega0": t }),
+        3 => json!({ "omega": f, "omega0": f }),
+        4 => json!({ "omega": f, "omega0": t }),
+        _ => json!({ "omega": t, "omega0": f }),
+    }
+}
+
+fn cell(i: usize) -> CellSpec {
+    crate::pave::standard_cells()[i]
+}
+
+/// The proof file of a paving of Ω and Ω₀ (and the four cells).
+pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
+    let formulas = st.scene.formulas(st.variant);
+    let mut params = Map::new();
+    for (name, text) in st.params.texts() {
+        params.insert(name.to_string(), Value::String(text));
+    }
+    let uncovered = st.domain.uncovered_area_sup();
+    let areas: Vec<Value> = REGION_NAMES
+        .iter()
+        .enumerate()
+        .map(|(i, name)| {
+            let b = paving.area_bounds(&cell(i), uncovered);
+            json!({
+                "set": name,
+                "literals": literals(i),
+                "inner": decimal(b.inner_area, AREA_DIGITS, Round::Down),
+                "outer": decimal(b.outer_area, AREA_DIGITS, Round::Up),
+            })
+        })
+        .collect();
+    let r = paving.root;
+    json!({
+        "format": "detach-proof/1",
+        "claim": "paving",
+        "title": st.title,
+        "producer": super::producer(),
+        "statement": {
+            "scene": st.scene.name(),
+            "variant": st.variant.to_string(),
+            "paper": paper_reference(st.scene),
+            "parameters": params,
+            "definitions": formulas.definitions.iter().map(|(n, e)| json!([n, e])).collect::<Vec<_>>(),
+            "constraints": [
+                { "name": "omega", "expr": formulas.omega, "meaning": "Ω: no detachment (Λ̈ < 0 at zero reaction)" },
+                { "name": "omega0", "expr": formulas.omega0, "meaning": "Ω₀: the normal reaction keeps its sign" },
+            ],
+            "domain": {
+                "t": st.domain_text[0],
+                "w": st.domain_text[1],
+            },
+            "root_box": {
+                "t": [hex(r.theta[0]), hex(r.theta[1])],
+                "w": [hex(r.theta_dot[0]), hex(r.theta_dot[1])],
+            },
+            "leaves": paving.leaves.len(),
+            "areas": areas,
+        },
+        "evidence": {
+            "encoding": "tree/1",
+            "nodes": paving.nodes.len(),
+            "resolution": { "eps": paving.eps, "complete": paving.complete },
+            "body": base64(&encode_tree(paving)),
+        },
+    })
+}
+
+fn paper_reference(id: SceneId) -> &'static str {
+    match id {
+        SceneId::ViscousDisc => "Example 1: Ω (1.10), Ω₀ (1.11)",
+        SceneId::SmoothDisc => "§2: Ω = Ω₀ (2.7), (2.8)",
+        SceneId::IceDisc => "§3: Ω (2.7), (2.8); Ω₀ (3.5)",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base64_matches_rfc4648_vectors() {
+        // RFC 4648 §10 test vectors.
+        for (raw, enc) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            assert_eq!(base64(raw.as_bytes()), enc);
+        }
+    }
+
+    #[test]
+    fn bits_are_packed_msb_first() {
+        let mut w = BitWriter::default();
+        w.push(0b101, 3);
+        w.push(0b0, 1);
+        w.push(0b1111, 4);
+        w.push(0b1, 1);
+        assert_eq!(w.into_bytes(), vec![0b1010_1111, 0b1000_0000]);
+    }
+}
