@@ -4,6 +4,7 @@ mod cli;
 
 use clap::{Parser, Subcommand};
 use cli::atlas::{AtlasArgs, PaveArgs, ScenesArgs};
+use cli::proofs::{ProveArgs, VerifyArgs};
 use cli::roots::{CriticalCurveArgs, Kappa0Args, RootsArgs, TangencyArgs};
 use cli::CliResult;
 
@@ -32,6 +33,10 @@ enum Command {
     Tangency(TangencyArgs),
     /// Certified band of κ_crit(α) and the (α, κ) atlas of (2.9).
     CriticalCurve(CriticalCurveArgs),
+    /// Write proof files of the headline results and their MANIFEST.sha256.
+    Prove(ProveArgs),
+    /// Check proof files independently of the code that produced them.
+    Verify(VerifyArgs),
 }
 
 fn run(command: Command) -> CliResult {
@@ -43,6 +48,8 @@ fn run(command: Command) -> CliResult {
         Command::Kappa0(a) => cli::roots::run_kappa0(&a),
         Command::Tangency(a) => cli::roots::run_tangency(&a),
         Command::CriticalCurve(a) => cli::roots::run_critical_curve(&a),
+        Command::Prove(a) => cli::proofs::run_prove(&a),
+        Command::Verify(a) => cli::proofs::run_verify(&a),
     }
 }
 

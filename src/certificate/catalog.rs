@@ -203,3 +203,43 @@ pub fn roots_2_12(params: &ParamSet) -> Value {
         &pieces,
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::atlas::{plot_area_pixels, AtlasStyle};
+
+    #[test]
+    fn atlas_eps_is_the_atlas_default() {
+        // `detach atlas` uses the largest power of two ≤ 1/max(plot width, height).
+        let (w, h) = plot_area_pixels(&AtlasStyle::default());
+        let pixel = (1.0 / w.max(h) as f64).log2().floor().exp2();
+        assert_eq!(pixel, ATLAS_EPS);
+    }
+
+    #[test]
+    fn every_headline_result_builds_with_its_counts() {
+        for name in HEADLINE {
+            let v = prove_named(name).unwrap();
+            let bytes = crate::certificate::to_bytes(&v);
+            let st = &v["statement"];
+            match v["claim"].as_str().unwrap() {
+                "paving" => {
+                    let leaves = st["leaves"].as_u64().unwrap();
+                    let nodes = v["evidence"]["nodes"].as_u64().unwrap();
+                    // A binary tree: nodes = 2·leaves − 1.
+                    assert_eq!(nodes, 2 * leaves - 1, "{name}");
+                    let body = v["evidence"]["body"].as_str().unwrap().len() as f64;
+                    eprintln!("{name}: {leaves} leaves, {} B, body {:.2} B/leaf", bytes.len(), body / leaves as f64);
+                    assert!(body / (leaves as f64) <= 2.0, "{name}");
+                }
+                "roots" => {
+                    assert_eq!(st["complete"], true, "{name}: {}", st["roots"]);
+                    eprintln!("{name}: {} B, roots {}", bytes.len(), st["roots"]);
+                }
+                _ => eprintln!("{name}: {} B, {}", bytes.len(), st["kappa0"]),
+            }
+            assert_ne!(prove_named("nope").is_ok(), true);
+        }
+    }
+}

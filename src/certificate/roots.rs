@@ -111,12 +111,17 @@ fn cover_gap<F: RealFn>(f: &F, a: f64, b: f64, min_width: f64, out: &mut Vec<Pie
     let mut stack = vec![(a, b)];
     while let Some((a, b)) = stack.pop() {
         let kind = exclusion(f, iv(a, b));
-        let m = if b.is_finite() { split_point(a, b) } else { a };
+        // An unbounded gap is cut at a finite point beyond `a` first.
+        let m = if b.is_finite() {
+            split_point(a, b)
+        } else {
+            (2.0 * a.abs()).max(1.0)
+        };
         let kind = match kind {
             Some(k) => k,
             None if out.len() + stack.len() >= MAX_PIECES
                 || !(a < m && m < b)
-                || b - a <= min_width * a.abs().max(1.0) =>
+                || (b.is_finite() && b - a <= min_width * a.abs().max(1.0)) =>
             {
                 PieceKind::Undecided
             }

@@ -57,6 +57,10 @@ pub struct PaveArgs {
     /// Print the result as JSON instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// Also write this run as a proof file (`proofs/FORMAT.md`), checked
+    /// before it is reported.
+    #[arg(long, value_name = "FILE")]
+    pub proof: Option<PathBuf>,
 }
 
 fn split_window(flag: &str, text: &Option<String>) -> Result<Option<[String; 2]>, CliError> {
@@ -283,7 +287,22 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
         .domain()
         .window(as_refs(&th), as_refs(&thd))
         .map_err(CliError::usage)?;
-    let (_, report) = pave_and_report(&scene, &domain, &params, args.flags.variant, opts)?;
+    let (paving, report) = pave_and_report(&scene, &domain, &params, args.flags.variant, opts)?;
+    if let Some(path) = &args.proof {
+        let text = |w: &Option<[String; 2]>, i: usize| {
+            w.clone()
+                .unwrap_or_else(|| id.domain_text()[i].map(String::from))
+        };
+        super::proofs::write_paving_proof(
+            path,
+            &scene,
+            &params,
+            args.flags.variant,
+            &domain,
+            [text(&th, 0), text(&thd, 1)],
+            &paving,
+        )?;
+    }
     if args.json {
         println!(
             "{}",

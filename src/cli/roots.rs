@@ -41,6 +41,10 @@ pub struct RootsArgs {
     /// Print JSON instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// Also write the roots as a proof file (`proofs/FORMAT.md`), checked
+    /// before it is reported: (2.9) with --kappa/--alpha, (2.10), (2.12).
+    #[arg(long, value_name = "FILE")]
+    pub proof: Option<PathBuf>,
 }
 
 /// The enclosure of κ₀ = √3/9 and the proof of the root count of (2.10).
@@ -275,6 +279,9 @@ fn fmt_enc(b: [f64; 2]) -> String {
 /// `detach roots`.
 pub fn run_roots(args: &RootsArgs) -> CliResult {
     let (result, parts) = solve(args)?;
+    if let Some(path) = &args.proof {
+        super::proofs::write_roots_proof(path, args)?;
+    }
     if args.json {
         let out = RootsOutput {
             result: &result,

@@ -1,0 +1,296 @@
+//! `detach prove` and `detach verify`: proof files and their independent check.
+
+use super::{CliError, CliResult};
+use detach::certificate::catalog::{file_name, roots_2_10, roots_2_12, roots_2_9};
+use detach::certificate::{paving_proof, prove_named, to_bytes, PavingStatement, HEADLINE};
+use detach::param::{parse_assignment, ParamSet};
+use detach::pave::Paving;
+use detach::scene::{Domain, Scene, SceneId, Variant};
+use detach::check::{check_bytes, Verdict};
+use sha2::{Digest, Sha256};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Write proof files of headline results (default: all) and their manifest.
+#[derive(clap::Args, Debug)]
+pub struct ProveArgs {
+    /// Output directory.
+    #[arg(long, default_value = "proofs")]
+    pub out: PathBuf,
+    /// Results to prove, e.g. `atlas/viscous-disc/derived`, `kappa0`,
+    /// `roots/2.10`; none: every headline result.
+    #[arg(value_name = "WHAT")]
+    pub what: Vec<String>,
+}
+
+/// Check proof files or folders of them (with their MANIFEST.sha256).
+#[derive(clap::Args, Debug)]
+pub struct VerifyArgs {
+    /// Proof files or directories.
+    #[arg(value_name = "PATH", required = true)]
+    pub paths: Vec<PathBuf>,
+}
+
+fn hex_digest(bytes: &[u8]) -> String {
+    Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// Writes a proof file, checks it with the independent checker, and returns
+/// (bytes, checker seconds, units checked).
+pub fn write_checked(path: &Path, proof: &serde_json::Value) -> Result<(usize, f64, String), CliError> {
+    let bytes = to_bytes(proof);
+    std::fs::write(path, &bytes)
+        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
+    let report = check_bytes(&bytes)
+        .map_err(|e| CliError::runtime(format!("{}: the checker cannot read it: {e}", path.display())))?;
+    if let Verdict::Invalid(why) = &report.verdict {
+        return Err(CliError::runtime(format!(
+            "{}: the checker rejects it: {why}",
+            path.display()
+        )));
+    }
+    Ok((bytes.len(), report.seconds, format!("{} {}", report.checked, report.unit)))
+}
+
+/// The manifest of every `.json` file in `dir`, in `sha256sum` format.
+fn write_manifest(dir: &Path) -> CliResult {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .map_err(|e| CliError::runtime(format!("cannot read {}: {e}", dir.display())))?
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".json"))
+        .collect();
+    names.sort();
+    let mut text = String::new();
+    for n in &names {
+        let bytes = std::fs::read(dir.join(n))
+            .map_err(|e| CliError::runtime(format!("cannot read {n}: {e}")))?;
+        text.push_str(&format!("{}  {n}\n", hex_digest(&bytes)));
+    }
+    let path = dir.join("MANIFEST.sha256");
+    std::fs::write(&path, text)
+        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))
+}
+
+pub fn run_prove(args: &ProveArgs) -> CliResult {
+    let names: Vec<String> = if args.what.is_empty() {
+        HEADLINE.iter().map(|s| s.to_string()).collect()
+    } else {
+        args.what.clone()
+    };
+    // Refuse unknown names before any work.
+    for n in &names {
+        if !HEADLINE.contains(&n.as_str()) {
+            return Err(CliError::usage(format!(
+                "unknown result `{n}` (known: {})",
+                HEADLINE.join(", ")
+            )));
+        }
+    }
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", args.out.display())))?;
+    let mut lines = Vec::new();
+    for n in &names {
+        let t = Instant::now();
+        let proof = prove_named(n).map_err(CliError::usage)?;
+        let prover_s = t.elapsed().as_secs_f64();
+        let path = args.out.join(file_name(n));
+        let (bytes, check_s, units) = write_checked(&path, &proof)?;
+        lines.push(format!(
+            "{:<34} {:>9} B  {:<16} prover {:.3} s  checker {:.3} s",
+            file_name(n),
+            bytes,
+            units,
+            prover_s,
+            check_s
+        ));
+    }
+    write_manifest(&args.out)?;
+    let mut out = std::io::stdout().lock();
+    for l in lines {
+        let _ = writeln!(out, "{l}");
+    }
+    let _ = writeln!(out, "wrote {}", args.out.join("MANIFEST.sha256").display());
+    Ok(())
+}
+
+/// The outcome of one file.
+enum Outcome {
+    Valid,
+    Invalid,
+    Unreadable,
+}
+
+fn verify_file(path: &Path, shown: &str, out: &mut impl Write) -> Outcome {
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => {
+            let _ = writeln!(out, "UNREADABLE {shown}: {e}");
+            return Outcome::Unreadable;
+        }
+    };
+    match check_bytes(&bytes) {
+        Err(e) => {
+            let _ = writeln!(out, "UNREADABLE {shown}: {e}");
+            Outcome::Unreadable
+        }
+        Ok(r) => {
+            let (word, outcome, why) = match &r.verdict {
+                Verdict::Valid => ("VALID", Outcome::Valid, String::new()),
+                Verdict::Invalid(w) => ("INVALID", Outcome::Invalid, format!("\n    {w}")),
+            };
+            let _ = writeln!(
+                out,
+                "{word:<10} {shown}  {}  ({} {}, {:.3} s){why}",
+                r.claim, r.checked, r.unit, r.seconds
+            );
+            outcome
+        }
+    }
+}
+
+/// Checks `MANIFEST.sha256` of a folder: every listed file present with its hash.
+fn verify_manifest(dir: &Path, out: &mut impl Write) -> Vec<Outcome> {
+    let path = dir.join("MANIFEST.sha256");
+    let Ok(text) = std::fs::read_to_string(&path) else {
+        return vec![];
+    };
+    let mut res = Vec::new();
+    for line in text.lines().filter(|l| !l.trim().is_empty()) {
+        let Some((hash, name)) = line.split_once("  ") else {
+            let _ = writeln!(out, "UNREADABLE {}: bad line `{line}`", path.display());
+            res.push(Outcome::Unreadable);
+            continue;
+        };
+        match std::fs::read(dir.join(name)) {
+            Ok(b) if hex_digest(&b) == hash.trim() => {}
+            Ok(_) => {
+                let _ = writeln!(
+                    out,
+                    "INVALID    {}: SHA-256 differs from MANIFEST.sha256",
+                    dir.join(name).display()
+                );
+                res.push(Outcome::Invalid);
+            }
+            Err(e) => {
+                let _ = writeln!(out, "UNREADABLE {}: {e}", dir.join(name).display());
+                res.push(Outcome::Unreadable);
+            }
+        }
+    }
+    res
+}
+
+pub fn run_verify(args: &VerifyArgs) -> CliResult {
+    let mut out = std::io::stdout().lock();
+    let mut outcomes = Vec::new();
+    for p in &args.paths {
+        if p.is_dir() {
+            outcomes.extend(verify_manifest(p, &mut out));
+            let mut files: Vec<PathBuf> = match std::fs::read_dir(p) {
+                Ok(rd) => rd
+                    .filter_map(|e| e.ok())
+                    .map(|e| e.path())
+                    .filter(|f| f.extension().is_some_and(|x| x == "json"))
+                    .collect(),
+                Err(e) => {
+                    let _ = writeln!(out, "UNREADABLE {}: {e}", p.display());
+                    outcomes.push(Outcome::Unreadable);
+                    continue;
+                }
+            };
+            files.sort();
+            for f in files {
+                outcomes.push(verify_file(&f, &f.display().to_string(), &mut out));
+            }
+        } else {
+            outcomes.push(verify_file(p, &p.display().to_string(), &mut out));
+        }
+    }
+    let count = |f: fn(&Outcome) -> bool| outcomes.iter().filter(|o| f(o)).count();
+    let (valid, invalid, unreadable) = (
+        count(|o| matches!(o, Outcome::Valid)),
+        count(|o| matches!(o, Outcome::Invalid)),
+        count(|o| matches!(o, Outcome::Unreadable)),
+    );
+    let _ = writeln!(out, "{valid} valid, {invalid} invalid, {unreadable} unreadable");
+    if invalid > 0 {
+        Err(CliError {
+            message: format!("{invalid} proof(s) INVALID"),
+            code: 1,
+        })
+    } else if unreadable > 0 {
+        Err(CliError::usage(format!("{unreadable} file(s) could not be read")))
+    } else {
+        Ok(())
+    }
+}
+
+/// `pave --proof FILE`: the paving of this run as a proof file.
+pub fn write_paving_proof(
+    path: &Path,
+    scene: &Scene,
+    params: &ParamSet,
+    variant: Variant,
+    domain: &Domain,
+    domain_text: [[String; 2]; 2],
+    paving: &Paving,
+) -> CliResult {
+    let proof = paving_proof(
+        &PavingStatement {
+            scene: scene.id(),
+            variant,
+            params,
+            domain,
+            domain_text,
+            title: format!("Ω, Ω₀ and the four cells of the {} ({variant})", scene.id()),
+        },
+        paving,
+    );
+    let (bytes, _, units) = write_checked(path, &proof)?;
+    eprintln!("wrote {} ({bytes} B, {units}, checked VALID)", path.display());
+    Ok(())
+}
+
+/// `roots --proof FILE`: the roots of this run as a proof file.
+pub fn write_roots_proof(path: &Path, args: &super::roots::RootsArgs) -> CliResult {
+    let need = |flag: &Option<String>, name: &str| {
+        flag.as_deref()
+            .map(str::trim)
+            .ok_or_else(|| CliError::usage(format!("--proof for ({}) needs --{name}", args.equation)))
+    };
+    let eq = args.equation.trim().trim_start_matches('(').trim_end_matches(')');
+    let proof = match eq {
+        "2.9" if args.scene.is_none() => {
+            roots_2_9(need(&args.kappa, "kappa")?, need(&args.alpha, "alpha")?)
+        }
+        "2.10" => roots_2_10(need(&args.kappa, "kappa")?),
+        "2.12" => {
+            let id: SceneId = need(&args.scene, "scene")?.parse().map_err(CliError::usage)?;
+            if !matches!(id, SceneId::SmoothDisc | SceneId::IceDisc) {
+                return Err(CliError::usage("(2.12) needs --scene smooth-disc or ice-disc"));
+            }
+            let overrides = args
+                .params
+                .iter()
+                .map(|t| parse_assignment(t).map_err(CliError::usage))
+                .collect::<Result<Vec<_>, _>>()?;
+            let (_, params) = Scene::build(id, &overrides).map_err(CliError::usage)?;
+            Ok(roots_2_12(&params))
+        }
+        _ => {
+            return Err(CliError::usage(format!(
+                "proof files exist for (2.9) with --kappa/--alpha, (2.10) and (2.12); not for ({eq}){}",
+                if eq == "2.9" { " with --scene" } else { "" }
+            )))
+        }
+    }
+    .map_err(CliError::usage)?;
+    let (bytes, _, units) = write_checked(path, &proof)?;
+    eprintln!("wrote {} ({bytes} B, {units}, checked VALID)", path.display());
+    Ok(())
+}
