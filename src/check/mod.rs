@@ -19,7 +19,7 @@ mod paving;
 mod pieces;
 mod roots;
 
-pub use encoding::{base64_decode, decimal_enclosure, parse_hex_f64};
+pub use self::encoding::{base64_decode, decimal_enclosure, parse_hex_f64};
 
 use inari::{DecInterval, Interval};
 use std::fmt;
