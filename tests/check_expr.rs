@@ -169,7 +169,7 @@ fn hex_round_trips() {
         f64::MAX,
         f64::MIN_POSITIVE,
         5e-324,
-        -2.2250738585072009e-308,
+        -f64::from_bits(0x000f_ffff_ffff_ffff),
         1e300,
         123456.789,
     ];

@@ -94,7 +94,11 @@ fn per_leaf_time() {
     build(depth, t, w, &mut bits, &mut leaves);
     let bytes: Vec<u8> = bits
         .chunks(8)
-        .map(|c| c.iter().enumerate().fold(0u8, |a, (i, &b)| a | (u8::from(b) << (7 - i))))
+        .map(|c| {
+            c.iter()
+                .enumerate()
+                .fold(0u8, |a, (i, &b)| a | (u8::from(b) << (7 - i)))
+        })
         .collect();
     let p: serde_json::Map<String, serde_json::Value> =
         params().into_iter().map(|(k, v)| (k, json!(v))).collect();

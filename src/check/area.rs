@@ -103,7 +103,7 @@ impl AreaSum {
                     self.add_f64(x);
                 }
             }
-            LeafArea::Enclosed(i) => self.rest = self.rest + *i,
+            LeafArea::Enclosed(i) => self.rest += *i,
         }
     }
 
