@@ -7,6 +7,7 @@
 
 pub mod atlas;
 pub mod certificate;
+pub mod check;
 pub mod param;
 pub mod pave;
 pub mod roots;

@@ -1,0 +1,465 @@
+//! Compiled expressions and their evaluation: decorated intervals and
+//! forward-mode dual numbers over them.
+//!
+//! An expression is compiled once into a flat list of operations in the
+//! order written; every operation writes one slot, and its operands are
+//! earlier slots. A definition is one slot, so it is evaluated once per box.
+
+use inari::{DecInterval, Decoration, Interval};
+use std::collections::HashMap;
+
+use super::encoding::decimal_enclosure;
+use super::expr;
+
+/// Function names of the expression language.
+pub const FUNCTIONS: [&str; 6] = ["sqrt", "sin", "cos", "tan", "ln", "abs"];
+
+/// One operation; operands are indices of earlier slots.
+#[derive(Clone, Copy, Debug)]
+pub enum Op {
+    /// A constant enclosure (literal, parameter, `pi`).
+    Const(DecInterval),
+    /// Variable number `i`.
+    Var(u8),
+    Neg(u32),
+    Add(u32, u32),
+    Sub(u32, u32),
+    Mul(u32, u32),
+    Div(u32, u32),
+    /// `x^2`.
+    Sqr(u32),
+    /// `x^n`, n ≠ 2.
+    Pown(u32, i32),
+    Sqrt(u32),
+    Sin(u32),
+    Cos(u32),
+    Tan(u32),
+    Ln(u32),
+    Abs(u32),
+}
+
+/// Numbers an expression can be evaluated over.
+pub trait Num: Copy {
+    fn constant(x: DecInterval) -> Self;
+    fn add(self, o: Self) -> Self;
+    fn sub(self, o: Self) -> Self;
+    fn mul(self, o: Self) -> Self;
+    fn div(self, o: Self) -> Self;
+    fn neg(self) -> Self;
+    fn sqr(self) -> Self;
+    fn pown(self, n: i32) -> Self;
+    fn sqrt(self) -> Self;
+    fn sin(self) -> Self;
+    fn cos(self) -> Self;
+    fn tan(self) -> Self;
+    fn ln(self) -> Self;
+    fn abs(self) -> Self;
+    /// The derivative of `abs` at the points of `self`: ±1 where the sign is
+    /// fixed; where `self` contains 0 the derivative does not exist, so the
+    /// result is `[-1, 1]` decorated `trv`.
+    fn sign(self) -> Self;
+}
+
+/// The exact point interval `[x, x]` (x a small integer), decorated `com`.
+pub fn exact(x: f64) -> DecInterval {
+    Interval::try_from((x, x))
+        .map(DecInterval::new)
+        .unwrap_or(DecInterval::NAI)
+}
+
+/// `x^k` as the language evaluates it: `sqr` for 2, `pown` otherwise.
+fn lang_pow<T: Num>(x: T, k: i32) -> T {
+    if k == 2 {
+        x.sqr()
+    } else {
+        x.pown(k)
+    }
+}
+
+impl Num for DecInterval {
+    fn constant(x: DecInterval) -> Self {
+        x
+    }
+    fn add(self, o: Self) -> Self {
+        self + o
+    }
+    fn sub(self, o: Self) -> Self {
+        self - o
+    }
+    fn mul(self, o: Self) -> Self {
+        self * o
+    }
+    fn div(self, o: Self) -> Self {
+        self / o
+    }
+    fn neg(self) -> Self {
+        -self
+    }
+    fn sqr(self) -> Self {
+        DecInterval::sqr(self)
+    }
+    fn pown(self, n: i32) -> Self {
+        self.powi(n)
+    }
+    fn sqrt(self) -> Self {
+        DecInterval::sqrt(self)
+    }
+    fn sin(self) -> Self {
+        DecInterval::sin(self)
+    }
+    fn cos(self) -> Self {
+        DecInterval::cos(self)
+    }
+    fn tan(self) -> Self {
+        DecInterval::tan(self)
+    }
+    fn ln(self) -> Self {
+        DecInterval::ln(self)
+    }
+    fn abs(self) -> Self {
+        DecInterval::abs(self)
+    }
+    fn sign(self) -> Self {
+        match self.interval() {
+            Some(x) if !x.is_empty() && x.inf() > 0.0 => exact(1.0),
+            Some(x) if !x.is_empty() && x.sup() < 0.0 => exact(-1.0),
+            _ => Interval::try_from((-1.0, 1.0))
+                .map(|i| DecInterval::set_dec(i, Decoration::Trv))
+                .unwrap_or(DecInterval::NAI),
+        }
+    }
+}
+
+/// A value and its derivative with respect to the one variable.
+#[derive(Clone, Copy, Debug)]
+pub struct Dual<T> {
+    pub v: T,
+    pub d: T,
+}
+
+impl<T: Num> Dual<T> {
+    /// The variable itself at `x` (derivative 1).
+    pub fn variable(x: T) -> Self {
+        Dual {
+            v: x,
+            d: T::constant(exact(1.0)),
+        }
+    }
+    fn chain(self, v: T, slope: T) -> Self {
+        Dual {
+            v,
+            d: self.d.mul(slope),
+        }
+    }
+}
+
+// The rules below fix the order of every operation, so that a prover using
+// the same rules obtains the same enclosures (see FORMAT.md).
+impl<T: Num> Num for Dual<T> {
+    fn constant(x: DecInterval) -> Self {
+        Dual {
+            v: T::constant(x),
+            d: T::constant(exact(0.0)),
+        }
+    }
+    fn add(self, o: Self) -> Self {
+        Dual {
+            v: self.v.add(o.v),
+            d: self.d.add(o.d),
+        }
+    }
+    fn sub(self, o: Self) -> Self {
+        Dual {
+            v: self.v.sub(o.v),
+            d: self.d.sub(o.d),
+        }
+    }
+    fn mul(self, o: Self) -> Self {
+        Dual {
+            v: self.v.mul(o.v),
+            d: self.d.mul(o.v).add(self.v.mul(o.d)),
+        }
+    }
+    fn div(self, o: Self) -> Self {
+        let v = self.v.div(o.v);
+        Dual {
+            v,
+            d: self.d.sub(v.mul(o.d)).div(o.v),
+        }
+    }
+    fn neg(self) -> Self {
+        Dual {
+            v: self.v.neg(),
+            d: self.d.neg(),
+        }
+    }
+    fn sqr(self) -> Self {
+        self.chain(self.v.sqr(), T::constant(exact(2.0)).mul(self.v))
+    }
+    fn pown(self, n: i32) -> Self {
+        if n == 0 {
+            // The value carries the decoration; the derivative is 0.
+            return Dual {
+                v: self.v.pown(0),
+                d: T::constant(exact(0.0)),
+            };
+        }
+        let slope = T::constant(exact(f64::from(n))).mul(lang_pow(self.v, n - 1));
+        self.chain(lang_pow(self.v, n), slope)
+    }
+    fn sqrt(self) -> Self {
+        let r = self.v.sqrt();
+        let slope = T::constant(exact(1.0)).div(T::constant(exact(2.0)).mul(r));
+        self.chain(r, slope)
+    }
+    fn sin(self) -> Self {
+        self.chain(self.v.sin(), self.v.cos())
+    }
+    fn cos(self) -> Self {
+        self.chain(self.v.cos(), self.v.sin().neg())
+    }
+    fn tan(self) -> Self {
+        let r = self.v.tan();
+        self.chain(r, T::constant(exact(1.0)).add(r.sqr()))
+    }
+    fn ln(self) -> Self {
+        self.chain(self.v.ln(), T::constant(exact(1.0)).div(self.v))
+    }
+    fn abs(self) -> Self {
+        self.chain(self.v.abs(), self.v.sign())
+    }
+    fn sign(self) -> Self {
+        let s = self.v.sign();
+        // Zero where the sign is fixed; inherits `trv` where it is not.
+        Dual {
+            v: s,
+            d: s.mul(T::constant(exact(0.0))),
+        }
+    }
+}
+
+/// Applies one operation to already computed slots.
+#[inline]
+pub fn apply<T: Num>(op: &Op, s: &[T], vars: &[T]) -> T {
+    // Operands always precede the slot being computed (see `Program::push`),
+    // so indexing cannot fail; `get` keeps that an invariant, not a panic.
+    let g = |i: u32| {
+        s.get(i as usize)
+            .copied()
+            .unwrap_or(T::constant(DecInterval::NAI))
+    };
+    match *op {
+        Op::Const(c) => T::constant(c),
+        Op::Var(i) => vars
+            .get(usize::from(i))
+            .copied()
+            .unwrap_or(T::constant(DecInterval::NAI)),
+        Op::Neg(a) => g(a).neg(),
+        Op::Add(a, b) => g(a).add(g(b)),
+        Op::Sub(a, b) => g(a).sub(g(b)),
+        Op::Mul(a, b) => g(a).mul(g(b)),
+        Op::Div(a, b) => g(a).div(g(b)),
+        Op::Sqr(a) => g(a).sqr(),
+        Op::Pown(a, n) => g(a).pown(n),
+        Op::Sqrt(a) => g(a).sqrt(),
+        Op::Sin(a) => g(a).sin(),
+        Op::Cos(a) => g(a).cos(),
+        Op::Tan(a) => g(a).tan(),
+        Op::Ln(a) => g(a).ln(),
+        Op::Abs(a) => g(a).abs(),
+    }
+}
+
+fn operands(op: &Op) -> [Option<u32>; 2] {
+    match *op {
+        Op::Const(_) | Op::Var(_) => [None, None],
+        Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => [Some(a), Some(b)],
+        Op::Neg(a)
+        | Op::Sqr(a)
+        | Op::Pown(a, _)
+        | Op::Sqrt(a)
+        | Op::Sin(a)
+        | Op::Cos(a)
+        | Op::Tan(a)
+        | Op::Ln(a)
+        | Op::Abs(a) => [Some(a), None],
+    }
+}
+
+/// Largest number of operations in one statement.
+const MAX_OPS: usize = 1 << 20;
+
+/// A compiled statement: variables, parameters, definitions and any number
+/// of expressions, all in one slot list.
+#[derive(Clone, Debug)]
+pub struct Program {
+    ops: Vec<Op>,
+    /// Bit i set when the slot depends on variable i.
+    deps: Vec<u8>,
+    names: HashMap<String, u32>,
+}
+
+/// True when `s` is a name of the grammar: a letter, then letters, digits, `_`.
+pub fn is_name(s: &str) -> bool {
+    let mut c = s.chars();
+    matches!(c.next(), Some(f) if f.is_ascii_alphabetic())
+        && c.all(|x| x.is_ascii_alphanumeric() || x == '_')
+}
+
+impl Program {
+    /// A program over the given variables (at most 8), with `pi` defined.
+    pub fn new(vars: &[&str]) -> Result<Self, String> {
+        let mut p = Program {
+            ops: Vec::new(),
+            deps: Vec::new(),
+            names: HashMap::new(),
+        };
+        if vars.len() > 8 {
+            return Err("too many variables".into());
+        }
+        for (i, v) in vars.iter().enumerate() {
+            p.check_new_name(v)?;
+            let s = p.push(Op::Var(i as u8))?;
+            p.names.insert((*v).to_string(), s);
+        }
+        let pi = p.push(Op::Const(DecInterval::PI))?;
+        p.names.insert("pi".into(), pi);
+        Ok(p)
+    }
+
+    fn check_new_name(&self, name: &str) -> Result<(), String> {
+        if !is_name(name) {
+            return Err(format!("{name:?} is not a valid name"));
+        }
+        if FUNCTIONS.contains(&name) || name == "pi" {
+            return Err(format!("{name:?} is reserved"));
+        }
+        if self.names.contains_key(name) {
+            return Err(format!("name {name:?} is used twice"));
+        }
+        Ok(())
+    }
+
+    /// Appends an operation; its operands must be earlier slots.
+    pub(crate) fn push(&mut self, op: Op) -> Result<u32, String> {
+        if self.ops.len() >= MAX_OPS {
+            return Err("statement too large".into());
+        }
+        let me = self.ops.len() as u32;
+        let mut dep = match op {
+            Op::Var(i) => 1u8 << (i & 7),
+            _ => 0,
+        };
+        for a in operands(&op).into_iter().flatten() {
+            if a >= me {
+                return Err("internal: operand after its use".into());
+            }
+            dep |= self.deps[a as usize];
+        }
+        self.ops.push(op);
+        self.deps.push(dep);
+        Ok(me)
+    }
+
+    /// The slot a name refers to.
+    pub(crate) fn lookup(&self, name: &str) -> Option<u32> {
+        self.names.get(name).copied()
+    }
+
+    /// Declares parameters (name → decimal text), in the order given.
+    pub fn add_parameters(&mut self, params: &[(String, String)]) -> Result<(), String> {
+        for (name, text) in params {
+            self.check_new_name(name)?;
+            let x = decimal_enclosure(text).map_err(|e| format!("parameter {name}: {e}"))?;
+            let s = self.push(Op::Const(DecInterval::new(x)))?;
+            self.names.insert(name.clone(), s);
+        }
+        Ok(())
+    }
+
+    /// Declares a definition; it may use everything declared before it.
+    pub fn define(&mut self, name: &str, text: &str) -> Result<(), String> {
+        self.check_new_name(name)?;
+        let s = self
+            .compile(text)
+            .map_err(|e| format!("definition {name}: {e}"))?;
+        self.names.insert(name.to_string(), s);
+        Ok(())
+    }
+
+    /// Compiles an expression and returns the slot of its value.
+    pub fn compile(&mut self, text: &str) -> Result<u32, String> {
+        expr::parse_into(self, text)
+    }
+
+    /// Compiles an expression that must not depend on any variable.
+    pub fn compile_constant(&mut self, text: &str) -> Result<u32, String> {
+        let s = self.compile(text)?;
+        if self.deps[s as usize] != 0 {
+            return Err(format!("{text:?} must not depend on a variable"));
+        }
+        Ok(s)
+    }
+
+    /// The operations, in evaluation order.
+    pub fn ops(&self) -> &[Op] {
+        &self.ops
+    }
+
+    /// The variable-dependence mask of each slot.
+    pub fn deps(&self) -> &[u8] {
+        &self.deps
+    }
+
+    /// Operands of slot `i`.
+    pub fn operands(&self, i: usize) -> [Option<u32>; 2] {
+        self.ops.get(i).map(operands).unwrap_or([None, None])
+    }
+
+    /// Evaluates every slot on the given variable values.
+    pub fn eval<T: Num>(&self, vars: &[T], out: &mut Vec<T>) {
+        out.clear();
+        out.reserve(self.ops.len());
+        for op in &self.ops {
+            let v = apply(op, out, vars);
+            out.push(v);
+        }
+    }
+
+    /// Evaluates every slot and returns the value of slot `s`.
+    pub fn value<T: Num>(&self, vars: &[T], s: u32) -> T {
+        let mut out = Vec::new();
+        self.eval(vars, &mut out);
+        out.get(s as usize)
+            .copied()
+            .unwrap_or(T::constant(DecInterval::NAI))
+    }
+}
+
+/// True when the decorated value is defined on the whole argument (`≥ def`).
+pub fn defined(x: DecInterval) -> bool {
+    x.decoration() >= Decoration::Def && x.interval().is_some_and(|i| !i.is_empty())
+}
+
+/// True when the decorated value is defined and continuous (`≥ dac`).
+pub fn continuous(x: DecInterval) -> bool {
+    x.decoration() >= Decoration::Dac && x.interval().is_some_and(|i| !i.is_empty())
+}
+
+/// Short text for an enclosure in messages: `[a, b] (dec)`.
+pub fn show(x: DecInterval) -> String {
+    match x.interval() {
+        None => "NaI".into(),
+        Some(i) if i.is_empty() => "empty".into(),
+        Some(i) => format!("[{:e}, {:e}] ({:?})", i.inf(), i.sup(), x.decoration()),
+    }
+}
+
+/// Short text for an interval in messages.
+pub fn show_i(i: Interval) -> String {
+    if i.is_empty() {
+        "empty".into()
+    } else {
+        format!("[{:e}, {:e}]", i.inf(), i.sup())
+    }
+}

@@ -1,0 +1,137 @@
+//! Independent checker of `detach-proof/1` files (`proofs/FORMAT.md`).
+//!
+//! The checker re-derives every enclosure from the statement and the
+//! evidence with its own parser, evaluator and decoders; it shares no code
+//! with the parts of the crate that produce proofs, so a bug there cannot
+//! hide itself here.
+//!
+//! - [`check_str`], [`check_bytes`], [`check_file`]: check one proof file.
+//! - [`eval_on_box`]: evaluate one expression of the language on a box, as
+//!   the checker does.
+
+mod area;
+mod encoding;
+mod eval;
+mod expr;
+mod json;
+mod kappa0;
+mod paving;
+mod pieces;
+mod roots;
+
+pub use self::encoding::{base64_decode, decimal_enclosure, parse_hex_f64};
+
+use inari::{DecInterval, Interval};
+use std::fmt;
+use std::time::Instant;
+
+/// The outcome of checking a readable proof file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Verdict {
+    /// Every check passed: the claim is proved.
+    Valid,
+    /// The first check that failed: which leaf, piece or bound, with the
+    /// claimed and the computed values.
+    Invalid(String),
+}
+
+/// What was checked and how it went.
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// The verdict.
+    pub verdict: Verdict,
+    /// The claim in a few words, e.g. `paving viscous-disc/derived: 6 areas`.
+    pub claim: String,
+    /// How many leaves, pieces or steps were checked (up to the first failure).
+    pub checked: u64,
+    /// The unit of `checked`: `"leaves"`, `"pieces"` or `"steps"`.
+    pub unit: &'static str,
+    /// Wall-clock time of the check, in seconds.
+    pub seconds: f64,
+}
+
+/// A file that is not a proof: not UTF-8 JSON, wrong format tag, missing
+/// keys, values of the wrong type, unparsable strings, or an I/O error.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Unreadable(pub String);
+
+impl fmt::Display for Unreadable {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "unreadable proof: {}", self.0)
+    }
+}
+
+impl std::error::Error for Unreadable {}
+
+impl From<String> for Unreadable {
+    fn from(s: String) -> Self {
+        Unreadable(s)
+    }
+}
+
+/// The result of one claim check, before timing is attached.
+pub(crate) struct Outcome {
+    verdict: Verdict,
+    claim: String,
+    checked: u64,
+    unit: &'static str,
+}
+
+/// Checks a proof given as text.
+pub fn check_str(text: &str) -> Result<Report, Unreadable> {
+    let start = Instant::now();
+    let root: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| Unreadable(format!("not JSON: {e}")))?;
+    json::reject_duplicate_keys(text)?;
+    let obj = json::as_obj(&root, "the file")?;
+    let format = json::str_of(obj, "format")?;
+    if format != "detach-proof/1" {
+        return Err(Unreadable(format!("unknown format {format:?}")));
+    }
+    let out = match json::str_of(obj, "claim")? {
+        "paving" => paving::check(obj)?,
+        "roots" => roots::check(obj)?,
+        "kappa0" => kappa0::check(obj)?,
+        other => return Err(Unreadable(format!("unknown claim {other:?}"))),
+    };
+    Ok(Report {
+        verdict: out.verdict,
+        claim: out.claim,
+        checked: out.checked,
+        unit: out.unit,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// Checks a proof given as bytes (must be UTF-8).
+pub fn check_bytes(bytes: &[u8]) -> Result<Report, Unreadable> {
+    let text = std::str::from_utf8(bytes).map_err(|e| Unreadable(format!("not UTF-8: {e}")))?;
+    check_str(text)
+}
+
+/// Checks the proof file at `path`.
+pub fn check_file(path: &std::path::Path) -> Result<Report, Unreadable> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| Unreadable(format!("cannot read {}: {e}", path.display())))?;
+    check_bytes(&bytes)
+}
+
+/// Evaluates `expr` on the box `t × w` exactly as the checker evaluates
+/// paving constraints: parameters (name, decimal text) and definitions
+/// (name, expression) declared in order, variables `t` and `w` decorated
+/// `com`, every operation the decorated inari operation.
+pub fn eval_on_box(
+    parameters: &[(String, String)],
+    definitions: &[(String, String)],
+    expr: &str,
+    t: Interval,
+    w: Interval,
+) -> Result<DecInterval, Unreadable> {
+    let mut p = eval::Program::new(&["t", "w"])?;
+    p.add_parameters(parameters)?;
+    for (name, text) in definitions {
+        p.define(name, text)?;
+    }
+    let s = p.compile(expr)?;
+    Ok(p.value(&[DecInterval::new(t), DecInterval::new(w)], s))
+}

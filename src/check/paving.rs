@@ -1,0 +1,469 @@
+//! The `paving` claim: areas of sets `{g_i < 0}` on a rectangle, certified
+//! by a bisection tree (`tree/1`).
+
+use inari::{DecInterval, Interval};
+use std::collections::HashMap;
+
+use super::area::{AreaSum, LeafArea};
+use super::encoding::{base64_decode, decimal_enclosure, parse_hex_f64, BitReader};
+use super::eval::{apply, defined, show, Op, Program};
+use super::json::{arr_of, as_obj, decls, obj_of, opt_str, pair_of, str_of, u64_of, Obj};
+use super::roots::constant;
+use super::{Outcome, Unreadable, Verdict};
+
+/// Cached entries per axis before the cache is emptied (bounds memory; the
+/// preorder walk revisits recent intervals, so a small cache suffices).
+const CACHE_ENTRIES: usize = 1 << 15;
+
+/// Leaf labels.
+const IN: u8 = 0b01;
+const OUT: u8 = 0b10;
+
+/// Evaluates the constraints on leaf boxes. Slots that depend only on `t`
+/// (or only on `w`) are cached per interval, keyed on the endpoints' bits;
+/// constant slots are computed once. Values are bit-identical to a full
+/// evaluation, because every slot is a deterministic function of its inputs.
+struct LeafEval {
+    ops: Vec<Op>,
+    vals: Vec<DecInterval>,
+    roots: Vec<u32>,
+    /// Per axis: the slots depending on that variable alone.
+    axis_slots: [Vec<u32>; 2],
+    /// Per set of constraints to check (bit mask): slots depending on both.
+    both: Vec<Vec<u32>>,
+    cache: [HashMap<(u64, u64), usize>; 2],
+    arena: [Vec<DecInterval>; 2],
+}
+
+impl LeafEval {
+    fn new(prog: &Program, roots: Vec<u32>) -> Self {
+        let ops = prog.ops().to_vec();
+        let deps = prog.deps();
+        let n = ops.len();
+        // Slots each constraint needs (operands precede their users).
+        let needed: Vec<Vec<bool>> = roots
+            .iter()
+            .map(|&r| {
+                let mut need = vec![false; n];
+                if let Some(x) = need.get_mut(r as usize) {
+                    *x = true;
+                }
+                for i in (0..n).rev() {
+                    if need[i] {
+                        for a in prog.operands(i).into_iter().flatten() {
+                            need[a as usize] = true;
+                        }
+                    }
+                }
+                need
+            })
+            .collect();
+        let any = |i: usize| needed.iter().any(|v| v[i]);
+        let axis_slots = [1u8, 2u8].map(|d| {
+            (0..n)
+                .filter(|&i| deps[i] == d && any(i))
+                .map(|i| i as u32)
+                .collect()
+        });
+        let both = (0..1usize << roots.len())
+            .map(|mask| {
+                (0..n)
+                    .filter(|&i| {
+                        deps[i] == 3
+                            && needed
+                                .iter()
+                                .enumerate()
+                                .any(|(c, v)| mask >> c & 1 == 1 && v[i])
+                    })
+                    .map(|i| i as u32)
+                    .collect()
+            })
+            .collect();
+        // Constants once: variables are absent, so only constant slots matter.
+        let mut vals = vec![DecInterval::EMPTY; n];
+        for i in 0..n {
+            if deps[i] == 0 {
+                vals[i] = apply(&ops[i], &vals, &[]);
+            }
+        }
+        LeafEval {
+            ops,
+            vals,
+            roots,
+            axis_slots,
+            both,
+            cache: [HashMap::new(), HashMap::new()],
+            arena: [Vec::new(), Vec::new()],
+        }
+    }
+
+    /// Fills the slots of one axis for interval `x`, from the cache if seen.
+    fn load_axis(&mut self, axis: usize, x: Interval, vars: &[DecInterval; 2]) {
+        let key = (x.inf().to_bits(), x.sup().to_bits());
+        let slots = &self.axis_slots[axis];
+        if let Some(&off) = self.cache[axis].get(&key) {
+            for (j, &s) in slots.iter().enumerate() {
+                self.vals[s as usize] = self.arena[axis][off + j];
+            }
+            return;
+        }
+        for &s in slots {
+            let v = apply(&self.ops[s as usize], &self.vals, vars);
+            self.vals[s as usize] = v;
+        }
+        if self.cache[axis].len() >= CACHE_ENTRIES {
+            self.cache[axis].clear();
+            self.arena[axis].clear();
+        }
+        let off = self.arena[axis].len();
+        self.arena[axis].extend(slots.iter().map(|&s| self.vals[s as usize]));
+        self.cache[axis].insert(key, off);
+    }
+
+    /// Evaluates the constraints in `mask` on `t × w`; their values are then
+    /// at `self.value(c)`.
+    fn eval(&mut self, t: Interval, w: Interval, mask: usize) {
+        let vars = [DecInterval::new(t), DecInterval::new(w)];
+        self.load_axis(0, t, &vars);
+        self.load_axis(1, w, &vars);
+        for k in 0..self.both[mask].len() {
+            let s = self.both[mask][k] as usize;
+            let v = apply(&self.ops[s], &self.vals, &vars);
+            self.vals[s] = v;
+        }
+    }
+
+    fn value(&self, c: usize) -> DecInterval {
+        self.vals[self.roots[c] as usize]
+    }
+}
+
+/// One area entry: literals (constraint index, wants in) and claimed bounds.
+struct AreaClaim {
+    set: String,
+    literals: Vec<(usize, bool)>,
+    inner: Option<(String, Interval)>,
+    outer: Option<(String, Interval)>,
+}
+
+struct Statement {
+    prog: Program,
+    names: Vec<String>,
+    roots: Vec<u32>,
+    domain: [u32; 4],
+    root_box: [f64; 4],
+    leaves: u64,
+    areas: Vec<AreaClaim>,
+    nodes: u64,
+    body: Vec<u8>,
+}
+
+fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
+    let st = obj_of(root, "statement")?;
+    let ev = obj_of(root, "evidence")?;
+    let (params, defs) = decls(st)?;
+    let mut prog = Program::new(&["t", "w"])?;
+    prog.add_parameters(&params)?;
+    for (n, e) in &defs {
+        prog.define(n, e)?;
+    }
+    let cons = arr_of(st, "constraints")?;
+    if cons.is_empty() || cons.len() > 4 {
+        return Err(Unreadable("1 to 4 constraints are required".into()));
+    }
+    let mut names: Vec<String> = Vec::new();
+    let mut roots = Vec::new();
+    for c in cons {
+        let o = as_obj(c, "a constraint")?;
+        let name = str_of(o, "name")?;
+        if names.iter().any(|n| n == name) {
+            return Err(Unreadable(format!(
+                "constraint name {name:?} is used twice"
+            )));
+        }
+        names.push(name.to_string());
+        roots.push(
+            prog.compile(str_of(o, "expr")?)
+                .map_err(|e| format!("constraint {name}: {e}"))?,
+        );
+    }
+    let dom = obj_of(st, "domain")?;
+    let (t0, t1) = pair_of(dom.get("t").unwrap_or(&serde_json::Value::Null), "domain t")?;
+    let (w0, w1) = pair_of(dom.get("w").unwrap_or(&serde_json::Value::Null), "domain w")?;
+    let domain = [
+        prog.compile_constant(t0)?,
+        prog.compile_constant(t1)?,
+        prog.compile_constant(w0)?,
+        prog.compile_constant(w1)?,
+    ];
+    let rb = obj_of(st, "root_box")?;
+    let (rt0, rt1) = pair_of(
+        rb.get("t").unwrap_or(&serde_json::Value::Null),
+        "root_box t",
+    )?;
+    let (rw0, rw1) = pair_of(
+        rb.get("w").unwrap_or(&serde_json::Value::Null),
+        "root_box w",
+    )?;
+    let mut root_box = [0.0; 4];
+    for (slot, text) in root_box.iter_mut().zip([rt0, rt1, rw0, rw1]) {
+        *slot = parse_hex_f64(text, false).map_err(|e| format!("root_box: {e}"))?;
+    }
+    let leaves = u64_of(st, "leaves")?;
+    let mut areas = Vec::new();
+    for (k, a) in arr_of(st, "areas")?.iter().enumerate() {
+        let o = as_obj(a, "an area")?;
+        let set = opt_str(o, "set")?
+            .map(str::to_string)
+            .unwrap_or_else(|| format!("area {}", k + 1));
+        let mut literals = Vec::new();
+        for (name, v) in obj_of(o, "literals")? {
+            let c = names
+                .iter()
+                .position(|n| n == name)
+                .ok_or_else(|| Unreadable(format!("{set}: unknown constraint {name:?}")))?;
+            let want_in = match v.as_str() {
+                Some("in") => true,
+                Some("out") => false,
+                _ => {
+                    return Err(Unreadable(format!(
+                        "{set}: literal must be \"in\" or \"out\""
+                    )))
+                }
+            };
+            literals.push((c, want_in));
+        }
+        let bound = |key: &str| -> Result<Option<(String, Interval)>, Unreadable> {
+            match opt_str(o, key)? {
+                None => Ok(None),
+                Some(t) => Ok(Some((
+                    t.to_string(),
+                    decimal_enclosure(t).map_err(|e| format!("{set} {key}: {e}"))?,
+                ))),
+            }
+        };
+        let (inner, outer) = (bound("inner")?, bound("outer")?);
+        areas.push(AreaClaim {
+            set,
+            literals,
+            inner,
+            outer,
+        });
+    }
+    let encoding = str_of(ev, "encoding")?;
+    if encoding != "tree/1" {
+        return Err(Unreadable(format!("unknown tree encoding {encoding:?}")));
+    }
+    let nodes = u64_of(ev, "nodes")?;
+    let body = base64_decode(str_of(ev, "body")?).map_err(|e| format!("body: {e}"))?;
+    let claim = format!(
+        "paving {}/{}: {} areas",
+        opt_str(st, "scene")?.unwrap_or("?"),
+        opt_str(st, "variant")?.unwrap_or("?"),
+        areas.len()
+    );
+    Ok((
+        Statement {
+            prog,
+            names,
+            roots,
+            domain,
+            root_box,
+            leaves,
+            areas,
+            nodes,
+            body,
+        },
+        claim,
+    ))
+}
+
+pub fn check(root: &Obj) -> Result<Outcome, Unreadable> {
+    let (st, claim) = parse(root)?;
+    let mut checked = 0;
+    let verdict = match verify(&st, &mut checked) {
+        Ok(()) => Verdict::Valid,
+        Err(e) => Verdict::Invalid(e),
+    };
+    Ok(Outcome {
+        verdict,
+        claim,
+        checked,
+        unit: "leaves",
+    })
+}
+
+fn iv(a: f64, b: f64) -> Interval {
+    Interval::try_from((a, b)).unwrap_or(Interval::EMPTY)
+}
+
+/// A leaf box `[t0, t1] × [w0, w1]`.
+#[derive(Clone, Copy)]
+struct Cell([f64; 4]);
+
+fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
+    // 1. The domain and R ⊂ D.
+    let d: Vec<Interval> = ["t_lo", "t_hi", "w_lo", "w_hi"]
+        .iter()
+        .zip(st.domain)
+        .map(|(what, s)| constant(&st.prog, s, &format!("domain {what}")))
+        .collect::<Result<_, _>>()?;
+    let r = st.root_box;
+    for (axis, k) in [("t", 0), ("w", 2)] {
+        if d[k].sup() >= d[k + 1].inf() {
+            return Err(format!("domain {axis}: lo is not below hi"));
+        }
+        if r[k] >= r[k + 1] {
+            return Err(format!("root_box {axis}: lo is not below hi"));
+        }
+        if r[k] < d[k].sup() || r[k + 1] > d[k + 1].inf() {
+            return Err(format!(
+                "root_box {axis} [{:e}, {:e}] is not inside the domain [{}, {}]",
+                r[k],
+                r[k + 1],
+                d[k].sup(),
+                d[k + 1].inf()
+            ));
+        }
+    }
+    let area_d = (d[1] - d[0]) * (d[3] - d[2]);
+    let area_r = (iv(r[1], r[1]) - iv(r[0], r[0])) * (iv(r[3], r[3]) - iv(r[2], r[2]));
+    let uncovered = area_d - area_r;
+
+    // 2.–3. Replay the tree and check every leaf.
+    let nc = st.roots.len();
+    let mut ev = LeafEval::new(&st.prog, st.roots.clone());
+    let mut inner = vec![AreaSum::default(); st.areas.len()];
+    let mut outer = vec![AreaSum::default(); st.areas.len()];
+    let mut bits = BitReader::new(&st.body);
+    let mut stack = vec![Cell(r)];
+    let mut nodes = 0u64;
+    let mut leaves = 0u64;
+    while let Some(Cell(b)) = stack.pop() {
+        nodes += 1;
+        if nodes > st.nodes {
+            return Err(format!(
+                "the tree has more than the claimed {} nodes",
+                st.nodes
+            ));
+        }
+        let end = || format!("the bit string ends inside node {nodes}");
+        if !bits.bit().ok_or_else(end)? {
+            leaves += 1;
+            let mut labels = [0u8; 4];
+            let mut mask = 0usize;
+            for (c, l) in labels.iter_mut().enumerate().take(nc) {
+                *l = bits.bits(2).ok_or_else(end)? as u8;
+                if *l == IN || *l == OUT {
+                    mask |= 1 << c;
+                }
+            }
+            let (t, w) = (iv(b[0], b[1]), iv(b[2], b[3]));
+            if mask != 0 {
+                ev.eval(t, w, mask);
+                for (c, &l) in labels.iter().enumerate().take(nc) {
+                    if mask >> c & 1 == 0 {
+                        continue;
+                    }
+                    let v = ev.value(c);
+                    let ok = defined(v)
+                        && v.interval().is_some_and(|i| {
+                            if l == IN {
+                                i.sup() < 0.0
+                            } else {
+                                i.inf() > 0.0
+                            }
+                        });
+                    if !ok {
+                        return Err(format!(
+                            "leaf {leaves} [{:e}, {:e}] x [{:e}, {:e}], constraint {}: \
+                             claimed {}, computed {}",
+                            b[0],
+                            b[1],
+                            b[2],
+                            b[3],
+                            st.names[c],
+                            if l == IN { "in" } else { "out" },
+                            show(v)
+                        ));
+                    }
+                }
+            }
+            let la = LeafArea::of((b[0], b[1]), (b[2], b[3]));
+            for (k, a) in st.areas.iter().enumerate() {
+                let mut proved = true;
+                let mut contradicted = false;
+                for &(c, want_in) in &a.literals {
+                    let (yes, no) = if want_in { (IN, OUT) } else { (OUT, IN) };
+                    proved &= labels[c] == yes;
+                    contradicted |= labels[c] == no;
+                }
+                if proved {
+                    inner[k].add(&la);
+                }
+                if !contradicted {
+                    outer[k].add(&la);
+                }
+            }
+            *checked += 1;
+            continue;
+        }
+        let (axis, p) = if bits.bit().ok_or_else(end)? {
+            let axis = usize::from(bits.bit().ok_or_else(end)?);
+            (axis, f64::from_bits(bits.bits(64).ok_or_else(end)?))
+        } else {
+            let axis = usize::from(bits.bit().ok_or_else(end)?);
+            (axis, 0.5 * b[2 * axis] + 0.5 * b[2 * axis + 1])
+        };
+        let (lo, hi) = (b[2 * axis], b[2 * axis + 1]);
+        if !(p.is_finite() && lo < p && p < hi) {
+            return Err(format!(
+                "node {nodes}: split point {p:e} on {} is not inside ({lo:e}, {hi:e})",
+                if axis == 0 { "t" } else { "w" }
+            ));
+        }
+        let (mut lower, mut upper) = (b, b);
+        lower[2 * axis + 1] = p;
+        upper[2 * axis] = p;
+        stack.push(Cell(upper));
+        stack.push(Cell(lower));
+    }
+    if nodes != st.nodes {
+        return Err(format!("the tree has {nodes} nodes, claimed {}", st.nodes));
+    }
+    if leaves != st.leaves {
+        return Err(format!(
+            "the tree has {leaves} leaves, claimed {}",
+            st.leaves
+        ));
+    }
+    if bits.len() - bits.position() >= 8 || !bits.rest_is_zero() {
+        return Err(format!(
+            "bits after the last node (bit {}) are not a zero padding of the last byte",
+            bits.position()
+        ));
+    }
+
+    // 4. The areas.
+    for (k, a) in st.areas.iter().enumerate() {
+        let lo = inner[k].bounds().inf();
+        let hi = (iv(outer[k].bounds().sup(), outer[k].bounds().sup()) + uncovered).sup();
+        if let Some((text, c)) = &a.inner {
+            if c.sup() > lo {
+                return Err(format!(
+                    "{}: claimed inner {text} exceeds the certified inner bound {lo:e}",
+                    a.set
+                ));
+            }
+        }
+        if let Some((text, c)) = &a.outer {
+            if c.inf() < hi {
+                return Err(format!(
+                    "{}: claimed outer {text} is below the certified outer bound {hi:e}",
+                    a.set
+                ));
+            }
+        }
+    }
+    Ok(())
+}
