@@ -258,19 +258,19 @@ pub fn write_paving_proof(
 
 /// `roots --proof FILE`: the roots of this run as a proof file.
 pub fn write_roots_proof(path: &Path, args: &super::roots::RootsArgs) -> CliResult {
-    let need = |flag: &Option<String>, name: &str| {
+    fn need<'a>(flag: &'a Option<String>, name: &str, eq: &str) -> Result<&'a str, CliError> {
         flag.as_deref()
             .map(str::trim)
-            .ok_or_else(|| CliError::usage(format!("--proof for ({}) needs --{name}", args.equation)))
-    };
+            .ok_or_else(|| CliError::usage(format!("--proof for ({eq}) needs --{name}")))
+    }
     let eq = args.equation.trim().trim_start_matches('(').trim_end_matches(')');
     let proof = match eq {
         "2.9" if args.scene.is_none() => {
-            roots_2_9(need(&args.kappa, "kappa")?, need(&args.alpha, "alpha")?)
+            roots_2_9(need(&args.kappa, "kappa", eq)?, need(&args.alpha, "alpha", eq)?)
         }
-        "2.10" => roots_2_10(need(&args.kappa, "kappa")?),
+        "2.10" => roots_2_10(need(&args.kappa, "kappa", eq)?),
         "2.12" => {
-            let id: SceneId = need(&args.scene, "scene")?.parse().map_err(CliError::usage)?;
+            let id: SceneId = need(&args.scene, "scene", eq)?.parse().map_err(CliError::usage)?;
             if !matches!(id, SceneId::SmoothDisc | SceneId::IceDisc) {
                 return Err(CliError::usage("(2.12) needs --scene smooth-disc or ice-disc"));
             }
