@@ -275,6 +275,18 @@ impl ParamSet {
     }
 }
 
+/// A double for messages: `0` for ±0, the shortest round-trip decimal for
+/// moderate magnitudes, exponent form otherwise (never 300 digits).
+pub fn short_num(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else if (1e-4..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// Splits `name=value`.
 pub fn parse_assignment(s: &str) -> Result<(String, String), ParamError> {
     match s.split_once('=') {

@@ -285,11 +285,7 @@ fn recheck(case: &Case, v: Variant, paving: &Paving, per_paving: usize, rng: &mu
                         w.to_f64(),
                     );
                     // NaN only where sin θ = 0, which a decided leaf never touches.
-                    assert!(
-                        !gk.is_nan(),
-                        "{} {v}: NaN on a decided leaf {b:?}",
-                        case.id
-                    );
+                    assert!(!gk.is_nan(), "{} {v}: NaN on a decided leaf {b:?}", case.id);
                     checked += 1;
                 }
             }

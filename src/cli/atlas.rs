@@ -276,14 +276,15 @@ fn undefined_warnings(paving: &Paving) -> (f64, Vec<String>) {
                 paving.leaves.len()
             )
         };
+        let n = detach::param::short_num;
         warnings.push(format!(
-            "{what}, in θ ∈ [{:e}, {:e}], θ̇ ∈ [{:e}, {:e}]: the enclosures under- or \
+            "{what}, in θ ∈ [{}, {}], θ̇ ∈ [{}, {}]: the enclosures under- or \
              overflowed the double range there (or a formula is singular), so the area \
              bounds say little; rescale the parameters or the window",
-            th[0] + 0.0,
-            th[1] + 0.0,
-            thd[0] + 0.0,
-            thd[1] + 0.0
+            n(th[0]),
+            n(th[1]),
+            n(thd[0]),
+            n(thd[1])
         ));
     }
     ((area.sup() + 0.0).min(f64::MAX), warnings)

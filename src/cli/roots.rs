@@ -494,7 +494,10 @@ pub fn run_critical_curve(args: &CriticalCurveArgs) -> CliResult {
         outln!("{}", to_json(&cc, arguments)?);
     } else {
         outln!("κ_crit(α) on {} α-boxes of [0, 1]", cc.band.len());
-        outln!("  max band width (upper − lower): {:e}", cc.max_band_width);
+        outln!(
+            "  max band width (upper − lower): {:e}",
+            cc.max_band_width + 0.0
+        );
         outln!(
             "  at α = 1: κ_crit ∈ [{:?}, {:?}], κ₀ ∈ [{:?}, {:?}] inside: {}",
             cc.at_alpha_1.lower,
@@ -514,7 +517,8 @@ pub fn run_critical_curve(args: &CriticalCurveArgs) -> CliResult {
         }
         outln!(
             "atlas (α, κ) ∈ [0, 1] × (0, {}]: {} no root, {} exactly two simple roots, {} undecided",
-            cc.kappa_max, cc.counts.no_root, cc.counts.two_simple_roots, cc.counts.undecided
+            detach::param::short_num(cc.kappa_max),
+            cc.counts.no_root, cc.counts.two_simple_roots, cc.counts.undecided
         );
         for f in files {
             outln!("wrote {}", f.display());

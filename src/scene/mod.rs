@@ -157,21 +157,25 @@ impl Domain {
             let outside = || {
                 invalid(&format!(
                     "the window must lie inside the scene's domain [{}, {}]",
-                    short(full[0].inf()),
-                    short(full[1].sup())
+                    crate::param::short_num(full[0].inf()),
+                    crate::param::short_num(full[1].sup())
                 ))
             };
             // Provably below the domain's start or above its end.
             if lo.sup() < full[0].inf() || hi.inf() > full[1].sup() {
                 return Err(outside());
             }
+            // The domain's end itself (`-pi`, `10`): nothing to clip or say.
+            let is_end = |x: Interval, end: Interval, text: &str| {
+                x == end && (x.is_singleton() || text.to_ascii_lowercase().contains("pi"))
+            };
             let mut lo_c = lo;
-            if lo.inf() < full[0].sup() && lo != full[0] {
+            if lo.inf() < full[0].sup() && !is_end(lo, full[0], lo_t) {
                 lo_c = lo.max(full[0]);
                 clipped.push(format!("{name} lo = {lo_t}"));
             }
             let mut hi_c = hi;
-            if hi.sup() > full[1].inf() && hi != full[1] {
+            if hi.sup() > full[1].inf() && !is_end(hi, full[1], hi_t) {
                 hi_c = hi.min(full[1]);
                 clipped.push(format!("{name} hi = {hi_t}"));
             }
@@ -189,11 +193,6 @@ impl Domain {
         let b = self.inner_box();
         !(b[0][0] < b[0][1] && b[1][0] < b[1][1])
     }
-}
-
-/// Shortest round-trip decimal of a double, with `-0` printed as `0`.
-fn short(x: f64) -> String {
-    format!("{}", x + 0.0)
 }
 
 /// π as an enclosure.
