@@ -15,3 +15,22 @@ pub mod scalar;
 pub mod scene;
 
 pub use inari;
+
+/// The crate version, e.g. `0.1.0`.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+/// The git commit the binary was built from (`git rev-parse --short HEAD`),
+/// or `unknown` when built outside a git checkout.
+pub const GIT_COMMIT: &str = env!("DETACH_GIT_COMMIT");
+/// `VERSION (commit GIT_COMMIT)`, as `detach --version` prints it.
+pub const LONG_VERSION: &str = concat!(
+    env!("CARGO_PKG_VERSION"),
+    " (commit ",
+    env!("DETACH_GIT_COMMIT"),
+    ")"
+);
+
+/// What every output file records about the program that wrote it:
+/// `{"version": …, "commit": …}`.
+pub fn provenance() -> serde_json::Value {
+    serde_json::json!({ "version": VERSION, "commit": GIT_COMMIT })
+}

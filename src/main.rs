@@ -11,7 +11,7 @@ use cli::CliResult;
 /// Certified detachment regions of systems with a unilateral constraint
 /// (A. P. Ivanov, 2008). Without a subcommand: `detach atlas`.
 #[derive(Parser, Debug)]
-#[command(name = "detach", version, about)]
+#[command(name = "detach", version = detach::LONG_VERSION, about)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -60,7 +60,7 @@ fn main() {
         };
         c
     });
-    if let Err(e) = run(command) {
+    if let Err(e) = run(command).and_then(|()| cli::stdout_status()) {
         eprintln!("detach: {}", e.message);
         std::process::exit(e.code);
     }

@@ -52,6 +52,10 @@ pub enum ParamError {
         scene: String,
         known: String,
     },
+    #[error(
+        "parameter `{name}`: `{text}` is too large for double precision (magnitude above 1.8e308)"
+    )]
+    TooLarge { name: String, text: String },
     #[error("`{0}` is not of the form name=value")]
     NotAssignment(String),
     #[error("parameter `{name}`: {reason}")]
@@ -100,12 +104,89 @@ pub fn enclose_decimal(name: &str, text: &str) -> Result<Interval, ParamError> {
         name: name.to_string(),
         text: text.to_string(),
     };
-    scan_decimal(text).ok_or_else(not_decimal)?;
+    let d = scan_decimal(text).ok_or_else(not_decimal)?;
     let x = Interval::from_str(&format!("[{}]", text.trim())).map_err(|_| not_decimal())?;
-    if x.is_empty() || !x.inf().is_finite() || !x.sup().is_finite() {
+    if x.is_empty() {
         return Err(not_decimal());
     }
+    if !x.inf().is_finite() || !x.sup().is_finite() {
+        // A finite decimal whose magnitude is beyond the largest double.
+        return Err(if d.zero {
+            not_decimal()
+        } else {
+            ParamError::TooLarge {
+                name: name.to_string(),
+                text: text.trim().to_string(),
+            }
+        });
+    }
     Ok(x)
+}
+
+/// Encloses one end of a window: decimal text as [`enclose_decimal`], or
+/// `pi`, `-pi`, `pi/N`, `-pi/N` (N a positive integer up to 10⁶), enclosed
+/// outward.
+pub fn enclose_window_end(name: &str, text: &str) -> Result<Interval, ParamError> {
+    let t = text.trim();
+    let (neg, body) = match t.strip_prefix('-') {
+        Some(b) => (true, b.trim_start()),
+        None => (false, t.strip_prefix('+').unwrap_or(t)),
+    };
+    let lower = body.to_ascii_lowercase();
+    let pi = match lower.strip_prefix("pi").or_else(|| lower.strip_prefix('π')) {
+        Some("") => Some(Interval::PI),
+        Some(rest) => match rest.strip_prefix('/').map(str::trim) {
+            Some(n) if !n.is_empty() && n.len() <= 7 && n.bytes().all(|b| b.is_ascii_digit()) => {
+                let n: u32 = n.parse().unwrap_or(0);
+                if n == 0 || n > 1_000_000 {
+                    None
+                } else {
+                    let n = Interval::try_from((n as f64, n as f64)).ok();
+                    n.map(|n| Interval::PI / n)
+                }
+            }
+            _ => None,
+        },
+        None => None,
+    };
+    match pi {
+        Some(x) if neg => Ok(-x),
+        Some(x) => Ok(x),
+        None if lower.contains("pi") || lower.contains('π') => Err(ParamError::Invalid {
+            name: name.into(),
+            reason: format!("`{t}`: use a decimal, pi, -pi, pi/N or -pi/N"),
+        }),
+        None => enclose_decimal(name, text),
+    }
+}
+
+/// A count given on the command line: an integer, in plain or exponent form
+/// (`1000`, `1e3`, `2.5e6`), at most 2⁵³. Negative, fractional and
+/// non-numeric text get a one-line reason.
+pub fn parse_count(text: &str) -> Result<usize, String> {
+    let t = text.trim();
+    if let Ok(n) = t.parse::<u64>() {
+        return usize::try_from(n).map_err(|_| format!("{t} is too large"));
+    }
+    let bad = || format!("expected a non-negative integer such as 1000 or 1e6, got `{t}`");
+    let x = enclose_decimal("count", t).map_err(|e| match e {
+        ParamError::TooLarge { .. } => format!("{t} is too large"),
+        _ => bad(),
+    })?;
+    if x.inf() < 0.0 {
+        return Err(format!("must not be negative, got {t}"));
+    }
+    if !x.is_singleton() || x.inf().fract() != 0.0 {
+        return Err(if x.inf() > 9.007_199_254_740_992e15 {
+            format!("{t} is too large (at most 2^53)")
+        } else {
+            format!("must be an integer, got {t}")
+        });
+    }
+    if x.inf() > 9.007_199_254_740_992e15 {
+        return Err(format!("{t} is too large (at most 2^53)"));
+    }
+    Ok(x.inf() as usize)
 }
 
 impl Param {
@@ -194,6 +275,18 @@ impl ParamSet {
     }
 }
 
+/// A double for messages: `0` for ±0, the shortest round-trip decimal for
+/// moderate magnitudes, exponent form otherwise (never 300 digits).
+pub fn short_num(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else if (1e-4..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// Splits `name=value`.
 pub fn parse_assignment(s: &str) -> Result<(String, String), ParamError> {
     match s.split_once('=') {
@@ -231,6 +324,53 @@ mod tests {
         ] {
             assert!(enclose_decimal("g", t).is_err(), "{t:?} accepted");
         }
+    }
+
+    #[test]
+    fn overflowing_decimals_are_too_large_not_malformed() {
+        for t in ["1e400", "-1e400", "2e308"] {
+            assert!(
+                matches!(enclose_decimal("A", t), Err(ParamError::TooLarge { .. })),
+                "{t}"
+            );
+        }
+        let msg = enclose_decimal("A", "1e400").unwrap_err().to_string();
+        assert!(msg.contains("too large"), "{msg}");
+        assert!(enclose_decimal("A", "1.7e308").is_ok());
+    }
+
+    #[test]
+    fn window_ends_accept_pi_forms() {
+        let pi = enclose_window_end("theta", "pi").unwrap();
+        assert_eq!(pi, Interval::PI);
+        assert_eq!(enclose_window_end("theta", "-pi").unwrap(), -Interval::PI);
+        assert_eq!(enclose_window_end("theta", " PI ").unwrap(), Interval::PI);
+        let half = enclose_window_end("theta", "pi/2").unwrap();
+        assert!(
+            half.inf() <= std::f64::consts::FRAC_PI_2 && std::f64::consts::FRAC_PI_2 <= half.sup()
+        );
+        assert!(half.wid() <= 2.0 * f64::EPSILON);
+        for t in ["pi/0", "pi/x", "2pi", "pie", "pi/", "pi/99999999"] {
+            assert!(enclose_window_end("theta", t).is_err(), "{t}");
+        }
+        assert_eq!(
+            enclose_window_end("theta", "0.25").unwrap(),
+            enclose_decimal("theta", "0.25").unwrap()
+        );
+    }
+
+    #[test]
+    fn counts_accept_exponent_form() {
+        assert_eq!(parse_count("1000"), Ok(1000));
+        assert_eq!(parse_count("1e3"), Ok(1000));
+        assert_eq!(parse_count("2.5e6"), Ok(2_500_000));
+        assert_eq!(parse_count("0"), Ok(0));
+        assert!(parse_count("-1").unwrap_err().contains("negative"));
+        assert!(parse_count("1.5").unwrap_err().contains("integer"));
+        assert!(parse_count("1e400").unwrap_err().contains("too large"));
+        assert!(parse_count("1e30").unwrap_err().contains("too large"));
+        assert!(parse_count("nan").is_err());
+        assert!(parse_count("").is_err());
     }
 
     #[test]

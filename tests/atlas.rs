@@ -4,7 +4,7 @@ use detach::atlas::{
     draw_atlas, merge_rects, plot_area_pixels, rasterize, AtlasStyle, Class, PictureInfo, Raster,
 };
 use detach::pave::{
-    pave_scene, Label, Leaf, PaveOptions, PaveStats, Paving, PhaseBox, MAX_CONSTRAINTS,
+    pave_scene, Label, Leaf, PaveOptions, PaveStats, Paving, PhaseBox, StopReason, MAX_CONSTRAINTS,
 };
 use detach::scene::{Scene, SceneId, Variant};
 use std::path::PathBuf;
@@ -205,6 +205,8 @@ fn synthetic(leaves: Vec<Leaf>) -> Paving {
         nodes: Vec::new(),
         leaves,
         complete: true,
+        stop: StopReason::Resolution,
+        same_as: vec![None, None],
         stats: PaveStats::default(),
     }
 }

@@ -24,8 +24,9 @@ pub struct PaveFlags {
     /// `atlas`, 1/1024 for `pave`.
     #[arg(long, allow_negative_numbers = true)]
     pub eps: Option<f64>,
-    /// Most leaves per paving; when reached the result is coarser but valid.
-    #[arg(long, default_value_t = 4_000_000)]
+    /// Most leaves per paving (an integer, `1e6` form accepted); when reached
+    /// the result is coarser but valid.
+    #[arg(long, default_value_t = 4_000_000, value_parser = detach::param::parse_count, allow_negative_numbers = true)]
     pub max_boxes: usize,
 }
 
@@ -61,6 +62,9 @@ pub struct PaveArgs {
     /// before it is reported.
     #[arg(long, value_name = "FILE")]
     pub proof: Option<PathBuf>,
+    /// Write every leaf (exact endpoints, one label per constraint) as CSV.
+    #[arg(long, value_name = "FILE")]
+    pub leaves: Option<PathBuf>,
 }
 
 fn split_window(flag: &str, text: &Option<String>) -> Result<Option<[String; 2]>, CliError> {
@@ -89,7 +93,12 @@ struct RegionReport {
     label: &'static str,
     inner_area: f64,
     outer_area: f64,
+    /// `outer_area − inner_area` rounded up: an upper bound.
     undecided_area: f64,
+    /// Set when the cell is empty by construction (e.g. `"omega0 = omega"`):
+    /// both areas are then exactly 0 and no box is counted.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    empty: Option<&'static str>,
     boxes: BoxCounts,
 }
 
@@ -112,6 +121,8 @@ struct DomainReport {
 /// What `pave --json` prints and `atlas` writes to `summary.json`.
 #[derive(Serialize)]
 pub struct PaveReport {
+    /// `{"version", "commit"}` of the program that wrote it.
+    detach: serde_json::Value,
     scene: &'static str,
     variant: Variant,
     params: serde_json::Map<String, serde_json::Value>,
@@ -119,9 +130,17 @@ pub struct PaveReport {
     eps: f64,
     max_boxes: usize,
     complete: bool,
+    /// Why refinement stopped: `all_decided`, `resolution`,
+    /// `double_precision_limit` or `budget`.
+    stop: detach::pave::StopReason,
     elapsed_s: f64,
     leaves: usize,
     stats: detach::pave::PaveStats,
+    /// Upper bound on the area of leaves where some formula may be undefined.
+    undefined_area: f64,
+    /// Plain-language warnings (e.g. enclosures that under/overflowed).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    warnings: Vec<String>,
     regions: Vec<RegionReport>,
 }
 
@@ -162,6 +181,9 @@ fn pave_and_report(
     let elapsed_s = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let report = summarise(scene, domain, params, variant, opts, &paving, elapsed_s);
+    for w in &report.warnings {
+        eprintln!("detach: warning: {} ({w})", report.scene);
+    }
     Ok((paving, report))
 }
 
@@ -186,6 +208,7 @@ fn summarise(
                 inner_area: b.inner_area,
                 outer_area: b.outer_area,
                 undecided_area: b.undecided_area(),
+                empty: b.proved_empty.then_some("omega0 = omega"),
                 boxes: BoxCounts {
                     inner: b.inner_boxes,
                     outer: b.outer_boxes,
@@ -194,7 +217,9 @@ fn summarise(
             }
         })
         .collect();
+    let (undefined_area, warnings) = undefined_warnings(paving);
     PaveReport {
+        detach: detach::provenance(),
         scene: scene.id().name(),
         variant,
         params: params
@@ -210,10 +235,82 @@ fn summarise(
         eps: opts.eps,
         max_boxes: opts.max_boxes,
         complete: paving.complete,
+        stop: paving.stop,
         elapsed_s,
         leaves: paving.leaves.len(),
         stats: paving.stats,
+        undefined_area,
+        warnings,
         regions,
+    }
+}
+
+/// The area of undefined leaves, and a warning when they are all of the
+/// paving or most of its area: then the enclosures under- or overflowed (or
+/// a formula is singular on the whole window) and the bounds say little.
+fn undefined_warnings(paving: &Paving) -> (f64, Vec<String>) {
+    use detach::pave::Label;
+    use inari::Interval;
+    let n = paving.names.len();
+    let undefined: Vec<_> = paving
+        .leaves
+        .iter()
+        .filter(|l| l.labels[..n].contains(&Label::Undefined))
+        .collect();
+    let zero = Interval::try_from((0.0, 0.0)).expect("0");
+    let area = undefined.iter().fold(zero, |a, l| a + l.bx.area());
+    let total = paving.root.area();
+    let mut warnings = Vec::new();
+    if !undefined.is_empty() && 2.0 * area.inf() > total.sup() {
+        let hull = |f: fn(&detach::pave::PhaseBox) -> [f64; 2]| {
+            undefined
+                .iter()
+                .fold([f64::INFINITY, f64::NEG_INFINITY], |h, l| {
+                    let r = f(&l.bx);
+                    [h[0].min(r[0]), h[1].max(r[1])]
+                })
+        };
+        let (th, thd) = (hull(|b| b.theta), hull(|b| b.theta_dot));
+        let what = if undefined.len() == paving.leaves.len() {
+            "every leaf is undefined".to_string()
+        } else {
+            format!(
+                "undefined leaves cover more than half of the area ({} of {} leaves)",
+                undefined.len(),
+                paving.leaves.len()
+            )
+        };
+        let n = detach::param::short_num;
+        warnings.push(format!(
+            "{what}, in θ ∈ [{}, {}], θ̇ ∈ [{}, {}]: the enclosures under- or \
+             overflowed the double range there (or a formula is singular), so the area \
+             bounds say little; rescale the parameters or the window",
+            n(th[0]),
+            n(th[1]),
+            n(thd[0]),
+            n(thd[1])
+        ));
+    }
+    ((area.sup() + 0.0).min(f64::MAX), warnings)
+}
+
+/// Pads `s` on the right to `width` columns, counting combining marks (the
+/// overbar of Ω̄) as zero-width.
+fn pad(s: &str, width: usize) -> String {
+    let shown = s
+        .chars()
+        .filter(|c| !('\u{0300}'..='\u{036f}').contains(c))
+        .count();
+    format!("{s}{}", " ".repeat(width.saturating_sub(shown)))
+}
+
+/// An area for the table: six decimals, or exponent form when tiny or huge
+/// (a window one ulp wide has areas near 1e-17).
+fn fmt_area(x: f64) -> String {
+    if x == 0.0 || (1e-3..1e9).contains(&x.abs()) {
+        format!("{:.6}", x + 0.0)
+    } else {
+        format!("{x:.5e}")
     }
 }
 
@@ -223,31 +320,50 @@ fn print_table(r: &PaveReport) {
         .iter()
         .map(|(k, v)| format!("{k}={}", v.as_str().unwrap_or("")))
         .collect();
-    println!(
-        "{} ({})  {}  eps={:.3e}  {} leaves  {:.2} s{}",
+    outln!(
+        "{} ({})  {}  eps={:.3e}  {} leaves  {:.2} s  stop: {} ({})",
         r.scene,
         r.variant,
         params.join(" "),
         r.eps,
         r.leaves,
         r.elapsed_s,
-        if r.complete {
-            ""
-        } else {
-            "  [budget reached: coarser result]"
-        }
+        r.stop,
+        r.stop.describe()
     );
-    println!(
-        "  {:<7} {:>12} {:>12} {:>12} {:>9} {:>9} {:>9}",
-        "region", "inner area", "outer area", "undecided", "in boxes", "out boxes", "undec."
+    outln!(
+        "  {} {:>12} {:>12} {:>12} {:>9} {:>9} {:>9}",
+        pad("region", 7),
+        "inner area",
+        "outer area",
+        "undecided",
+        "in boxes",
+        "not out",
+        "undec."
     );
+    for w in &r.warnings {
+        outln!("  warning: {w}");
+    }
     for g in &r.regions {
-        println!(
-            "  {:<7} {:>12.6} {:>12.6} {:>12.6} {:>9} {:>9} {:>9}",
-            g.label,
-            g.inner_area,
-            g.outer_area,
-            g.undecided_area,
+        if g.empty.is_some() {
+            outln!(
+                "  {} {:>12} {:>12} {:>12} {:>9} {:>9} {:>9}  empty (Ω₀ = Ω)",
+                pad(g.label, 7),
+                "0",
+                "0",
+                "0",
+                0,
+                0,
+                0
+            );
+            continue;
+        }
+        outln!(
+            "  {} {:>12} {:>12} {:>12} {:>9} {:>9} {:>9}",
+            pad(g.label, 7),
+            fmt_area(g.inner_area),
+            fmt_area(g.outer_area),
+            fmt_area(g.undecided_area),
             g.boxes.inner,
             g.boxes.outer,
             g.boxes.undecided
@@ -283,11 +399,20 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
     fn as_refs(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
         w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()])
     }
-    let domain = scene
+    let (domain, clipped) = scene
         .domain()
-        .window(as_refs(&th), as_refs(&thd))
+        .window_clipped(as_refs(&th), as_refs(&thd))
         .map_err(CliError::usage)?;
+    for c in clipped {
+        eprintln!(
+            "detach: note: window end {c} is within rounding of the domain's end; \
+             clipped to the domain"
+        );
+    }
     let (paving, report) = pave_and_report(&scene, &domain, &params, args.flags.variant, opts)?;
+    if let Some(path) = &args.leaves {
+        write_leaves(&paving, path)?;
+    }
     if let Some(path) = &args.proof {
         let text = |w: &Option<[String; 2]>, i: usize| {
             w.clone()
@@ -304,7 +429,7 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
         )?;
     }
     if args.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&report).expect("serialisable")
         );
@@ -312,6 +437,14 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
         print_table(&report);
     }
     Ok(())
+}
+
+/// `pave --leaves FILE`: the CSV of [`detach::pave::export`].
+fn write_leaves(paving: &Paving, path: &Path) -> CliResult {
+    let fail =
+        |e: std::io::Error| CliError::runtime(format!("cannot write {}: {e}", path.display()));
+    let file = std::fs::File::create(path).map_err(fail)?;
+    detach::pave::export::write_leaves_csv(paving, std::io::BufWriter::new(file)).map_err(fail)
 }
 
 /// Parameter overrides for one scene of a multi-scene run: only the names it
@@ -332,6 +465,14 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
             .map(|s| s.parse().map_err(CliError::usage))
             .collect::<Result<_, _>>()?
     };
+    // A scene named twice is paved once.
+    let mut ids = ids;
+    let mut seen = Vec::new();
+    ids.retain(|id| {
+        let new = !seen.contains(id);
+        seen.push(*id);
+        new
+    });
     let overrides = parse_overrides(&args.flags.params)?;
     for (name, _) in &overrides {
         if !ids
@@ -359,7 +500,6 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
     for (scene, params) in &scenes {
         let (paving, report) =
             pave_and_report(scene, &scene.domain(), params, args.flags.variant, opts)?;
-        print_table(&report);
         let info = PictureInfo {
             scene,
             variant: args.flags.variant,
@@ -367,16 +507,20 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
             complete: paving.complete,
         };
         let stem = args.out.join(scene.id().name());
+        // Files first, then the table: a closed stdout never costs a file.
         draw(&paving, &info, &style, &stem)?;
-        println!("  wrote {}.svg and .png", stem.display());
+        print_table(&report);
+        outln!("  wrote {}.svg and .png", stem.display());
         reports.push(report);
     }
     let summary = args.out.join("summary.json");
-    let text = serde_json::to_string_pretty(&serde_json::json!({ "scenes": reports }))
-        .expect("serialisable");
+    let text = serde_json::to_string_pretty(
+        &serde_json::json!({ "detach": detach::provenance(), "scenes": reports }),
+    )
+    .expect("serialisable");
     std::fs::write(&summary, text)
         .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", summary.display())))?;
-    println!("wrote {}", summary.display());
+    outln!("wrote {}", summary.display());
     Ok(())
 }
 
@@ -422,22 +566,28 @@ pub fn run_scenes(args: &ScenesArgs) -> CliResult {
         })
         .collect();
     if args.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&infos).expect("serialisable")
         );
         return Ok(());
     }
     for s in &infos {
-        println!("{} — {}", s.name, s.title);
-        println!(
+        outln!("{} — {}", s.name, s.title);
+        outln!(
             "  domain θ ∈ [{:.6}, {:.6}], θ̇ ∈ [{}, {}]; variants: derived (default), printed",
-            s.domain.theta[0], s.domain.theta[1], s.domain.theta_dot[0], s.domain.theta_dot[1]
+            s.domain.theta[0],
+            s.domain.theta[1],
+            s.domain.theta_dot[0],
+            s.domain.theta_dot[1]
         );
         for p in s.params {
-            println!(
+            outln!(
                 "  {:<6} = {:<6} {:?}: {}",
-                p.name, p.default, p.sign, p.meaning
+                p.name,
+                p.default,
+                p.sign,
+                p.meaning
             );
         }
     }

@@ -1,10 +1,53 @@
 //! Command-line front: argument types and one `run_*` per subcommand.
 
+/// `println!` for command output: a closed pipe (`detach … | head -1`) is not
+/// an error — output stops quietly and the command finishes its work (files
+/// included); any other write error is reported by [`stdout_status`].
+macro_rules! outln {
+    ($($t:tt)*) => {
+        $crate::cli::write_stdout(format_args!($($t)*))
+    };
+}
+
 pub mod atlas;
 pub mod proofs;
 pub mod roots;
 
 use std::fmt;
+use std::io::Write;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
+
+static STDOUT_CLOSED: AtomicBool = AtomicBool::new(false);
+static STDOUT_ERROR: Mutex<Option<String>> = Mutex::new(None);
+
+/// Writes one line to stdout; see `outln!`.
+pub fn write_stdout(args: fmt::Arguments) {
+    if STDOUT_CLOSED.load(Ordering::Relaxed) {
+        return;
+    }
+    let mut out = std::io::stdout().lock();
+    let r = out
+        .write_fmt(args)
+        .and_then(|_| out.write_all(b"\n"))
+        .and_then(|_| out.flush());
+    if let Err(e) = r {
+        STDOUT_CLOSED.store(true, Ordering::Relaxed);
+        if e.kind() != std::io::ErrorKind::BrokenPipe {
+            if let Ok(mut slot) = STDOUT_ERROR.lock() {
+                slot.get_or_insert_with(|| e.to_string());
+            }
+        }
+    }
+}
+
+/// An error for a failed write to stdout (other than a closed pipe), if any.
+pub fn stdout_status() -> CliResult {
+    match STDOUT_ERROR.lock().ok().and_then(|s| s.clone()) {
+        Some(e) => Err(CliError::runtime(format!("cannot write to stdout: {e}"))),
+        None => Ok(()),
+    }
+}
 
 /// A failure to report on stderr, with its exit code (2 = bad input).
 #[derive(Debug)]

@@ -36,7 +36,7 @@ pub struct RootsArgs {
     #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
     pub params: Vec<String>,
     /// Most function evaluations.
-    #[arg(long, default_value_t = 200_000)]
+    #[arg(long, default_value_t = 200_000, value_parser = detach::param::parse_count, allow_negative_numbers = true)]
     pub max_evaluations: usize,
     /// Print JSON instead of a table.
     #[arg(long)]
@@ -61,13 +61,13 @@ pub struct CriticalCurveArgs {
     #[arg(long, default_value = "out/critical-curve")]
     pub out: PathBuf,
     /// Number of α-boxes of [0, 1] (a power of two).
-    #[arg(long, default_value_t = 128)]
+    #[arg(long, default_value_t = 128, value_parser = detach::param::parse_count, allow_negative_numbers = true)]
     pub alpha_boxes: usize,
     /// Number of κ-boxes of (0, κ_max] (a power of two).
-    #[arg(long, default_value_t = 128)]
+    #[arg(long, default_value_t = 128, value_parser = detach::param::parse_count, allow_negative_numbers = true)]
     pub kappa_boxes: usize,
     /// Top of the κ range (decimal; the grid uses the double below it).
-    #[arg(long, default_value = "0.25")]
+    #[arg(long, default_value = "0.25", allow_hyphen_values = true)]
     pub kappa_max: String,
     #[arg(long)]
     pub json: bool,
@@ -80,7 +80,7 @@ pub struct TangencyArgs {
     #[arg(long, default_value = "out/tangency")]
     pub out: PathBuf,
     /// Largest k (1 ≤ k ≤ 17).
-    #[arg(long, default_value_t = 15)]
+    #[arg(long, default_value_t = 15, allow_negative_numbers = true)]
     pub k_max: i32,
     #[arg(long)]
     pub json: bool,
@@ -115,8 +115,22 @@ fn decimal(name: &str, text: &str) -> Result<Interval, CliError> {
     enclose_decimal(name, text).map_err(CliError::usage)
 }
 
-fn to_json<T: Serialize>(x: &T) -> Result<String, CliError> {
-    serde_json::to_string_pretty(x).map_err(|e| CliError::runtime(format!("JSON: {e}")))
+/// JSON of `x` with a leading `"detach": {"version", "commit"}` and the
+/// command's `arguments`, so every output records what produced it.
+fn to_json<T: Serialize>(x: &T, arguments: serde_json::Value) -> Result<String, CliError> {
+    #[derive(Serialize)]
+    struct Stamped<'a, T: Serialize> {
+        detach: serde_json::Value,
+        arguments: serde_json::Value,
+        #[serde(flatten)]
+        body: &'a T,
+    }
+    serde_json::to_string_pretty(&Stamped {
+        detach: detach::provenance(),
+        arguments,
+        body: x,
+    })
+    .map_err(|e| CliError::runtime(format!("JSON: {e}")))
 }
 
 fn build_scene(args: &RootsArgs, default: SceneId) -> Result<(Scene, ParamSet), CliError> {
@@ -272,8 +286,21 @@ impl RootsOutputParts {
     }
 }
 
+/// `[lo, hi]` in exponent form, `-0` printed as `0`.
 fn fmt_enc(b: [f64; 2]) -> String {
-    format!("[{:e}, {:e}]", b[0], b[1])
+    format!("[{:e}, {:e}]", b[0] + 0.0, b[1] + 0.0)
+}
+
+/// The command line of `roots`, as recorded in its JSON.
+fn roots_arguments(args: &RootsArgs) -> serde_json::Value {
+    serde_json::json!({
+        "equation": args.equation,
+        "kappa": args.kappa,
+        "alpha": args.alpha,
+        "scene": args.scene,
+        "params": args.params,
+        "max_evaluations": args.max_evaluations,
+    })
 }
 
 /// `detach roots`.
@@ -289,10 +316,10 @@ pub fn run_roots(args: &RootsArgs) -> CliResult {
             parameters: parts.parameters,
             derived: parts.derived,
         };
-        println!("{}", to_json(&out)?);
+        outln!("{}", to_json(&out, roots_arguments(args))?);
         return Ok(());
     }
-    println!(
+    outln!(
         "equation ({}) for {} in {}{}",
         result.equation,
         result.variable,
@@ -303,29 +330,29 @@ pub fn run_roots(args: &RootsArgs) -> CliResult {
             .unwrap_or_default()
     );
     for p in parts.parameters.iter().chain(&parts.derived) {
-        println!(
+        outln!(
             "  {:<6} = {:<18} ∈ {}",
             p.name,
             p.text,
             fmt_enc(p.enclosure)
         );
     }
-    println!(
+    outln!(
         "  {:>3}  {:<24} {:<24} {:>10}  status",
-        "#", "lo", "hi", "width/ulp"
+        "#",
+        "lo",
+        "hi",
+        "width/ulp"
     );
     for (i, r) in result.roots.iter().enumerate() {
         let status = match r.status {
             RootStatus::Unique => "unique (exactly one root, simple)".to_string(),
-            RootStatus::Undecided => format!(
-                "undecided ({})",
-                r.reason
-                    .map(|x| format!("{x:?}"))
-                    .unwrap_or_default()
-                    .to_lowercase()
-            ),
+            RootStatus::Undecided => match r.reason {
+                Some(x) => format!("undecided ({})", x.describe()),
+                None => "undecided".to_string(),
+            },
         };
-        println!(
+        outln!(
             "  {:>3}  {:<24} {:<24} {:>10}  {}",
             i + 1,
             format!("{:?}", r.lo),
@@ -335,10 +362,10 @@ pub fn run_roots(args: &RootsArgs) -> CliResult {
         );
     }
     if result.roots.is_empty() {
-        println!("  (no root)");
+        outln!("  (no root)");
     }
     for e in &result.edges {
-        println!(
+        outln!(
             "  edge {:<13} {}: {}",
             e.end,
             fmt_enc(e.part),
@@ -349,21 +376,28 @@ pub fn run_roots(args: &RootsArgs) -> CliResult {
             }
         );
     }
-    println!(
+    outln!(
         "complete: {} — {}",
         if result.complete { "yes" } else { "no" },
         if result.complete {
-            format!(
-                "exactly {} root(s), all simple; the rest of the domain is proved root-free",
-                result.roots.len()
-            )
+            match result.roots.len() {
+                0 => "no root: the whole domain is proved root-free".to_string(),
+                1 => {
+                    "exactly 1 root, simple; the rest of the domain is proved root-free".to_string()
+                }
+                n => format!(
+                    "exactly {n} roots, all simple; the rest of the domain is proved root-free"
+                ),
+            }
         } else {
             "every root lies in the enclosures above; undecided ones may hold any number".into()
         }
     );
-    println!(
+    outln!(
         "work: {} evaluations, {} bisections, {} Newton steps",
-        result.stats.evaluations, result.stats.bisections, result.stats.newton_steps
+        result.stats.evaluations,
+        result.stats.bisections,
+        result.stats.newton_steps
     );
     Ok(())
 }
@@ -372,16 +406,16 @@ pub fn run_roots(args: &RootsArgs) -> CliResult {
 pub fn run_kappa0(args: &Kappa0Args) -> CliResult {
     let proof = prove_kappa0();
     if args.json {
-        println!("{}", to_json(&proof)?);
+        outln!("{}", to_json(&proof, serde_json::json!({}))?);
     } else {
         let b = |x: Bound| format!("[{:?}, {:?}]", x.lo, x.hi);
-        println!(
+        outln!(
             "κ₀ ∈ {}  ({} ulp wide; √3/9 in intervals: {})",
             b(proof.kappa0),
             proof.kappa0_width_ulps,
             b(proof.sqrt3_over_9)
         );
-        println!(
+        outln!(
             "μ* ∈ {}, 2κ₀ = p(μ*) ∈ {}",
             b(proof.mu_star),
             b(proof.max_value)
@@ -392,9 +426,9 @@ pub fn run_kappa0(args: &Kappa0Args) -> CliResult {
             } else {
                 "NOT PROVED"
             };
-            println!("[{v}] {}: {}", s.id, s.statement);
+            outln!("[{v}] {}: {}", s.id, s.statement);
             for (k, x) in &s.enclosures {
-                println!("         {k} ∈ {}", b(*x));
+                outln!("         {k} ∈ {}", b(*x));
             }
         }
     }
@@ -405,11 +439,16 @@ pub fn run_kappa0(args: &Kappa0Args) -> CliResult {
     }
 }
 
-fn write_json<T: Serialize>(dir: &Path, name: &str, x: &T) -> Result<PathBuf, CliError> {
+fn write_json<T: Serialize>(
+    dir: &Path,
+    name: &str,
+    x: &T,
+    arguments: serde_json::Value,
+) -> Result<PathBuf, CliError> {
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", dir.display())))?;
     let path = dir.join(name);
-    std::fs::write(&path, to_json(x)? + "\n")
+    std::fs::write(&path, to_json(x, arguments)? + "\n")
         .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
     Ok(path)
 }
@@ -423,10 +462,21 @@ fn power_of_two(name: &str, n: usize) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Output budget of `critical-curve`: most (α, κ) cells (e.g. 512 × 512),
+/// about 50 MB of JSON and 25 MB of SVG.
+pub const MAX_CRITICAL_CELLS: usize = 1 << 18;
+
 /// `detach critical-curve`.
 pub fn run_critical_curve(args: &CriticalCurveArgs) -> CliResult {
     power_of_two("alpha-boxes", args.alpha_boxes)?;
     power_of_two("kappa-boxes", args.kappa_boxes)?;
+    let cells = args.alpha_boxes * args.kappa_boxes;
+    if cells > MAX_CRITICAL_CELLS {
+        return Err(CliError::usage(format!(
+            "--alpha-boxes × --kappa-boxes = {cells} cells is over the output budget of \
+             {MAX_CRITICAL_CELLS} cells (about 200 bytes of JSON each); use fewer boxes"
+        )));
+    }
     let km = decimal("kappa_max", &args.kappa_max)?;
     if km.inf() <= 0.0 {
         return Err(CliError::usage(format!(
@@ -435,14 +485,27 @@ pub fn run_critical_curve(args: &CriticalCurveArgs) -> CliResult {
         )));
     }
     let cc = critical_curve(args.alpha_boxes, args.kappa_boxes, km.inf());
-    let mut files = vec![write_json(&args.out, "critical-curve.json", &cc)?];
+    let arguments = serde_json::json!({
+        "alpha_boxes": args.alpha_boxes,
+        "kappa_boxes": args.kappa_boxes,
+        "kappa_max": args.kappa_max,
+    });
+    let mut files = vec![write_json(
+        &args.out,
+        "critical-curve.json",
+        &cc,
+        arguments.clone(),
+    )?];
     files.extend(plot_critical(&cc, &args.out).map_err(CliError::runtime)?);
     if args.json {
-        println!("{}", to_json(&cc)?);
+        outln!("{}", to_json(&cc, arguments)?);
     } else {
-        println!("κ_crit(α) on {} α-boxes of [0, 1]", cc.band.len());
-        println!("  max band width (upper − lower): {:e}", cc.max_band_width);
-        println!(
+        outln!("κ_crit(α) on {} α-boxes of [0, 1]", cc.band.len());
+        outln!(
+            "  max band width (upper − lower): {:e}",
+            cc.max_band_width + 0.0
+        );
+        outln!(
             "  at α = 1: κ_crit ∈ [{:?}, {:?}], κ₀ ∈ [{:?}, {:?}] inside: {}",
             cc.at_alpha_1.lower,
             cc.at_alpha_1.upper,
@@ -451,17 +514,21 @@ pub fn run_critical_curve(args: &CriticalCurveArgs) -> CliResult {
             cc.kappa0_inside_band_at_1
         );
         for c in cc.band.iter().step_by((cc.band.len() / 8).max(1)) {
-            println!(
+            outln!(
                 "  α ∈ [{:.4}, {:.4}]: κ_crit ∈ [{:.6e}, {:.6e}]",
-                c.alpha.lo, c.alpha.hi, c.lower, c.upper
+                c.alpha.lo,
+                c.alpha.hi,
+                c.lower,
+                c.upper
             );
         }
-        println!(
+        outln!(
             "atlas (α, κ) ∈ [0, 1] × (0, {}]: {} no root, {} exactly two simple roots, {} undecided",
-            cc.kappa_max, cc.counts.no_root, cc.counts.two_simple_roots, cc.counts.undecided
+            detach::param::short_num(cc.kappa_max),
+            cc.counts.no_root, cc.counts.two_simple_roots, cc.counts.undecided
         );
         for f in files {
-            println!("wrote {}", f.display());
+            outln!("wrote {}", f.display());
         }
     }
     Ok(())
@@ -476,14 +543,20 @@ pub fn run_tangency(args: &TangencyArgs) -> CliResult {
         )));
     }
     let rep = tangency_scan(args.k_max, &Budget::default());
-    let mut files = vec![write_json(&args.out, "tangency.json", &rep)?];
+    let arguments = serde_json::json!({ "k_max": args.k_max });
+    let mut files = vec![write_json(
+        &args.out,
+        "tangency.json",
+        &rep,
+        arguments.clone(),
+    )?];
     files.extend(plot_tangency(&rep, &args.out).map_err(CliError::runtime)?);
     if args.json {
-        println!("{}", to_json(&rep)?);
+        outln!("{}", to_json(&rep, arguments)?);
         return Ok(());
     }
     let dr = &rep.double_root;
-    println!(
+    outln!(
         "κ = [κ₀] = [{:?}, {:?}]: all roots in [{:?}, {:?}] (width {:.2e}), none unique: {}, contains μ*: {}",
         dr.kappa.lo,
         dr.kappa.hi,
@@ -493,7 +566,7 @@ pub fn run_tangency(args: &TangencyArgs) -> CliResult {
         dr.none_unique,
         dr.contains_mu_star
     );
-    println!(
+    outln!(
         "{:>3} {:>2}  {:<16} {:<14} {:>6} {:>5} {:>10} {:>10} {:>7} {:>7} {:>9}",
         "k",
         "±",
@@ -513,7 +586,7 @@ pub fn run_tangency(args: &TangencyArgs) -> CliResult {
             Outcome::TwoUnique => "2 unique",
             Outcome::Undecided => "undecided",
         };
-        println!(
+        outln!(
             "{:>3} {:>2}  {:<16} {:<14} {:>6} {:>5} {:>10} {:>10.2e} {:>7} {:>7} {:>9.1}",
             r.k,
             if r.sign < 0 { "−" } else { "+" },
@@ -529,7 +602,7 @@ pub fn run_tangency(args: &TangencyArgs) -> CliResult {
         );
     }
     for f in files {
-        println!("wrote {}", f.display());
+        outln!("wrote {}", f.display());
     }
     Ok(())
 }
@@ -606,12 +679,15 @@ mod tests {
         };
         let (r, parts) = solve(&a).unwrap();
         let v: serde_json::Value = serde_json::from_str(
-            &to_json(&RootsOutput {
-                result: &r,
-                scene: parts.scene,
-                parameters: parts.parameters,
-                derived: parts.derived,
-            })
+            &to_json(
+                &RootsOutput {
+                    result: &r,
+                    scene: parts.scene,
+                    parameters: parts.parameters,
+                    derived: parts.derived,
+                },
+                roots_arguments(&a),
+            )
             .unwrap(),
         )
         .unwrap();

@@ -26,6 +26,19 @@ impl CellSpec {
         })
     }
 
+    /// The set is empty by construction: two constraints that are the same
+    /// function (`same_as`, see [`super::ConstraintSet::same_as`]) are asked
+    /// for opposite signs.
+    pub fn contradictory(&self, same_as: &[Option<usize>]) -> bool {
+        same_as
+            .iter()
+            .enumerate()
+            .any(|(i, s)| match (*s, self.0[i]) {
+                (Some(j), Some(want)) => self.0[j] == Some(!want),
+                _ => false,
+            })
+    }
+
     /// Some literal disproved on the leaf: the box misses the set entirely.
     pub fn proved_out(&self, leaf: &Leaf) -> bool {
         self.0.iter().zip(&leaf.labels).any(|(want, l)| match want {
@@ -59,11 +72,17 @@ pub struct AreaBounds {
     pub inner_boxes: usize,
     /// Leaves not proved outside (a superset of the inner ones).
     pub outer_boxes: usize,
+    /// The set is empty by construction ([`CellSpec::contradictory`]): both
+    /// areas are exactly 0, whatever the leaves.
+    pub proved_empty: bool,
 }
 
 impl AreaBounds {
+    /// An upper bound on `outer_area − inner_area`: the difference is
+    /// computed in interval arithmetic and rounded up.
     pub fn undecided_area(&self) -> f64 {
-        self.outer_area - self.inner_area
+        let pt = |x: f64| Interval::try_from((x, x)).unwrap_or(Interval::ENTIRE);
+        (pt(self.outer_area) - pt(self.inner_area)).sup() + 0.0
     }
     pub fn undecided_boxes(&self) -> usize {
         self.outer_boxes - self.inner_boxes
@@ -76,6 +95,15 @@ impl Paving {
     /// Area bounds of a set. `uncovered_sup` bounds the area of the true domain
     /// outside the root box (it is added to the outer bound only).
     pub fn area_bounds(&self, cell: &CellSpec, uncovered_sup: f64) -> AreaBounds {
+        if cell.contradictory(&self.same_as) {
+            return AreaBounds {
+                inner_area: 0.0,
+                outer_area: 0.0,
+                inner_boxes: 0,
+                outer_boxes: 0,
+                proved_empty: true,
+            };
+        }
         let (mut inner, mut outer) = (ZERO, ZERO);
         let (mut ni, mut no) = (0, 0);
         for leaf in &self.leaves {
@@ -95,6 +123,7 @@ impl Paving {
             outer_area: (outer + extra).sup(),
             inner_boxes: ni,
             outer_boxes: no,
+            proved_empty: false,
         }
     }
 }

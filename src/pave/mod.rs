@@ -10,6 +10,7 @@
 //! with [`Paving::nodes`] (bisection choices in preorder) and the leaf labels.
 
 pub mod area;
+pub mod export;
 
 use crate::scalar::is_defined;
 use crate::scene::{Constraints, Domain, Scene, Variant};
@@ -80,15 +81,36 @@ impl PhaseBox {
             - Interval::try_from((self.theta_dot[0], self.theta_dot[0])).unwrap();
         w * h
     }
-    /// Splits at the (exactly shared) midpoint of axis 0 (θ) or 1 (θ̇).
-    pub fn split(&self, axis: usize) -> (PhaseBox, PhaseBox) {
-        let (mut lo, mut hi) = (*self, *self);
+    /// The midpoint used to split along axis 0 (θ) or 1 (θ̇), rounded to a
+    /// double.
+    pub fn midpoint(&self, axis: usize) -> f64 {
         let r = if axis == 0 {
             self.theta
         } else {
             self.theta_dot
         };
-        let mid = 0.5 * r[0] + 0.5 * r[1];
+        0.5 * r[0] + 0.5 * r[1]
+    }
+
+    /// Whether splitting along `axis` gives two boxes of positive width: the
+    /// rounded midpoint lies strictly between the endpoints. False once the
+    /// box is one ulp wide there (the midpoint rounds to an endpoint).
+    pub fn can_split(&self, axis: usize) -> bool {
+        let r = if axis == 0 {
+            self.theta
+        } else {
+            self.theta_dot
+        };
+        let mid = self.midpoint(axis);
+        r[0] < mid && mid < r[1]
+    }
+
+    /// Splits at the (exactly shared) midpoint of axis 0 (θ) or 1 (θ̇). Only
+    /// meaningful when [`PhaseBox::can_split`] holds (otherwise one half is
+    /// degenerate); the paver never splits such a box.
+    pub fn split(&self, axis: usize) -> (PhaseBox, PhaseBox) {
+        let (mut lo, mut hi) = (*self, *self);
+        let mid = self.midpoint(axis);
         if axis == 0 {
             lo.theta[1] = mid;
             hi.theta[0] = mid;
@@ -132,6 +154,12 @@ pub trait ConstraintSet: Sync {
     fn slab(&self, theta: Interval) -> Self::Slab;
     /// Decorated enclosures of every `g_i` over `theta × theta_dot`.
     fn enclose(&self, slab: &Self::Slab, theta_dot: Interval) -> Vec<DecInterval>;
+    /// For each constraint, `Some(j)` when it is by construction the same
+    /// function as constraint `j < i`: the paver copies label `j` to it, and
+    /// cells asking opposite signs of the two are reported exactly empty.
+    fn same_as(&self) -> Vec<Option<usize>> {
+        vec![None; self.names().len()]
+    }
 }
 
 /// Ω and Ω₀ of a scene, in one reading of the paper.
@@ -151,6 +179,13 @@ impl ConstraintSet for SceneConstraints<'_> {
     fn enclose(&self, c: &Self::Slab, theta_dot: Interval) -> Vec<DecInterval> {
         let w = DecInterval::new(theta_dot);
         vec![c.omega.eval(w), c.omega0.eval(w)]
+    }
+    fn same_as(&self) -> Vec<Option<usize>> {
+        if self.scene.omega0_is_omega(self.variant) {
+            vec![None, Some(0)]
+        } else {
+            vec![None, None]
+        }
     }
 }
 
@@ -181,6 +216,48 @@ pub struct PaveStats {
     pub depth: u32,
 }
 
+/// Why refinement stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopReason {
+    /// Every leaf is decided for every constraint: nothing left to refine.
+    AllDecided,
+    /// Undecided leaves remain, all at the requested resolution `eps`.
+    Resolution,
+    /// Some undecided leaf is above the resolution `eps` along an axis but one
+    /// ulp wide there: its midpoint rounds to an endpoint, so double
+    /// precision cannot split it. No budget was hit.
+    DoublePrecisionLimit,
+    /// The leaf budget (`max_boxes`) stopped refinement: a valid, coarser
+    /// result.
+    Budget,
+}
+
+impl StopReason {
+    /// A short human-readable explanation.
+    pub fn describe(self) -> &'static str {
+        match self {
+            StopReason::AllDecided => "every leaf decided",
+            StopReason::Resolution => "resolution eps reached",
+            StopReason::DoublePrecisionLimit => {
+                "boxes one ulp wide: the resolution limit of double precision"
+            }
+            StopReason::Budget => "budget reached: coarser result",
+        }
+    }
+}
+
+impl std::fmt::Display for StopReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str(match self {
+            StopReason::AllDecided => "all_decided",
+            StopReason::Resolution => "resolution",
+            StopReason::DoublePrecisionLimit => "double_precision_limit",
+            StopReason::Budget => "budget",
+        })
+    }
+}
+
 /// The result of paving: the tree, its leaves, and whether it finished.
 #[derive(Clone, Debug)]
 pub struct Paving {
@@ -191,6 +268,11 @@ pub struct Paving {
     pub leaves: Vec<Leaf>,
     /// False when the box budget stopped refinement.
     pub complete: bool,
+    /// Why refinement stopped (`complete` is `stop != Budget`).
+    pub stop: StopReason,
+    /// Per constraint, `Some(j)` if it is the same function as constraint `j`
+    /// ([`ConstraintSet::same_as`]); its labels are copies of `j`'s.
+    pub same_as: Vec<Option<usize>>,
     pub stats: PaveStats,
 }
 
@@ -234,6 +316,14 @@ pub fn pave<S: ConstraintSet>(
     if names.len() > MAX_CONSTRAINTS {
         return Err(PaveError::TooManyConstraints);
     }
+    let mut same_as = set.same_as();
+    same_as.resize(names.len(), None);
+    for (i, s) in same_as.iter_mut().enumerate() {
+        // only earlier constraints that are not aliases themselves
+        if s.is_some_and(|j| j >= i) {
+            *s = None;
+        }
+    }
     let min_width = [
         opts.eps * (root.theta[1] - root.theta[0]),
         opts.eps * (root.theta_dot[1] - root.theta_dot[0]),
@@ -247,13 +337,19 @@ pub fn pave<S: ConstraintSet>(
                 root.theta_dot[1] - root.theta_dot[0]
             })
     };
-    // Split the relatively wider axis; θ̇ on ties, so slabs (and their cached
-    // trigonometry) are shared as long as possible.
-    let choose_axis = |b: &PhaseBox| -> Option<u8> {
-        let can = [
+    // Above the resolution along each axis.
+    let wide = |b: &PhaseBox| {
+        [
             b.theta[1] - b.theta[0] > min_width[0],
             b.theta_dot[1] - b.theta_dot[0] > min_width[1],
-        ];
+        ]
+    };
+    // Split the relatively wider axis; θ̇ on ties, so slabs (and their cached
+    // trigonometry) are shared as long as possible. An axis where the box is
+    // one ulp wide cannot be split.
+    let choose_axis = |b: &PhaseBox| -> Option<u8> {
+        let w = wide(b);
+        let can = [w[0] && b.can_split(0), w[1] && b.can_split(1)];
         match can {
             [false, false] => None,
             [true, false] => Some(0),
@@ -267,7 +363,7 @@ pub fn pave<S: ConstraintSet>(
     let mut frontier: Vec<usize> = vec![0];
     let mut cache: HashMap<(u64, u64), S::Slab> = HashMap::new();
     let mut stats = PaveStats::default();
-    let mut complete = true;
+    let (mut budget_hit, mut ulp_limit, mut undecided_left) = (false, false, false);
     let mut level = 0u32;
 
     while !frontier.is_empty() {
@@ -302,6 +398,11 @@ pub fn pave<S: ConstraintSet>(
                 {
                     *l = Label::from_enclosure(g);
                 }
+                for (i, s) in same_as.iter().enumerate() {
+                    if let Some(j) = *s {
+                        labels[i] = labels[j];
+                    }
+                }
                 labels
             })
             .collect();
@@ -330,7 +431,14 @@ pub fn pave<S: ConstraintSet>(
                 }
                 other => {
                     if other.is_some() {
-                        complete = false;
+                        budget_hit = true;
+                    } else if undecided {
+                        undecided_left = true;
+                        let b = &arena[i].0;
+                        let w = wide(b);
+                        if (w[0] && !b.can_split(0)) || (w[1] && !b.can_split(1)) {
+                            ulp_limit = true;
+                        }
                     }
                     arena[i].1 = Building::Leaf(leaves.len() as u32);
                     leaves.push(Leaf {
@@ -346,6 +454,15 @@ pub fn pave<S: ConstraintSet>(
         }
     }
     stats.depth = level;
+    let stop = if budget_hit {
+        StopReason::Budget
+    } else if ulp_limit {
+        StopReason::DoublePrecisionLimit
+    } else if undecided_left {
+        StopReason::Resolution
+    } else {
+        StopReason::AllDecided
+    };
 
     // Preorder serialisation of the tree; leaves renumbered in that order.
     let mut nodes = Vec::with_capacity(arena.len());
@@ -371,7 +488,9 @@ pub fn pave<S: ConstraintSet>(
         eps: opts.eps,
         nodes,
         leaves: ordered,
-        complete,
+        complete: stop != StopReason::Budget,
+        stop,
+        same_as,
         stats,
     })
 }

@@ -104,14 +104,22 @@ fn enc(x: Interval) -> [f64; 2] {
 
 fn check_kappa(kappa: Interval) -> Result<(), RootsError> {
     if kappa.is_empty() || kappa.inf() <= 0.0 || !kappa.sup().is_finite() {
-        return Err(RootsError::KappaNotPositive(format!("{kappa}")));
+        return Err(RootsError::KappaNotPositive(format!(
+            "[{:e}, {:e}]",
+            kappa.inf() + 0.0,
+            kappa.sup() + 0.0
+        )));
     }
     Ok(())
 }
 
 fn check_alpha(alpha: Interval) -> Result<(), RootsError> {
     if alpha.is_empty() || !alpha.subset(const_interval!(-1.0, 1.0)) {
-        return Err(RootsError::AlphaOutOfRange(format!("{alpha}")));
+        return Err(RootsError::AlphaOutOfRange(format!(
+            "[{:e}, {:e}]",
+            alpha.inf() + 0.0,
+            alpha.sup() + 0.0
+        )));
     }
     Ok(())
 }
@@ -282,10 +290,20 @@ fn finish(
 pub fn kappa_alpha(disc: &SmoothDisc) -> Result<(Interval, Interval), RootsError> {
     let (pf, ps) = (disc.p_phi, disc.p_psi);
     let pm2 = pf.sqr().max(ps.sqr());
-    if pm2.inf() <= 0.0 {
+    let zero = const_interval!(0.0, 0.0);
+    if pf == zero && ps == zero {
         return Err(RootsError::NoMomentum);
     }
+    if pm2.inf() <= 0.0 {
+        return Err(RootsError::OutOfRange("overflows", "p_M² underflows"));
+    }
     let kappa = disc.g * disc.big_a.sqr() / (disc.a * pm2);
+    if !kappa.sup().is_finite() {
+        return Err(RootsError::OutOfRange("overflows", "κ above 1.8e308"));
+    }
+    if kappa.inf() <= 0.0 {
+        return Err(RootsError::OutOfRange("underflows", "κ below 5e-324"));
+    }
     let unit = const_interval!(-1.0, 1.0);
     let (af, as_) = (pf.abs(), ps.abs());
     let alpha = if af.inf() > as_.sup() {

@@ -79,6 +79,19 @@ pub enum UndecidedReason {
     Budget,
 }
 
+impl UndecidedReason {
+    /// Words for tables (the JSON keeps the snake_case name).
+    pub fn describe(self) -> &'static str {
+        match self {
+            UndecidedReason::PossibleMultipleRoot => "possible multiple root",
+            UndecidedReason::Tolerance => "tolerance reached",
+            UndecidedReason::NotSmooth => "not smooth",
+            UndecidedReason::DomainEdge => "domain edge",
+            UndecidedReason::Budget => "budget",
+        }
+    }
+}
+
 /// One root enclosure `[lo, hi]` (exact doubles) with what is proved about it.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct RootEnclosure {

@@ -41,6 +41,8 @@ pub enum RootsError {
     AlphaOutOfRange(String),
     #[error("p_φ and p_ψ are both zero: κ = g A²/(a p_M²) is undefined")]
     NoMomentum,
+    #[error("κ = g A²/(a p_M²) {0} the range of doubles at these parameters ({1})")]
+    OutOfRange(&'static str, &'static str),
     #[error("equation ({equation}) needs the scene {needs}, got {got}")]
     WrongScene {
         equation: String,

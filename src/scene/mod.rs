@@ -10,7 +10,7 @@ pub mod ice;
 pub mod smooth;
 pub mod viscous;
 
-use crate::param::{enclose_decimal, ParamError, ParamSet, ParamSpec};
+use crate::param::{enclose_window_end, ParamError, ParamSet, ParamSpec};
 use crate::scalar::Scalar;
 use inari::{const_interval, DecInterval, Interval};
 use serde::Serialize;
@@ -113,21 +113,40 @@ impl Domain {
         (self.theta[1] - self.theta[0]) * (self.theta_dot[1] - self.theta_dot[0])
     }
 
-    /// A window of this domain from decimal text (`None` keeps the side).
-    /// The window must be non-empty and lie inside the domain.
+    /// A window of this domain from text (`None` keeps the side): decimals,
+    /// or `pi`, `-pi`, `pi/N`, `-pi/N` ([`crate::param::enclose_window_end`]).
+    /// The window must be non-empty and must not lie provably outside the
+    /// domain. An end whose enclosure overlaps the domain's end (e.g.
+    /// `3.1415926535897932`, a decimal just below π, whose enclosure reaches
+    /// past π's lower bound) is clipped to the domain: the window becomes the
+    /// intersection, exactly (enclosures of `max`/`min`).
     pub fn window(
         &self,
         theta: Option<[&str; 2]>,
         theta_dot: Option<[&str; 2]>,
     ) -> Result<Domain, ParamError> {
-        let side = |name: &str,
-                    full: [Interval; 2],
-                    given: Option<[&str; 2]>|
+        Ok(self.window_clipped(theta, theta_dot)?.0)
+    }
+
+    /// [`Domain::window`], also saying which ends were clipped (as
+    /// `"theta hi"`, …).
+    pub fn window_clipped(
+        &self,
+        theta: Option<[&str; 2]>,
+        theta_dot: Option<[&str; 2]>,
+    ) -> Result<(Domain, Vec<String>), ParamError> {
+        let mut clipped = Vec::new();
+        let mut side = |name: &str,
+                        full: [Interval; 2],
+                        given: Option<[&str; 2]>|
          -> Result<[Interval; 2], ParamError> {
-            let Some([lo, hi]) = given else {
+            let Some([lo_t, hi_t]) = given else {
                 return Ok(full);
             };
-            let (lo, hi) = (enclose_decimal(name, lo)?, enclose_decimal(name, hi)?);
+            let (lo, hi) = (
+                enclose_window_end(name, lo_t)?,
+                enclose_window_end(name, hi_t)?,
+            );
             let invalid = |reason: &str| ParamError::Invalid {
                 name: name.into(),
                 reason: reason.into(),
@@ -135,19 +154,39 @@ impl Domain {
             if lo.sup() >= hi.inf() {
                 return Err(invalid("the window is empty (need lo < hi)"));
             }
-            if lo.inf() < full[0].sup() || hi.sup() > full[1].inf() {
-                return Err(invalid(&format!(
-                    "the window must lie inside the scene's domain [{:.6}, {:.6}]",
-                    full[0].inf() + 0.0,
-                    full[1].sup()
-                )));
+            let outside = || {
+                invalid(&format!(
+                    "the window must lie inside the scene's domain [{}, {}]",
+                    crate::param::short_num(full[0].inf()),
+                    crate::param::short_num(full[1].sup())
+                ))
+            };
+            // Provably below the domain's start or above its end.
+            if lo.sup() < full[0].inf() || hi.inf() > full[1].sup() {
+                return Err(outside());
             }
-            Ok([lo, hi])
+            // The domain's end itself (`-pi`, `10`): nothing to clip or say.
+            let is_end = |x: Interval, end: Interval, text: &str| {
+                x == end && (x.is_singleton() || text.to_ascii_lowercase().contains("pi"))
+            };
+            let mut lo_c = lo;
+            if lo.inf() < full[0].sup() && !is_end(lo, full[0], lo_t) {
+                lo_c = lo.max(full[0]);
+                clipped.push(format!("{name} lo = {lo_t}"));
+            }
+            let mut hi_c = hi;
+            if hi.sup() > full[1].inf() && !is_end(hi, full[1], hi_t) {
+                hi_c = hi.min(full[1]);
+                clipped.push(format!("{name} hi = {hi_t}"));
+            }
+            if lo_c.sup() >= hi_c.inf() {
+                return Err(outside());
+            }
+            Ok([lo_c, hi_c])
         };
-        Ok(Domain {
-            theta: side("theta", self.theta, theta)?,
-            theta_dot: side("theta-dot", self.theta_dot, theta_dot)?,
-        })
+        let theta = side("theta", self.theta, theta)?;
+        let theta_dot = side("theta-dot", self.theta_dot, theta_dot)?;
+        Ok((Domain { theta, theta_dot }, clipped))
     }
 
     pub fn is_empty(&self) -> bool {
@@ -193,6 +232,11 @@ pub trait Model: Sized {
     fn formulas(v: Variant) -> Formulas;
     /// The phase-plane domain as text (`[[θ lo, θ hi], [θ̇ lo, θ̇ hi]]`).
     const DOMAIN_TEXT: [[&'static str; 2]; 2];
+    /// True when Ω₀ is by construction the same function as Ω in this
+    /// variant (§2: an ideal constraint), so Ω̄∩Ω₀ and Ω∩Ω̄₀ are empty.
+    fn omega0_is_omega(&self, _v: Variant) -> bool {
+        false
+    }
     /// θ̈ of the equation of motion in contact.
     fn acceleration<T: Scalar>(&self, v: Variant, a: &Angle<T>, theta_dot: T) -> T;
     /// A conserved energy whose level lines are the phase curves, if the paper
@@ -325,6 +369,11 @@ impl Scene {
 
     pub fn constraints<T: Scalar>(&self, v: Variant, a: &Angle<T>) -> Constraints<T> {
         with_model!(self, m => m.constraints(v, a))
+    }
+
+    /// True when Ω₀ ≡ Ω by construction ([`Model::omega0_is_omega`]).
+    pub fn omega0_is_omega(&self, v: Variant) -> bool {
+        with_model!(self, m => m.omega0_is_omega(v))
     }
 
     /// Certified coefficient enclosures over a θ-interval (decorated: a slab

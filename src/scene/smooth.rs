@@ -212,6 +212,11 @@ impl Model for SmoothDisc {
         }
     }
 
+    /// Ω₀ = Ω in both variants: `N = −U/V` with `V > 0` (2.6), (2.7).
+    fn omega0_is_omega(&self, _v: Variant) -> bool {
+        true
+    }
+
     fn constraints<T: Scalar>(&self, v: Variant, an: &Angle<T>) -> Constraints<T> {
         let omega = self.omega(v, an);
         Constraints {
