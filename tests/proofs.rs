@@ -94,3 +94,28 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn identical_constraint_texts_make_opposite_cells_exactly_empty() {
+    // Smooth disc: Ω₀ is written with the same text as Ω, so Ω̄∩Ω₀ is empty.
+    let mut v = prove_named("atlas/smooth-disc/derived").unwrap();
+    let cell = v["statement"]["areas"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|a| a["set"] == "not_omega_and_omega0")
+        .unwrap();
+    assert_eq!(v["statement"]["areas"][cell]["outer"], "0");
+    assert_eq!(check_bytes(&to_bytes(&v)).unwrap().verdict, Verdict::Valid);
+    // Spacing does not matter...
+    let e = v["statement"]["constraints"][1]["expr"].as_str().unwrap().to_string();
+    v["statement"]["constraints"][1]["expr"] = serde_json::json!(e.replace('*', " * "));
+    assert_eq!(check_bytes(&to_bytes(&v)).unwrap().verdict, Verdict::Valid);
+    // ...but the same function written differently is not recognised, and the
+    // claim "outer = 0" then has no evidence.
+    v["statement"]["constraints"][1]["expr"] = serde_json::json!(format!("({e})"));
+    assert!(matches!(
+        check_bytes(&to_bytes(&v)).unwrap().verdict,
+        Verdict::Invalid(_)
+    ));
+}

@@ -144,6 +144,8 @@ struct AreaClaim {
     literals: Vec<(usize, bool)>,
     inner: Option<(String, Interval)>,
     outer: Option<(String, Interval)>,
+    /// The set asks one function to be both negative and not: it is empty.
+    empty: bool,
 }
 
 struct Statement {
@@ -172,6 +174,7 @@ fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
         return Err(Unreadable("1 to 4 constraints are required".into()));
     }
     let mut names: Vec<String> = Vec::new();
+    let mut texts: Vec<String> = Vec::new();
     let mut roots = Vec::new();
     for c in cons {
         let o = as_obj(c, "a constraint")?;
@@ -182,6 +185,8 @@ fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
             )));
         }
         names.push(name.to_string());
+        // Identical texts (spaces aside) are the same function, hence the same set.
+        texts.push(str_of(o, "expr")?.split_whitespace().collect());
         roots.push(
             prog.compile(str_of(o, "expr")?)
                 .map_err(|e| format!("constraint {name}: {e}"))?,
@@ -243,11 +248,17 @@ fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
             }
         };
         let (inner, outer) = (bound("inner")?, bound("outer")?);
+        let empty = literals.iter().any(|&(c, yes)| {
+            literals
+                .iter()
+                .any(|&(d, yes2)| yes && !yes2 && texts[c] == texts[d])
+        });
         areas.push(AreaClaim {
             set,
             literals,
             inner,
             outer,
+            empty,
         });
     }
     let encoding = str_of(ev, "encoding")?;
@@ -447,7 +458,11 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
     // 4. The areas.
     for (k, a) in st.areas.iter().enumerate() {
         let lo = inner[k].bounds().inf();
-        let hi = (iv(outer[k].bounds().sup(), outer[k].bounds().sup()) + uncovered).sup();
+        let hi = if a.empty {
+            0.0
+        } else {
+            (iv(outer[k].bounds().sup(), outer[k].bounds().sup()) + uncovered).sup()
+        };
         if let Some((text, c)) = &a.inner {
             if c.sup() > lo {
                 return Err(format!(
