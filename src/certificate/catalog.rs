@@ -7,6 +7,7 @@
 //! | `roots/2.9` | `roots-2.9.json` | the roots of (2.9) at κ = 0.05, α = 0.7 |
 //! | `roots/2.10` | `roots-2.10.json` | the roots of (2.10) at κ = 0.1 |
 //! | `roots/2.12` | `roots-2.12.json` | the stationary points of Π̃ (2.12) at the smooth-disc defaults |
+//! | `critical-band` | `critical-band.json` | κ_crit(α) of (2.9) within a band on 31 α-boxes of [0, 31/32]: two roots below, none above |
 
 use super::paving::{paving_proof, PavingStatement};
 use super::roots::{build_pieces, kappa0_proof, roots_proof, RootsStatement};
@@ -23,6 +24,10 @@ use serde_json::Value;
 /// default picture (`detach atlas` computes the same from its plot size).
 pub const ATLAS_EPS: f64 = 1.0 / 1024.0;
 
+/// α-boxes of the `critical-band` proof: [0, 1] in 32 parts, the last one
+/// (touching α = 1, where P(0) = 0) left to the `kappa0` proof.
+pub const BAND_BOXES: usize = 32;
+
 /// Every headline result, by name, in the order `detach prove` writes them.
 pub const HEADLINE: &[&str] = &[
     "atlas/viscous-disc/derived",
@@ -35,6 +40,7 @@ pub const HEADLINE: &[&str] = &[
     "roots/2.9",
     "roots/2.10",
     "roots/2.12",
+    "critical-band",
 ];
 
 /// The file name of a named result: `atlas/ice-disc/derived` →
@@ -63,6 +69,7 @@ pub fn prove_named(name: &str) -> Result<Value, String> {
         }
         ["roots", "2.9"] => roots_2_9("0.05", "0.7"),
         ["roots", "2.10"] => roots_2_10("0.1"),
+        ["critical-band"] => Ok(super::band::critical_band_proof(BAND_BOXES)),
         ["roots", "2.12"] => Ok(roots_2_12(&ParamSet::build(
             SceneId::SmoothDisc.name(),
             SceneId::SmoothDisc.params(),

@@ -6,6 +6,7 @@
 //! [`crate::check`], shares none of this code: it parses the expressions
 //! itself and re-derives every enclosure.
 
+pub mod band;
 pub mod catalog;
 pub mod numbers;
 pub mod paving;

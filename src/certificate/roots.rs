@@ -160,7 +160,8 @@ pub fn build_pieces<F: RealFn>(f: &F, lo: f64, hi: f64, hints: &[RootEnclosure])
     out
 }
 
-fn piece_json(p: &Piece) -> Value {
+/// A piece as JSON (exact doubles in hexadecimal).
+pub fn piece_json(p: &Piece) -> Value {
     let (lo, hi) = (hex(p.lo), hex(p.hi));
     match p.kind {
         PieceKind::Exclude => json!({ "lo": lo, "hi": hi, "kind": "exclude" }),

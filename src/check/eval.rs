@@ -366,11 +366,13 @@ impl Program {
         self.names.get(name).copied()
     }
 
-    /// Declares parameters (name → decimal text), in the order given.
+    /// Declares parameters (name → decimal text, or `[lo,hi]` for a
+    /// parameter box: every value from lo to hi, ends `-inf`/`inf` allowed),
+    /// in the order given.
     pub fn add_parameters(&mut self, params: &[(String, String)]) -> Result<(), String> {
         for (name, text) in params {
             self.check_new_name(name)?;
-            let x = decimal_enclosure(text).map_err(|e| format!("parameter {name}: {e}"))?;
+            let x = parameter_enclosure(text).map_err(|e| format!("parameter {name}: {e}"))?;
             let s = self.push(Op::Const(DecInterval::new(x)))?;
             self.names.insert(name.clone(), s);
         }
@@ -462,4 +464,27 @@ pub fn show_i(i: Interval) -> String {
     } else {
         format!("[{:e}, {:e}]", i.inf(), i.sup())
     }
+}
+
+/// The enclosure of a parameter: decimal text, or a box `[lo,hi]` whose ends
+/// are decimal text (`-inf` for lo, `inf` for hi allowed) with lo ≤ hi.
+pub fn parameter_enclosure(text: &str) -> Result<Interval, String> {
+    let Some(inner) = text.strip_prefix('[').and_then(|t| t.strip_suffix(']')) else {
+        return decimal_enclosure(text);
+    };
+    let (a, b) = inner
+        .split_once(',')
+        .ok_or_else(|| format!("parameter box {text:?} must be [lo,hi]"))?;
+    let lo = match a.trim() {
+        "-inf" => f64::NEG_INFINITY,
+        t => decimal_enclosure(t)?.inf(),
+    };
+    let hi = match b.trim() {
+        "inf" => f64::INFINITY,
+        t => decimal_enclosure(t)?.sup(),
+    };
+    if !(lo <= hi) || lo == f64::INFINITY || hi == f64::NEG_INFINITY {
+        return Err(format!("parameter box {text:?} is empty"));
+    }
+    Interval::try_from((lo, hi)).map_err(|_| format!("parameter box {text:?} is not an interval"))
 }

@@ -73,10 +73,20 @@ pub type Decls = (Vec<(String, String)>, Vec<(String, String)>);
 pub fn decls(st: &Obj) -> Result<Decls, Unreadable> {
     let mut params = Vec::new();
     for (k, v) in obj_of(st, "parameters")? {
-        let text = v
-            .as_str()
-            .ok_or_else(|| Unreadable(format!("parameter {k:?} must be a string")))?;
-        params.push((k.clone(), text.to_string()));
+        // A string is one value; two strings [lo, hi] are a parameter box.
+        let text = match v {
+            Value::String(t) if !t.starts_with('[') => t.clone(),
+            Value::Array(_) => {
+                let (a, b) = pair_of(v, &format!("parameter {k:?}"))?;
+                format!("[{a},{b}]")
+            }
+            _ => {
+                return Err(Unreadable(format!(
+                    "parameter {k:?} must be a decimal string or [lo, hi]"
+                )))
+            }
+        };
+        params.push((k.clone(), text));
     }
     let mut defs = Vec::new();
     for (i, d) in arr_of(st, "definitions")?.iter().enumerate() {

@@ -10,6 +10,7 @@
 //!   the checker does.
 
 mod area;
+mod band;
 mod encoding;
 mod eval;
 mod expr;
@@ -92,6 +93,7 @@ pub fn check_str(text: &str) -> Result<Report, Unreadable> {
         "paving" => paving::check(obj)?,
         "roots" => roots::check(obj)?,
         "kappa0" => kappa0::check(obj)?,
+        "critical-band" => band::check(obj)?,
         other => return Err(Unreadable(format!("unknown claim {other:?}"))),
     };
     Ok(Report {

@@ -620,6 +620,7 @@ mod tests {
             params: vec![],
             max_evaluations: 200_000,
             json: false,
+            proof: None,
         }
     }
 
