@@ -18,8 +18,10 @@
 //!   paving of the mutated scene contradicts a claimed bound, else undetermined;
 //! - truncate: the file cut short (not JSON: unreadable);
 //! - root: a unique root's claimed enclosure moved off the root; two roots'
-//!   Newton pieces merged into one piece; κ₀'s claimed interval moved off √3/9.
+//!   Newton pieces merged into one piece; κ₀'s claimed interval moved off √3/9;
+//! - band: a cell's bounds moved wholly above its upper or below its lower bound.
 
+use detach::certificate::band::critical_band_proof;
 use detach::certificate::catalog::{roots_2_10, roots_2_9};
 use detach::certificate::{kappa0_proof, paving_proof, to_bytes, PavingStatement};
 use detach::check::{check_bytes, Verdict};
@@ -87,14 +89,35 @@ struct Base {
     proof: Value,
 }
 
-fn base(id: SceneId, variant: Variant, window: [[&'static str; 2]; 2], overrides: &[(&str, &str)]) -> Base {
-    let ov: Vec<(String, String)> = overrides.iter().map(|(a, b)| (a.to_string(), b.to_string())).collect();
+fn base(
+    id: SceneId,
+    variant: Variant,
+    window: [[&'static str; 2]; 2],
+    overrides: &[(&str, &str)],
+) -> Base {
+    let ov: Vec<(String, String)> = overrides
+        .iter()
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .collect();
     let (scene, params) = Scene::build(id, &ov).unwrap();
-    let domain = scene.domain().window(Some(window[0]), Some(window[1])).unwrap();
-    let opts = PaveOptions { eps: 1.0 / 32.0, max_boxes: 100_000 };
+    let domain = scene
+        .domain()
+        .window(Some(window[0]), Some(window[1]))
+        .unwrap();
+    let opts = PaveOptions {
+        eps: 1.0 / 32.0,
+        max_boxes: 100_000,
+    };
     let paving = pave_scene_in(&scene, variant, &domain, opts, |_, _, _| {}).unwrap();
     let proof = statement_of(&scene, &params, variant, window, &paving);
-    Base { scene, id, variant, window, paving, proof }
+    Base {
+        scene,
+        id,
+        variant,
+        window,
+        paving,
+        proof,
+    }
 }
 
 fn statement_of(
@@ -104,7 +127,10 @@ fn statement_of(
     window: [[&str; 2]; 2],
     paving: &Paving,
 ) -> Value {
-    let domain = scene.domain().window(Some(window[0]), Some(window[1])).unwrap();
+    let domain = scene
+        .domain()
+        .window(Some(window[0]), Some(window[1]))
+        .unwrap();
     paving_proof(
         &PavingStatement {
             scene: scene.id(),
@@ -137,9 +163,24 @@ fn leaf_positions(p: &Paving) -> Vec<usize> {
 
 fn bases() -> Vec<Base> {
     vec![
-        base(SceneId::ViscousDisc, Variant::Derived, [["1", "2.5"], ["-10", "10"]], &[]),
-        base(SceneId::IceDisc, Variant::Printed, [["0.3", "2.9"], ["-6", "6"]], &[]),
-        base(SceneId::SmoothDisc, Variant::Derived, [["0.2", "1.5"], ["-10", "10"]], &[]),
+        base(
+            SceneId::ViscousDisc,
+            Variant::Derived,
+            [["1", "2.5"], ["-10", "10"]],
+            &[],
+        ),
+        base(
+            SceneId::IceDisc,
+            Variant::Printed,
+            [["0.3", "2.9"], ["-6", "6"]],
+            &[],
+        ),
+        base(
+            SceneId::SmoothDisc,
+            Variant::Derived,
+            [["0.2", "1.5"], ["-10", "10"]],
+            &[],
+        ),
     ]
 }
 
@@ -197,12 +238,16 @@ fn mutate(b: &Base, m: &PavingMutation) -> Option<(Truth, Vec<u8>)> {
     let mut p = b.paving.clone();
     let out = match *m {
         PavingMutation::FlipDecided(i, k) => {
-            let (i, l) = (0..n).map(|j| (i + j) % n).find_map(|j| flip(p.leaves[j].labels[k]).map(|l| (j, l)))?;
+            let (i, l) = (0..n)
+                .map(|j| (i + j) % n)
+                .find_map(|j| flip(p.leaves[j].labels[k]).map(|l| (j, l)))?;
             p.leaves[i].labels[k] = l;
             (Truth::False, bytes_of(&with_tree(b, &p)))
         }
         PavingMutation::Undecide(i, k) => {
-            let i = (0..n).map(|j| (i + j) % n).find(|&j| p.leaves[j].labels[k].is_decided())?;
+            let i = (0..n)
+                .map(|j| (i + j) % n)
+                .find(|&j| p.leaves[j].labels[k].is_decided())?;
             p.leaves[i].labels[k] = Label::Undecided;
             (Truth::True, bytes_of(&with_tree(b, &p)))
         }
@@ -215,7 +260,11 @@ fn mutate(b: &Base, m: &PavingMutation) -> Option<(Truth, Vec<u8>)> {
             let opposite = (0..2).any(|k| flip(a[k]) == Some(c[k]));
             p.leaves[i].labels = c;
             p.leaves[j].labels = a;
-            let truth = if opposite { Truth::False } else { Truth::Unknown };
+            let truth = if opposite {
+                Truth::False
+            } else {
+                Truth::Unknown
+            };
             (truth, bytes_of(&with_tree(b, &p)))
         }
         PavingMutation::Drop(i) => {
@@ -224,7 +273,9 @@ fn mutate(b: &Base, m: &PavingMutation) -> Option<(Truth, Vec<u8>)> {
             // A binary tree missing a leaf no longer closes: structurally false.
             (Truth::False, bytes_of(&with_tree(b, &p)))
         }
-        PavingMutation::RaiseInner(c) | PavingMutation::LowerOuter(c) | PavingMutation::Widen(c) => {
+        PavingMutation::RaiseInner(c)
+        | PavingMutation::LowerOuter(c)
+        | PavingMutation::Widen(c) => {
             let mut v = b.proof.clone();
             let a = &mut v["statement"]["areas"][c];
             let (inner, outer) = (decimal_of(&a["inner"]), decimal_of(&a["outer"]));
@@ -256,7 +307,10 @@ fn mutate(b: &Base, m: &PavingMutation) -> Option<(Truth, Vec<u8>)> {
                 return None;
             }
             let mut v = b.proof.clone();
-            let e = v["statement"]["constraints"][k]["expr"].as_str().unwrap().to_string();
+            let e = v["statement"]["constraints"][k]["expr"]
+                .as_str()
+                .unwrap()
+                .to_string();
             let (new, truth) = if matches!(m, PavingMutation::Negate(_)) {
                 (format!("-({e})"), Truth::False)
             } else {
@@ -264,11 +318,22 @@ fn mutate(b: &Base, m: &PavingMutation) -> Option<(Truth, Vec<u8>)> {
                     l.labels[k] == Label::ProvedIn && {
                         let c = b.scene.constraints_on(b.variant, l.bx.theta_interval());
                         let w = inari::DecInterval::new(l.bx.theta_dot_interval());
-                        let g = if k == 0 { c.omega.eval(w) } else { c.omega0.eval(w) };
+                        let g = if k == 0 {
+                            c.omega.eval(w)
+                        } else {
+                            c.omega0.eval(w)
+                        };
                         g.interval().is_some_and(|x| x.inf() > -1e6)
                     }
                 });
-                (format!("({e}) + 1000000"), if bounded { Truth::False } else { Truth::Unknown })
+                (
+                    format!("({e}) + 1000000"),
+                    if bounded {
+                        Truth::False
+                    } else {
+                        Truth::Unknown
+                    },
+                )
             };
             v["statement"]["constraints"][k]["expr"] = json!(new);
             (truth, bytes_of(&v))
@@ -279,7 +344,11 @@ fn mutate(b: &Base, m: &PavingMutation) -> Option<(Truth, Vec<u8>)> {
             let keys: Vec<String> = params.keys().cloned().collect();
             let key = &keys[i % keys.len()];
             let text = params[key].as_str().unwrap().to_string();
-            let digits: Vec<usize> = text.char_indices().filter(|(_, c)| c.is_ascii_digit()).map(|(k, _)| k).collect();
+            let digits: Vec<usize> = text
+                .char_indices()
+                .filter(|(_, c)| c.is_ascii_digit())
+                .map(|(k, _)| k)
+                .collect();
             let at = digits[j % digits.len()];
             let mut new = text.clone();
             new.replace_range(at..at + 1, &d.to_string());
@@ -291,15 +360,31 @@ fn mutate(b: &Base, m: &PavingMutation) -> Option<(Truth, Vec<u8>)> {
             let truth = match Scene::build(b.id, &[(key.clone(), new.clone())]) {
                 Err(_) => Truth::Unknown,
                 Ok((scene, _)) => {
-                    let domain = scene.domain().window(Some(b.window[0]), Some(b.window[1])).unwrap();
-                    let opts = PaveOptions { eps: 1.0 / 64.0, max_boxes: 100_000 };
+                    let domain = scene
+                        .domain()
+                        .window(Some(b.window[0]), Some(b.window[1]))
+                        .unwrap();
+                    let opts = PaveOptions {
+                        eps: 1.0 / 64.0,
+                        max_boxes: 100_000,
+                    };
                     let q = pave_scene_in(&scene, b.variant, &domain, opts, |_, _, _| {}).unwrap();
                     let cells = detach::pave::standard_cells();
-                    let contradicted = v["statement"]["areas"].as_array().unwrap().iter().enumerate().any(|(c, a)| {
-                        let ab = q.area_bounds(&cells[c], domain.uncovered_area_sup());
-                        decimal_of(&a["inner"]) > ab.outer_area || decimal_of(&a["outer"]) < ab.inner_area
-                    });
-                    if contradicted { Truth::False } else { Truth::Unknown }
+                    let contradicted = v["statement"]["areas"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .enumerate()
+                        .any(|(c, a)| {
+                            let ab = q.area_bounds(&cells[c], domain.uncovered_area_sup());
+                            decimal_of(&a["inner"]) > ab.outer_area
+                                || decimal_of(&a["outer"]) < ab.inner_area
+                        });
+                    if contradicted {
+                        Truth::False
+                    } else {
+                        Truth::Unknown
+                    }
                 }
             };
             (truth, bytes_of(&v))
@@ -317,7 +402,10 @@ fn mutate(b: &Base, m: &PavingMutation) -> Option<(Truth, Vec<u8>)> {
 fn paving_mutants_are_rejected_when_false() {
     let bases = bases();
     for b in &bases {
-        assert_eq!(check_bytes(&bytes_of(&b.proof)).unwrap().verdict, Verdict::Valid);
+        assert_eq!(
+            check_bytes(&bytes_of(&b.proof)).unwrap().verdict,
+            Verdict::Valid
+        );
     }
     let counts = Counts::default();
     let mut runner = TestRunner::new(Config::with_cases(7_000));
@@ -341,6 +429,9 @@ enum RootMutation {
     KappaDigit(usize, u8),
     Kappa0Off,
     Kappa0Wider,
+    BandLowerAboveUpper(usize),
+    BandUpperBelowLower(usize),
+    BandWiden(usize),
     FlipPieceKind(usize),
     Truncate(usize),
 }
@@ -354,12 +445,20 @@ fn root_mutation() -> impl Strategy<Value = RootMutation> {
         (i, 0u8..10).prop_map(|(a, d)| RootMutation::KappaDigit(a, d)),
         Just(RootMutation::Kappa0Off),
         Just(RootMutation::Kappa0Wider),
+        any::<usize>().prop_map(RootMutation::BandLowerAboveUpper),
+        any::<usize>().prop_map(RootMutation::BandUpperBelowLower),
+        any::<usize>().prop_map(RootMutation::BandWiden),
         i.prop_map(RootMutation::FlipPieceKind),
         i.prop_map(RootMutation::Truncate),
     ]
 }
 
-fn mutate_roots(r29: &Value, k0: &Value, m: &RootMutation) -> Option<(Truth, Vec<u8>)> {
+fn mutate_roots(
+    r29: &Value,
+    k0: &Value,
+    band: &Value,
+    m: &RootMutation,
+) -> Option<(Truth, Vec<u8>)> {
     let mut v = r29.clone();
     let roots_len = v["statement"]["roots"].as_array().unwrap().len();
     Some(match *m {
@@ -376,7 +475,12 @@ fn mutate_roots(r29: &Value, k0: &Value, m: &RootMutation) -> Option<(Truth, Vec
         RootMutation::MergeNewton => {
             // One "newton" piece over both roots: it would claim one root where there are two.
             let pieces = v["evidence"]["pieces"].as_array().unwrap().clone();
-            let idx: Vec<usize> = pieces.iter().enumerate().filter(|(_, p)| p["kind"] == "newton").map(|(i, _)| i).collect();
+            let idx: Vec<usize> = pieces
+                .iter()
+                .enumerate()
+                .filter(|(_, p)| p["kind"] == "newton")
+                .map(|(i, _)| i)
+                .collect();
             let (a, c) = (idx[0], idx[1]);
             let mut merged = pieces[a].clone();
             merged["hi"] = pieces[c]["hi"].clone();
@@ -394,8 +498,15 @@ fn mutate_roots(r29: &Value, k0: &Value, m: &RootMutation) -> Option<(Truth, Vec
             (Truth::Unknown, bytes_of(&v))
         }
         RootMutation::KappaDigit(j, d) => {
-            let text = v["statement"]["parameters"]["kappa"].as_str().unwrap().to_string();
-            let digits: Vec<usize> = text.char_indices().filter(|(_, c)| c.is_ascii_digit()).map(|(k, _)| k).collect();
+            let text = v["statement"]["parameters"]["kappa"]
+                .as_str()
+                .unwrap()
+                .to_string();
+            let digits: Vec<usize> = text
+                .char_indices()
+                .filter(|(_, c)| c.is_ascii_digit())
+                .map(|(k, _)| k)
+                .collect();
             let at = digits[j % digits.len()];
             let mut new = text.clone();
             new.replace_range(at..at + 1, &d.to_string());
@@ -411,7 +522,8 @@ fn mutate_roots(r29: &Value, k0: &Value, m: &RootMutation) -> Option<(Truth, Vec
                     let fresh = &p["statement"]["roots"];
                     let disjoint_from_all = |c: &Value| {
                         fresh.as_array().unwrap().iter().all(|f| {
-                            decimal_of(&f["hi"]) < decimal_of(&c["lo"]) || decimal_of(&c["hi"]) < decimal_of(&f["lo"])
+                            decimal_of(&f["hi"]) < decimal_of(&c["lo"])
+                                || decimal_of(&c["hi"]) < decimal_of(&f["lo"])
                         })
                     };
                     if p["statement"]["complete"] == true
@@ -434,6 +546,39 @@ fn mutate_roots(r29: &Value, k0: &Value, m: &RootMutation) -> Option<(Truth, Vec
             let mut k = k0.clone();
             k["statement"]["kappa0"] = json!({ "lo": "0.19", "hi": "0.2" });
             (Truth::True, bytes_of(&k))
+        }
+        RootMutation::BandLowerAboveUpper(i)
+        | RootMutation::BandUpperBelowLower(i)
+        | RootMutation::BandWiden(i) => {
+            // The original proves lower₀ ≤ κ_crit(α) ≤ upper₀ on the box:
+            // "≥ 2 roots for κ ≤ upper₀·1.01" and "none for κ ≥ lower₀·0.99"
+            // are false at κ_crit (κ_crit(α) > 0 where lower₀ > 0).
+            let mut b = band.clone();
+            let cells = b["statement"]["cells"].as_array_mut().unwrap();
+            let n = cells.len();
+            let c = &mut cells[i % n];
+            let (lo, hi) = (decimal_of(&c["lower"]), decimal_of(&c["upper"]));
+            let truth = match m {
+                RootMutation::BandLowerAboveUpper(_) => {
+                    c["lower"] = json!(format!("{:e}", hi * 1.01));
+                    c["upper"] = json!(format!("{:e}", hi * 1.02));
+                    Truth::False
+                }
+                RootMutation::BandUpperBelowLower(_) => {
+                    if lo <= 0.0 {
+                        return None;
+                    }
+                    c["upper"] = json!(format!("{:e}", lo * 0.99));
+                    c["lower"] = json!(format!("{:e}", lo * 0.98));
+                    Truth::False
+                }
+                _ => {
+                    c["lower"] = json!(format!("{:e}", lo * 0.5));
+                    c["upper"] = json!(format!("{:e}", hi * 2.0));
+                    Truth::True
+                }
+            };
+            (truth, bytes_of(&b))
         }
         RootMutation::FlipPieceKind(i) => {
             let pieces = v["evidence"]["pieces"].as_array_mut().unwrap();
@@ -458,19 +603,20 @@ fn root_mutants_are_rejected_when_false() {
     let r29 = roots_2_9("0.05", "0.7").unwrap();
     let r210 = roots_2_10("0.1").unwrap();
     let k0 = kappa0_proof(&RootEnclosure::unique(prove_kappa0().mu_star.interval()));
-    for v in [&r29, &r210, &k0] {
+    let band = critical_band_proof(8);
+    for v in [&r29, &r210, &k0, &band] {
         assert_eq!(check_bytes(&bytes_of(v)).unwrap().verdict, Verdict::Valid);
     }
     let counts = Counts::default();
     let mut runner = TestRunner::new(Config::with_cases(4_000));
     runner
         .run(&root_mutation(), |m| {
-            if let Some((truth, bytes)) = mutate_roots(&r29, &k0, &m) {
+            if let Some((truth, bytes)) = mutate_roots(&r29, &k0, &band, &m) {
                 counts.record(truth, &bytes)?;
             }
             Ok(())
         })
         .unwrap();
-    counts.report("roots and kappa0");
+    counts.report("roots, kappa0 and critical band");
     assert!(counts.tried.get() >= 3_000);
 }

@@ -28,7 +28,11 @@ fn committed_proofs_are_regenerated_byte_for_byte() {
         let committed = std::fs::read(dir.join(file_name(name)))
             .unwrap_or_else(|e| panic!("proofs/{}: {e}", file_name(name)));
         let fresh = to_bytes(&prove_named(name).unwrap());
-        assert!(committed == fresh, "proofs/{} is stale: run `detach prove`", file_name(name));
+        assert!(
+            committed == fresh,
+            "proofs/{} is stale: run `detach prove`",
+            file_name(name)
+        );
     }
 }
 
@@ -108,7 +112,10 @@ fn identical_constraint_texts_make_opposite_cells_exactly_empty() {
     assert_eq!(v["statement"]["areas"][cell]["outer"], "0");
     assert_eq!(check_bytes(&to_bytes(&v)).unwrap().verdict, Verdict::Valid);
     // Spacing does not matter...
-    let e = v["statement"]["constraints"][1]["expr"].as_str().unwrap().to_string();
+    let e = v["statement"]["constraints"][1]["expr"]
+        .as_str()
+        .unwrap()
+        .to_string();
     v["statement"]["constraints"][1]["expr"] = serde_json::json!(e.replace('*', " * "));
     assert_eq!(check_bytes(&to_bytes(&v)).unwrap().verdict, Verdict::Valid);
     // ...but the same function written differently is not recognised, and the
@@ -118,4 +125,29 @@ fn identical_constraint_texts_make_opposite_cells_exactly_empty() {
         check_bytes(&to_bytes(&v)).unwrap().verdict,
         Verdict::Invalid(_)
     ));
+}
+
+#[test]
+fn critical_band_agrees_with_the_isolator() {
+    // Independent: (2.9) solved by the θ-isolator just below `lower` (two
+    // roots) and just above `upper` (none), at both ends of a few α-boxes.
+    use detach::param::enclose_decimal;
+    use detach::roots::{solve_2_9, Budget};
+    let band = prove_named("critical-band").unwrap();
+    let cells = band["statement"]["cells"].as_array().unwrap();
+    for c in cells.iter().step_by(5) {
+        let num = |k: &str| c[k].as_str().unwrap().parse::<f64>().unwrap();
+        let (lower, upper) = (num("lower"), num("upper"));
+        for a in [&c["alpha"][0], &c["alpha"][1]] {
+            let alpha = enclose_decimal("a", a.as_str().unwrap()).unwrap();
+            let above = enclose_decimal("k", &format!("{:e}", upper * 1.001)).unwrap();
+            let r = solve_2_9(above, alpha, &Budget::default()).unwrap();
+            assert!(r.complete && r.roots.is_empty(), "{c}: {r:?}");
+            if lower > 0.0 {
+                let below = enclose_decimal("k", &format!("{:e}", lower * 0.999)).unwrap();
+                let r = solve_2_9(below, alpha, &Budget::default()).unwrap();
+                assert!(r.roots.len() >= 2, "{c}: {r:?}");
+            }
+        }
+    }
 }

@@ -70,12 +70,14 @@ pub fn prove_named(name: &str) -> Result<Value, String> {
         ["roots", "2.9"] => roots_2_9("0.05", "0.7"),
         ["roots", "2.10"] => roots_2_10("0.1"),
         ["critical-band"] => Ok(super::band::critical_band_proof(BAND_BOXES)),
-        ["roots", "2.12"] => Ok(roots_2_12(&ParamSet::build(
-            SceneId::SmoothDisc.name(),
-            SceneId::SmoothDisc.params(),
-            &[],
-        )
-        .expect("defaults are valid"))),
+        ["roots", "2.12"] => Ok(roots_2_12(
+            &ParamSet::build(
+                SceneId::SmoothDisc.name(),
+                SceneId::SmoothDisc.params(),
+                &[],
+            )
+            .expect("defaults are valid"),
+        )),
         _ => Err(format!(
             "unknown result `{name}` (known: {})",
             HEADLINE.join(", ")
@@ -119,10 +121,7 @@ const F_2_9: &str = "kappa*sin(t)^2*sin(t) - cos(t)*(alpha - cos(t))*(1 - alpha*
 pub fn roots_2_9(kappa: &str, alpha: &str) -> Result<Value, String> {
     let (k, a) = (dec("kappa", kappa)?, dec("alpha", alpha)?);
     let sol = solve_2_9(k, a, &Budget::default()).map_err(|e| e.to_string())?;
-    let f = crate::roots::equations::Eq29 {
-        kappa: k,
-        alpha: a,
-    };
+    let f = crate::roots::equations::Eq29 { kappa: k, alpha: a };
     let pieces = build_pieces(&f, 0.0, Interval::PI.sup(), &sol.roots);
     Ok(roots_proof(
         &RootsStatement {
@@ -194,8 +193,7 @@ pub fn roots_2_12(params: &ParamSet) -> Value {
             title: "the stationary points of Π̃ (2.12) on θ ∈ (0, π), smooth disc".into(),
             equation: "2.12",
             paper: "§2 (2.12): m g a cos θ + A τ τ' = 0; multiplied by sin³θ > 0, \
-                    A τ τ' sin³θ = (p_ψ − p_φ cos θ)(p_φ − p_ψ cos θ)/A"
-                .into(),
+                    A τ τ' sin³θ = (p_ψ − p_φ cos θ)(p_φ − p_ψ cos θ)/A",
             parameters: params
                 .texts()
                 .into_iter()
@@ -237,7 +235,11 @@ mod tests {
                     // A binary tree: nodes = 2·leaves − 1.
                     assert_eq!(nodes, 2 * leaves - 1, "{name}");
                     let body = v["evidence"]["body"].as_str().unwrap().len() as f64;
-                    eprintln!("{name}: {leaves} leaves, {} B, body {:.2} B/leaf", bytes.len(), body / leaves as f64);
+                    eprintln!(
+                        "{name}: {leaves} leaves, {} B, body {:.2} B/leaf",
+                        bytes.len(),
+                        body / leaves as f64
+                    );
                     assert!(body / (leaves as f64) <= 2.0, "{name}");
                 }
                 "roots" => {
@@ -246,7 +248,7 @@ mod tests {
                 }
                 _ => eprintln!("{name}: {} B, {}", bytes.len(), st["kappa0"]),
             }
-            assert_ne!(prove_named("nope").is_ok(), true);
+            assert!(prove_named("nope").is_err());
         }
     }
 }

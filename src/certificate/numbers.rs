@@ -85,7 +85,9 @@ fn tidy(t: &str) -> String {
         format!("{sign}{digits}{}", "0".repeat(e as usize))
     } else if point > 0 && e < 0 {
         let (a, b) = digits.split_at(point as usize);
-        format!("{sign}{a}.{}", b.trim_end_matches('0')).trim_end_matches('.').to_string()
+        format!("{sign}{a}.{}", b.trim_end_matches('0'))
+            .trim_end_matches('.')
+            .to_string()
     } else if point <= 0 && point > -20 {
         let b = format!("{}{}", "0".repeat((-point) as usize), digits);
         format!("{sign}0.{}", b.trim_end_matches('0'))

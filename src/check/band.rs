@@ -101,7 +101,10 @@ fn verify_cell(below: &OneVar, above: &OneVar, cell: &Cell) -> Result<(), String
     let lower = decimal_enclosure(&cell.lower)?;
     let upper = decimal_enclosure(&cell.upper)?;
     if lower.inf() < 0.0 || lower.sup() > upper.inf() {
-        return Err(format!("need 0 ≤ lower ≤ upper, got {} and {}", cell.lower, cell.upper));
+        return Err(format!(
+            "need 0 ≤ lower ≤ upper, got {} and {}",
+            cell.lower, cell.upper
+        ));
     }
     // (i) Signs +, −, + at x0 < x1 < x2 with x0 ≥ 0, f continuous on [x0, x2]:
     // two zeros in (x0, x2) ⊂ (0, ∞) for every alpha and kappa ∈ [0, lower].
@@ -111,11 +114,16 @@ fn verify_cell(below: &OneVar, above: &OneVar, cell: &Cell) -> Result<(), String
             return Err("lower > 0 needs exactly three points".into());
         };
         if !(0.0 <= x0 && x0 < x1 && x1 < x2 && x2.is_finite()) {
-            return Err(format!("points must satisfy 0 ≤ x0 < x1 < x2, got {x0:e} {x1:e} {x2:e}"));
+            return Err(format!(
+                "points must satisfy 0 ≤ x0 < x1 < x2, got {x0:e} {x1:e} {x2:e}"
+            ));
         }
         let whole = below.value(Interval::try_from((x0, x2)).map_err(|_| "bad points")?);
         if !continuous(whole) {
-            return Err(format!("f is not continuous on [x0, x2], computed {}", show(whole)));
+            return Err(format!(
+                "f is not continuous on [x0, x2], computed {}",
+                show(whole)
+            ));
         }
         for (x, positive) in [(x0, true), (x1, false), (x2, true)] {
             let v = below.value(point(x));
@@ -139,7 +147,10 @@ fn verify_cell(below: &OneVar, above: &OneVar, cell: &Cell) -> Result<(), String
     pieces::check_cover(&cell.pieces, 0.0, f64::INFINITY)?;
     for (k, q) in cell.pieces.iter().enumerate() {
         if !matches!(q.kind, Kind::Exclude | Kind::ExcludeMv(_)) {
-            return Err(format!("piece {}: only exclusion pieces prove no zero", k + 1));
+            return Err(format!(
+                "piece {}: only exclusion pieces prove no zero",
+                k + 1
+            ));
         }
         pieces::check_piece(above, k + 1, q, false)?;
     }

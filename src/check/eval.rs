@@ -483,7 +483,8 @@ pub fn parameter_enclosure(text: &str) -> Result<Interval, String> {
         "inf" => f64::INFINITY,
         t => decimal_enclosure(t)?.sup(),
     };
-    if !(lo <= hi) || lo == f64::INFINITY || hi == f64::NEG_INFINITY {
+    // NaN cannot occur (both ends come from enclosures or ±inf).
+    if lo > hi || lo == f64::INFINITY || hi == f64::NEG_INFINITY {
         return Err(format!("parameter box {text:?} is empty"));
     }
     Interval::try_from((lo, hi)).map_err(|_| format!("parameter box {text:?} is not an interval"))

@@ -116,10 +116,7 @@ impl Model for IceDisc {
                     .take(2),
             );
         }
-        definitions.push((
-            "vx",
-            "c0 - a/A*(p_psi*ln(tan(t/2)) - p_phi*ln(sin(t)))",
-        ));
+        definitions.push(("vx", "c0 - a/A*(p_psi*ln(tan(t/2)) - p_phi*ln(sin(t)))"));
         let omega0 = match v {
             Variant::Printed => {
                 definitions.push(("bracket", "m*g*a*cos(t) - m*a*vx*tau + A*tau*tau1"));
