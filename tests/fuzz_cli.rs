@@ -211,19 +211,28 @@ fn flags(sub: &str) -> &'static [(&'static str, Pool)] {
     }
 }
 
+/// Weighted by cost: `atlas` draws six pictures, so it comes rarely.
 const SUBCOMMANDS: &[&str] = &[
     "pave",
     "pave",
     "pave",
+    "pave",
+    "pave",
+    "pave",
+    "roots",
+    "roots",
     "roots",
     "roots",
     "critical-curve",
+    "critical-curve",
+    "tangency",
     "tangency",
     "scenes",
     "kappa0",
-    "atlas",
+    "kappa0",
     "",
     "frobnicate",
+    "atlas",
 ];
 
 fn pick(pool: Pool) -> BoxedStrategy<String> {
@@ -512,6 +521,16 @@ fn adversarial_classics() {
             "--param",
             "p_phi=1e-170",
         ],
+        &["atlas", "--eps", "1e-320", "--max-boxes", "300"],
+        &[
+            "pave",
+            "--scene",
+            "ice-disc",
+            "--eps",
+            "4.9e-324",
+            "--max-boxes",
+            "300",
+        ],
         &["--version"],
         &["--help"],
         &["pave", "--help"],
@@ -526,4 +545,77 @@ fn adversarial_classics() {
         check(&args, &dir).unwrap_or_else(|e| panic!("{e}"));
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The exact rational value of a plain decimal literal (sign, digits, an
+/// optional fraction and exponent), or `None` if it is not one.
+fn exact_rational(text: &str) -> Option<rug::Rational> {
+    let t = text.trim();
+    let (neg, body) = match t.strip_prefix('-') {
+        Some(b) => (true, b),
+        None => (false, t.strip_prefix('+').unwrap_or(t)),
+    };
+    let (mant, exp) = match body.find(['e', 'E']) {
+        Some(i) => (&body[..i], body[i + 1..].parse::<i32>().ok()?),
+        None => (body, 0),
+    };
+    let (int, frac) = mant.split_once('.').unwrap_or((mant, ""));
+    if int.is_empty() && frac.is_empty()
+        || !int.bytes().chain(frac.bytes()).all(|b| b.is_ascii_digit())
+    {
+        return None;
+    }
+    let digits: rug::Integer = format!("0{int}{frac}").parse().ok()?;
+    let e = exp - frac.len() as i32;
+    let pow10 = |k: u32| rug::Integer::from(rug::Integer::u_pow_u(10, k));
+    let q = if e >= 0 {
+        rug::Rational::from(digits * pow10(e as u32))
+    } else {
+        rug::Rational::from((digits, pow10((-e) as u32)))
+    };
+    Some(if neg { -q } else { q })
+}
+
+proptest! {
+    #![proptest_config(Config { cases: 3000, failure_persistence: None, ..Config::default() })]
+
+    /// `enclose_decimal` never panics, and when it accepts a literal its
+    /// enclosure contains the exact rational and is tight (one double, or two
+    /// adjacent ones); a refused plain literal is one beyond the double range.
+    #[test]
+    fn decimal_enclosures_contain_the_exact_value(
+        text in prop_oneof![
+            "[-+]?[0-9]{0,25}(\\.[0-9]{0,25})?([eE][-+]?[0-9]{1,3})?",
+            "\\PC{0,12}",
+        ]
+    ) {
+        let r = detach::param::enclose_decimal("x", &text);
+        match (r, exact_rational(&text)) {
+            (Ok(x), Some(q)) => {
+                let lo = rug::Rational::from_f64(x.inf()).unwrap();
+                let hi = rug::Rational::from_f64(x.sup()).unwrap();
+                prop_assert!(lo <= q && q <= hi, "{text}: [{}, {}]", x.inf(), x.sup());
+                let next = |v: f64| if v == 0.0 { 5e-324 } else if v > 0.0 {
+                    f64::from_bits(v.to_bits() + 1)
+                } else {
+                    f64::from_bits(v.to_bits() - 1)
+                };
+                prop_assert!(
+                    x.inf() == x.sup() || next(x.inf()) == x.sup(),
+                    "{text}: not tight: [{:e}, {:e}]", x.inf(), x.sup()
+                );
+            }
+            (Err(detach::param::ParamError::TooLarge { .. }), Some(q)) => {
+                let max = rug::Rational::from_f64(f64::MAX).unwrap();
+                prop_assert!(q.clone().abs() > max, "{text} refused as too large");
+            }
+            (Err(_), Some(_)) => {
+                // plain literals with exponents beyond ±999999 digits are the
+                // only others refused; the strategy stays far below
+                prop_assert!(false, "{text}: a plain decimal refused");
+            }
+            (Ok(x), None) => prop_assert!(false, "{text}: accepted as {x:?}"),
+            (Err(_), None) => {}
+        }
+    }
 }
