@@ -2,8 +2,8 @@
 //! witness box (inside one, outside the other); where they agree, a check that
 //! they never contradict each other.
 
-use detach::pave::{Label, PhaseBox};
-use detach::scene::{Angle, Scene, SceneId, Variant};
+use detach::pave::{pave, AreaBounds, CellSpec, ConstraintSet, Label, PaveOptions, PhaseBox};
+use detach::scene::{Angle, Constraints, Scene, SceneId, Variant};
 use inari::{DecInterval, Interval};
 
 fn iv(lo: f64, hi: f64) -> Interval {
@@ -138,4 +138,115 @@ fn claim_1_12_omega0_inside_omega_where_theta_dot_cos_theta_positive() {
             }
         }
     }
+}
+
+#[test]
+fn viscous_omega0_derived_has_points_outside_printed() {
+    // The converse of the test above: near θ = 2.64, θ̇ ≈ 9.9 the derived Ω₀
+    // (N > 0) holds and the printed (1.11) fails — so neither Ω₀ contains
+    // the other, and "both printed regions are larger" is false for Ω₀.
+    let s = Scene::default_of(SceneId::ViscousDisc);
+    let (th, w) = ([2.63, 2.65], [9.8, 10.0]);
+    assert_eq!(labels(&s, Variant::Derived, th, w)[1], Label::ProvedIn);
+    assert_eq!(labels(&s, Variant::Printed, th, w)[1], Label::ProvedOut);
+}
+
+#[test]
+fn viscous_derived_omega_lies_inside_printed_omega() {
+    // Printed (1.10) minus 2C × derived is −g m h'² ≤ 0, so derived Ω ⊂
+    // printed Ω. No box may be in the derived Ω and out of the printed one.
+    let s = Scene::default_of(SceneId::ViscousDisc);
+    let mut both = 0;
+    for b in grid(&s, 200) {
+        let d = labels(&s, Variant::Derived, b.theta, b.theta_dot)[0];
+        let p = labels(&s, Variant::Printed, b.theta, b.theta_dot)[0];
+        assert!(
+            !(d == Label::ProvedIn && p == Label::ProvedOut),
+            "{b:?}: derived in, printed out"
+        );
+        both += (d == Label::ProvedIn && p == Label::ProvedIn) as usize;
+    }
+    assert!(both > 10_000, "{both}");
+}
+
+/// The two readings of one constraint of the viscous disc as a paving.
+struct TwoReadings<'a> {
+    scene: &'a Scene,
+    /// 0: Ω, 1: Ω₀.
+    which: usize,
+}
+
+impl ConstraintSet for TwoReadings<'_> {
+    type Slab = [Constraints<DecInterval>; 2];
+    fn names(&self) -> Vec<String> {
+        vec!["derived".into(), "printed".into()]
+    }
+    fn slab(&self, theta: Interval) -> Self::Slab {
+        [
+            self.scene.constraints_on(Variant::Derived, theta),
+            self.scene.constraints_on(Variant::Printed, theta),
+        ]
+    }
+    fn enclose(&self, c: &Self::Slab, theta_dot: Interval) -> Vec<DecInterval> {
+        let w = DecInterval::new(theta_dot);
+        c.iter()
+            .map(|c| {
+                if self.which == 0 {
+                    c.omega.eval(w)
+                } else {
+                    c.omega0.eval(w)
+                }
+            })
+            .collect()
+    }
+}
+
+/// Certified area bounds of {derived in, printed out} and {printed in,
+/// derived out} for Ω (0) or Ω₀ (1) of the viscous disc at its defaults.
+fn only_in_one_reading(which: usize) -> (AreaBounds, AreaBounds) {
+    let s = Scene::default_of(SceneId::ViscousDisc);
+    let d = s.domain();
+    let b = d.inner_box();
+    let root = PhaseBox {
+        theta: b[0],
+        theta_dot: b[1],
+    };
+    let p = pave(
+        &TwoReadings { scene: &s, which },
+        root,
+        PaveOptions {
+            eps: 1.0 / 4096.0,
+            max_boxes: 2_000_000,
+        },
+        |_, _, _| {},
+    )
+    .unwrap();
+    let u = d.uncovered_area_sup();
+    (
+        p.area_bounds(&CellSpec::of(&[Some(true), Some(false)]), u),
+        p.area_bounds(&CellSpec::of(&[Some(false), Some(true)]), u),
+    )
+}
+
+#[test]
+fn viscous_areas_only_in_one_reading() {
+    // README: the derived Ω₀ has about 1.6 units of area outside the printed
+    // one (certified in [1.55, 1.62]); the printed Ω₀ about 5.3 units outside
+    // the derived one (certified in [5.27, 5.35]).
+    let (derived_only, printed_only) = only_in_one_reading(1);
+    assert!(derived_only.inner_area >= 1.55, "{derived_only:?}");
+    assert!(derived_only.outer_area <= 1.62, "{derived_only:?}");
+    assert!(printed_only.inner_area >= 5.27, "{printed_only:?}");
+    assert!(printed_only.outer_area <= 5.35, "{printed_only:?}");
+    // Ω: the derived one lies inside the printed one (the cell {derived in,
+    // printed out} is empty; its outer bound is only the boundary strip where
+    // the two touch, at θ = ±π/2), and the printed one is larger.
+    let (derived_only, printed_only) = only_in_one_reading(0);
+    assert_eq!(derived_only.inner_area, 0.0);
+    assert!(derived_only.outer_area < 0.01, "{derived_only:?}");
+    assert!(printed_only.inner_area > 1.0, "{printed_only:?}");
+    eprintln!(
+        "Ω: derived only ≤ {}, printed only ≥ {}",
+        derived_only.outer_area, printed_only.inner_area
+    );
 }

@@ -170,7 +170,9 @@ fn pave_and_report(
     variant: Variant,
     opts: PaveOptions,
 ) -> Result<(Paving, PaveReport), CliError> {
-    let levels = 2 * (1.0 / opts.eps).log2().ceil().max(0.0) as u64 + 1;
+    // Two levels per halving of each axis; 1/eps may be +∞ (eps subnormal),
+    // and no double interval halves more than about 1100 times.
+    let levels = (2.0 * (1.0 / opts.eps).log2().ceil().clamp(0.0, 1100.0)) as u64 + 1;
     let bar = progress_bar(levels, scene.id().name());
     let start = Instant::now();
     let paving = pave_scene_in(scene, variant, domain, opts, |level, open, leaves| {

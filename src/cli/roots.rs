@@ -408,7 +408,13 @@ pub fn run_kappa0(args: &Kappa0Args) -> CliResult {
     if args.json {
         outln!("{}", to_json(&proof, serde_json::json!({}))?);
     } else {
-        let b = |x: Bound| format!("[{:?}, {:?}]", x.lo, x.hi);
+        // Unbounded enclosures (p on [1, +∞)) print as ∞, not `inf`.
+        let end = |x: f64| match x {
+            f64::INFINITY => "+∞".to_string(),
+            f64::NEG_INFINITY => "−∞".to_string(),
+            x => format!("{:?}", x + 0.0),
+        };
+        let b = |x: Bound| format!("[{}, {}]", end(x.lo), end(x.hi));
         outln!(
             "κ₀ ∈ {}  ({} ulp wide; √3/9 in intervals: {})",
             b(proof.kappa0),

@@ -1,6 +1,6 @@
 //! Certified isolation of real roots of scalar equations.
 //!
-//! * [`isolate`]: the generic 1-D isolator (exclusion, interval Newton,
+//! * [`isolate`](mod@isolate): the generic 1-D isolator (exclusion, interval Newton,
 //!   bisection at exact off-centre points, contraction of unique roots).
 //! * [`equations`]: the equations of the paper — (2.9), (2.10), (2.12) and the
 //!   equilibria of (3.3) — each with a rigorous treatment of its open or

@@ -73,7 +73,7 @@ fn hull(roots: &[RootEnclosure]) -> Option<Interval> {
         .reduce(|a, b| a.convex_hull(b))
 }
 
-/// (2.10) at κ ∈ [κ₀].
+/// (2.10) at κ ∈ \[κ₀\] (the enclosure of κ₀).
 pub fn double_root(proof: &Kappa0Proof, budget: &Budget) -> DoubleRoot {
     let k = proof.kappa0.interval();
     let isolation = solve_2_10(k, budget).expect("κ₀ > 0");
