@@ -6,6 +6,7 @@
 //! used only to steer searches and to draw, and such output says so.
 
 pub mod atlas;
+pub mod claims;
 pub mod param;
 pub mod pave;
 pub mod roots;

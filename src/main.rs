@@ -32,6 +32,8 @@ enum Command {
     Tangency(TangencyArgs),
     /// Certified band of κ_crit(α) and the (α, κ) atlas of (2.9).
     CriticalCurve(CriticalCurveArgs),
+    /// Recompute every checked claim of the paper and write paper-checks/.
+    CheckPaper(cli::paper::CheckPaperArgs),
 }
 
 fn run(command: Command) -> CliResult {
@@ -43,6 +45,7 @@ fn run(command: Command) -> CliResult {
         Command::Kappa0(a) => cli::roots::run_kappa0(&a),
         Command::Tangency(a) => cli::roots::run_tangency(&a),
         Command::CriticalCurve(a) => cli::roots::run_critical_curve(&a),
+        Command::CheckPaper(a) => cli::paper::run_check_paper(&a),
     }
 }
 

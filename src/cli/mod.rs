@@ -1,6 +1,7 @@
 //! Command-line front: argument types and one `run_*` per subcommand.
 
 pub mod atlas;
+pub mod paper;
 pub mod roots;
 
 use std::fmt;

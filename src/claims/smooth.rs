@@ -1,0 +1,4 @@
+use super::Claim;
+pub fn claims() -> Vec<Claim> {
+    vec![]
+}
