@@ -7,7 +7,9 @@
 //! contact motion from the Lagrange equations `m z̈ = N − m g`,
 //! `A θ̈ = ∂T/∂θ − a cos θ N` with `Λ̈ = 0`, solved exactly for `(z̈, θ̈, N)`.
 
-use super::exact::{angle_d, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, Identity, Rng, Sample, Q};
+use super::exact::{
+    angle_d, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, Identity, Rng, Sample, Q,
+};
 use super::{enc, Claim, Outcome, Strength, Verdict};
 use crate::roots::critical::{band_cell, g as g_crit};
 use crate::roots::equations::kappa_alpha;
@@ -32,7 +34,15 @@ pub struct P2<T> {
 
 impl<T: Copy> P2<T> {
     pub fn map<U>(&self, f: impl Fn(T) -> U) -> P2<U> {
-        P2 { m: f(self.m), a: f(self.a), big_a: f(self.big_a), big_c: f(self.big_c), g: f(self.g), pf: f(self.pf), ps: f(self.ps) }
+        P2 {
+            m: f(self.m),
+            a: f(self.a),
+            big_a: f(self.big_a),
+            big_c: f(self.big_c),
+            g: f(self.g),
+            pf: f(self.pf),
+            ps: f(self.ps),
+        }
     }
 }
 
@@ -40,10 +50,26 @@ impl P2<Q> {
     pub fn random(r: &mut Rng) -> P2<Q> {
         let mut q = || Q::from_f64(r.positive());
         let (m, a, big_a, big_c, g) = (q(), q(), q(), q(), q());
-        P2 { m, a, big_a, big_c, g, pf: Q::from_f64(r.signed()), ps: Q::from_f64(r.signed()) }
+        P2 {
+            m,
+            a,
+            big_a,
+            big_c,
+            g,
+            pf: Q::from_f64(r.signed()),
+            ps: Q::from_f64(r.signed()),
+        }
     }
     pub fn exact(t: [&str; 7]) -> P2<Q> {
-        P2 { m: qdec(t[0]), a: qdec(t[1]), big_a: qdec(t[2]), big_c: qdec(t[3]), g: qdec(t[4]), pf: qdec(t[5]), ps: qdec(t[6]) }
+        P2 {
+            m: qdec(t[0]),
+            a: qdec(t[1]),
+            big_a: qdec(t[2]),
+            big_c: qdec(t[3]),
+            g: qdec(t[4]),
+            pf: qdec(t[5]),
+            ps: qdec(t[6]),
+        }
     }
 }
 
@@ -52,13 +78,24 @@ pub const DEFAULTS: [&str; 7] = ["1", "1", "0.25", "0.5", "9.81", "2.5", "2"];
 const NAMES: [&str; 7] = ["m", "a", "A", "C", "g", "p_phi", "p_psi"];
 
 pub fn params_json(t: &[&str]) -> serde_json::Value {
-    NAMES.iter().zip(t).map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>().into()
+    NAMES
+        .iter()
+        .zip(t)
+        .map(|(k, v)| (k.to_string(), json!(v)))
+        .collect::<serde_json::Map<_, _>>()
+        .into()
 }
 
 /// The scene's disc at given texts (for the root isolator).
 pub fn disc(pf: &str, ps: &str) -> SmoothDisc {
-    let o = vec![("p_phi".to_string(), pf.to_string()), ("p_psi".to_string(), ps.to_string())];
-    match Scene::build(SceneId::SmoothDisc, &o).expect("valid parameters").0 {
+    let o = vec![
+        ("p_phi".to_string(), pf.to_string()),
+        ("p_psi".to_string(), ps.to_string()),
+    ];
+    match Scene::build(SceneId::SmoothDisc, &o)
+        .expect("valid parameters")
+        .0
+    {
         Scene::Smooth(d) => d,
         _ => unreachable!(),
     }
@@ -90,7 +127,10 @@ pub fn spin_rates<T: Scalar>(p: &P2<T>, s: T, c: T) -> (T, T) {
 
 /// τ, τ' of (2.7) as printed.
 pub fn tau_printed<T: Scalar>(p: &P2<T>, s: T, c: T) -> (T, T) {
-    ((p.ps - p.pf * c) / (p.big_a * s), (p.pf - p.ps * c) / (p.big_a * s.sqr()))
+    (
+        (p.ps - p.pf * c) / (p.big_a * s),
+        (p.pf - p.ps * c) / (p.big_a * s.sqr()),
+    )
 }
 
 /// `∂T/∂θ` at fixed ψ̇, φ̇ (the values of the integrals at θ), by a dual in θ.
@@ -148,16 +188,41 @@ fn rp(r: &mut Rng) -> (P2<Q>, Q, Q, Q, Vec<(String, f64)>) {
     let t = r.tan_half();
     let (s, c) = sin_cos_of_tan_half(t);
     let wf = r.signed();
-    (p, s, c, Q::from_f64(wf), vec![("tan(theta/2)".into(), t.get().to_f64()), ("theta_dot".into(), wf)])
+    (
+        p,
+        s,
+        c,
+        Q::from_f64(wf),
+        vec![
+            ("tan(theta/2)".into(), t.get().to_f64()),
+            ("theta_dot".into(), wf),
+        ],
+    )
 }
 
 fn verdict_of(ids: &[(&str, &Identity)], what: &str, right: &str) -> Outcome {
-    let w: serde_json::Map<String, serde_json::Value> = ids.iter().map(|(k, i)| (k.to_string(), i.json())).collect();
+    let w: serde_json::Map<String, serde_json::Value> =
+        ids.iter().map(|(k, i)| (k.to_string(), i.json())).collect();
     if ids.iter().all(|(_, i)| i.agrees()) {
-        Outcome::new(Verdict::Confirmed, Strength::IdentityTest, format!("{what}: exact agreement at random rational points"), w.into())
+        Outcome::new(
+            Verdict::Confirmed,
+            Strength::IdentityTest,
+            format!("{what}: exact agreement at random rational points"),
+            w.into(),
+        )
     } else {
-        let bad: Vec<&str> = ids.iter().filter(|(_, i)| !i.agrees()).map(|(k, _)| *k).collect();
-        Outcome::new(Verdict::Error, Strength::Exact, format!("{what}: exact difference ({})", bad.join(", ")), w.into()).correct(right.to_string())
+        let bad: Vec<&str> = ids
+            .iter()
+            .filter(|(_, i)| !i.agrees())
+            .map(|(k, _)| *k)
+            .collect();
+        Outcome::new(
+            Verdict::Error,
+            Strength::Exact,
+            format!("{what}: exact difference ({})", bad.join(", ")),
+            w.into(),
+        )
+        .correct(right.to_string())
     }
 }
 
@@ -171,8 +236,16 @@ pub fn f2_1(mutant: bool) -> Outcome {
         let (p, s, c, w, pt) = rp(r);
         let (sp, cp) = sin_cos_of_tan_half(r.tan_half());
         let (psid, phid) = (Q::from_f64(r.signed()), Q::from_f64(r.signed()));
-        let printed = if mutant { t_rot_printed(&p, c, c, w, psid, phid) } else { t_rot_printed(&p, s, c, w, psid, phid) };
-        Sample { point: pt, lhs: printed, rhs: t_rot(&p, s, c, sp, cp, w, psid, phid) }
+        let printed = if mutant {
+            t_rot_printed(&p, c, c, w, psid, phid)
+        } else {
+            t_rot_printed(&p, s, c, w, psid, phid)
+        };
+        Sample {
+            point: pt,
+            lhs: printed,
+            rhs: t_rot(&p, s, c, sp, cp, w, psid, phid),
+        }
     });
     let lam = identity_test(211, |r| {
         let (p, s, c, _, pt) = rp(r);
@@ -182,7 +255,11 @@ pub fn f2_1(mutant: bool) -> Outcome {
         let (kx, ky, kz) = (s * spsi, -(s * cpsi), c);
         let k2 = kx.sqr() + ky.sqr() + kz.sqr();
         let depth2 = p.a.sqr() * (k2 - kz.sqr());
-        Sample { point: pt, lhs: (p.a * s).sqr(), rhs: depth2 }
+        Sample {
+            point: pt,
+            lhs: (p.a * s).sqr(),
+            rhs: depth2,
+        }
     });
     verdict_of(&[("kinetic_energy", &t), ("constraint_depth_squared", &lam)],
         "T of (2.1) against ½A(ω₁²+ω₂²) + ½Cω₃² from Euler angles; (a sin θ)² = depth² of the lowest point (sin θ > 0 on (0, π))",
@@ -199,10 +276,28 @@ pub fn f2_5(mutant: bool) -> Outcome {
         // ∂T/∂ψ̇ and ∂T/∂φ̇ by duals must return p_ψ, p_φ
         let k = Dual::constant;
         let pd = p.map(k);
-        let tp = t_rot_printed(&pd, k(s), k(c), k(Q::int(0)), Dual::variable(psid, 0), k(phid));
-        let tf = t_rot_printed(&pd, k(s), k(c), k(Q::int(0)), k(psid), Dual::variable(phid, 0));
+        let tp = t_rot_printed(
+            &pd,
+            k(s),
+            k(c),
+            k(Q::int(0)),
+            Dual::variable(psid, 0),
+            k(phid),
+        );
+        let tf = t_rot_printed(
+            &pd,
+            k(s),
+            k(c),
+            k(Q::int(0)),
+            k(psid),
+            Dual::variable(phid, 0),
+        );
         // a random combination of the two equations
-        Sample { point: pt, lhs: tp.grad[0] + lambda * tf.grad[0], rhs: p.ps + lambda * p.pf }
+        Sample {
+            point: pt,
+            lhs: tp.grad[0] + lambda * tf.grad[0],
+            rhs: p.ps + lambda * p.pf,
+        }
     });
     let amended = identity_test(251, |r| {
         let (p, s, c, _, pt) = rp(r);
@@ -213,7 +308,11 @@ pub fn f2_5(mutant: bool) -> Outcome {
         } else {
             pi_tilde(&p, s, c) - p.m * p.g * p.a * s
         };
-        Sample { point: pt, lhs: centrifugal + p.pf.sqr() / (Q::int(2) * p.big_c), rhs: rot }
+        Sample {
+            point: pt,
+            lhs: centrifugal + p.pf.sqr() / (Q::int(2) * p.big_c),
+            rhs: rot,
+        }
     });
     let motion = identity_test(252, |r| {
         let (p, s, c, w, pt) = rp(r);
@@ -222,12 +321,17 @@ pub fn f2_5(mutant: bool) -> Outcome {
         let pd = p.map(Dual::constant);
         let jj = pd.big_a + pd.m * pd.a.sqr() * an.cos.sqr();
         let pi = if mutant {
-            pd.m * pd.g * pd.a * an.sin + (pd.ps - pd.pf * an.cos).sqr() / (Dual::int(2) * pd.big_a * an.sin)
+            pd.m * pd.g * pd.a * an.sin
+                + (pd.ps - pd.pf * an.cos).sqr() / (Dual::int(2) * pd.big_a * an.sin)
         } else {
             pi_tilde(&pd, an.sin, an.cos)
         };
         let thdd = (-pi.grad[0] - jj.grad[0] * w.sqr() / Q::int(2)) / jj.value;
-        Sample { point: pt, lhs: thdd, rhs: lagrange(&p, s, c, w).0 }
+        Sample {
+            point: pt,
+            lhs: thdd,
+            rhs: lagrange(&p, s, c, w).0,
+        }
     });
     verdict_of(&[("integrals_2_3", &integrals), ("amended_potential", &amended), ("reduced_equation_vs_lagrange", &motion)],
         "ψ̇, φ̇ from (2.3); Π̃ − mga sin θ + p_φ²/2C = rotational T at those rates; (2.5) with T̃ = ½(A + ma²cos²θ)θ̇² against the Lagrange equations",
@@ -239,8 +343,16 @@ pub fn f2_5(mutant: bool) -> Outcome {
 pub fn f2_6(mutant: bool) -> Outcome {
     let id = identity_test(26, |r| {
         let p = P2::random(r);
-        let (u0, u1, u2) = (r.tan_half(), Q::from_f64(r.signed()), Q::from_f64(r.signed()));
-        let (z0, z1, z2) = (Q::from_f64(r.signed()), Q::from_f64(r.signed()), Q::from_f64(r.signed()));
+        let (u0, u1, u2) = (
+            r.tan_half(),
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+        );
+        let (z0, z1, z2) = (
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+        );
         type DD = Dual<Dual<Q>>;
         let tt = DD::variable(Dual::variable(Q::int(0), 0), 0);
         let k = |x: Q| DD::constant(Dual::constant(x));
@@ -248,17 +360,31 @@ pub fn f2_6(mutant: bool) -> Outcome {
         let z = k(z0) + k(z1) * tt + k(z2) * tt.sqr();
         let (su, _) = sin_cos_of_tan_half(u);
         let lam_dd = jet2(z - k(p.a) * su).2;
-        let ud = Dual { value: u0, grad: [u1, Q::int(0)] };
-        let udot = Dual { value: u1, grad: [Q::int(2) * u2, Q::int(0)] };
+        let ud = Dual {
+            value: u0,
+            grad: [u1, Q::int(0)],
+        };
+        let udot = Dual {
+            value: u1,
+            grad: [Q::int(2) * u2, Q::int(0)],
+        };
         let thd = Dual::<Q>::int(2) * udot / (Dual::<Q>::int(1) + ud.sqr());
         let (w, thdd) = (thd.value, thd.grad[0]);
         let (s, c) = sin_cos_of_tan_half(u0);
         let n = p.m * (Q::int(2) * z2 + p.g); // m z̈ = N − m g
         let sgn = if mutant { Q::int(-1) } else { Q::int(1) };
         let printed = n / p.m - p.g + p.a * w.sqr() * s - sgn * p.a * thdd * c;
-        Sample { point: vec![("u0".into(), u0.get().to_f64())], lhs: printed, rhs: lam_dd }
+        Sample {
+            point: vec![("u0".into(), u0.get().to_f64())],
+            lhs: printed,
+            rhs: lam_dd,
+        }
     });
-    verdict_of(&[("second_derivative", &id)], "(2.6) against d²(z − a sin θ)/dt² along rational paths with m z̈ = N − m g", "Λ̈ = N/m − g + a θ̇² sin θ − a θ̈ cos θ")
+    verdict_of(
+        &[("second_derivative", &id)],
+        "(2.6) against d²(z − a sin θ)/dt² along rational paths with m z̈ = N − m g",
+        "Λ̈ = N/m − g + a θ̇² sin θ − a θ̈ cos θ",
+    )
 }
 
 /// F2.7: τ' = dτ/dθ; U = free-flight Λ̈; in contact U + V N = 0 with
@@ -268,17 +394,33 @@ pub fn f2_7(mutant: bool) -> Outcome {
         let (p, s, c, _, pt) = rp(r);
         let an = angle_d(s, c);
         let t = tau_printed(&p.map(Dual::constant), an.sin, an.cos).0;
-        let printed = if mutant { (p.pf + p.ps * c) / (p.big_a * s.sqr()) } else { tau_printed(&p, s, c).1 };
-        Sample { point: pt, lhs: printed, rhs: t.grad[0] }
+        let printed = if mutant {
+            (p.pf + p.ps * c) / (p.big_a * s.sqr())
+        } else {
+            tau_printed(&p, s, c).1
+        };
+        Sample {
+            point: pt,
+            lhs: printed,
+            rhs: t.grad[0],
+        }
     });
     let u = identity_test(271, |r| {
         let (p, s, c, w, pt) = rp(r);
-        Sample { point: pt, lhs: u_printed(&p, s, c, w), rhs: free_lambda_ddot(&p, s, c, w) }
+        Sample {
+            point: pt,
+            lhs: u_printed(&p, s, c, w),
+            rhs: free_lambda_ddot(&p, s, c, w),
+        }
     });
     let contact = identity_test(272, |r| {
         let (p, s, c, w, pt) = rp(r);
         let v = Q::int(1) / p.m + p.a.sqr() * c.sqr() / p.big_a;
-        Sample { point: pt, lhs: u_printed(&p, s, c, w) + v * lagrange(&p, s, c, w).1, rhs: Q::int(0) }
+        Sample {
+            point: pt,
+            lhs: u_printed(&p, s, c, w) + v * lagrange(&p, s, c, w).1,
+            rhs: Q::int(0),
+        }
     });
     verdict_of(&[("tau_prime", &tau1), ("U_free_flight", &u), ("U_plus_VN_in_contact", &contact)],
         "τ' = dτ/dθ; U = Λ̈ at N = 0; in contact U + V N = 0, V = 1/m + a²cos²θ/A > 0, so contact (N ≥ 0) ⟺ U ≤ 0",
@@ -290,19 +432,36 @@ pub fn f2_8(mutant: bool) -> Outcome {
     let id = identity_test(28, |r| {
         let (p, s, c, w, pt) = rp(r);
         let phi = if mutant {
-            p.g / (p.a * s) - c / (p.big_a.sqr() * s.sqr() * s) * (p.pf - p.ps * c) * (p.ps - p.pf * c)
+            p.g / (p.a * s)
+                - c / (p.big_a.sqr() * s.sqr() * s) * (p.pf - p.ps * c) * (p.ps - p.pf * c)
         } else {
             phi_printed(&p, s, c)
         };
-        Sample { point: pt, lhs: (w.sqr() - phi) * p.a * s, rhs: free_lambda_ddot(&p, s, c, w) }
+        Sample {
+            point: pt,
+            lhs: (w.sqr() - phi) * p.a * s,
+            rhs: free_lambda_ddot(&p, s, c, w),
+        }
     });
-    verdict_of(&[("phi", &id)], "(θ̇² − Φ)·a sin θ = U (free-flight Λ̈), and a sin θ > 0 on (0, π)", "Φ = g/(a sin θ) − cos θ (p_φ − p_ψ cos θ)(p_ψ − p_φ cos θ)/(A² sin⁴θ)")
+    verdict_of(
+        &[("phi", &id)],
+        "(θ̇² − Φ)·a sin θ = U (free-flight Λ̈), and a sin θ > 0 on (0, π)",
+        "Φ = g/(a sin θ) − cos θ (p_φ − p_ψ cos θ)(p_ψ − p_φ cos θ)/(A² sin⁴θ)",
+    )
 }
 
 /// κ, α with p_M the momentum of larger |·| (exact).
 fn kappa_alpha_q(p: &P2<Q>) -> (Q, Q, Q) {
-    let (pm_big, pm_small) = if p.pf.get().abs() >= p.ps.get().abs() { (p.pf, p.ps) } else { (p.ps, p.pf) };
-    (p.g * p.big_a.sqr() / (p.a * pm_big.sqr()), pm_small / pm_big, pm_big)
+    let (pm_big, pm_small) = if p.pf.get().abs() >= p.ps.get().abs() {
+        (p.pf, p.ps)
+    } else {
+        (p.ps, p.pf)
+    };
+    (
+        p.g * p.big_a.sqr() / (p.a * pm_big.sqr()),
+        pm_small / pm_big,
+        pm_big,
+    )
 }
 
 /// F2.9: `Φ A² sin⁴θ / p_M² = κ sin³θ − cos θ(α − cos θ)(1 − α cos θ)`.
@@ -315,7 +474,11 @@ pub fn f2_9(mutant: bool) -> Outcome {
             kappa = kappa / p.big_a;
         }
         let lhs = phi_printed(&p, s, c) * p.big_a.sqr() * s.sqr().sqr() / pm.sqr();
-        Sample { point: pt, lhs, rhs: kappa * s.sqr() * s - c * (alpha - c) * (Q::int(1) - alpha * c) }
+        Sample {
+            point: pt,
+            lhs,
+            rhs: kappa * s.sqr() * s - c * (alpha - c) * (Q::int(1) - alpha * c),
+        }
     });
     verdict_of(&[("phi_scaled", &id)], "Φ·A²sin⁴θ/p_M² = κ sin³θ − f_r(θ) with κ = gA²/(a p_M²), α = p_m/p_M (both orderings of |p_φ|, |p_ψ| sampled): same roots, and sign Φ = sign(κ sin³θ − f_r)", "")
 }
@@ -332,7 +495,12 @@ pub fn s2_alpha(mutant: bool) -> Outcome {
             format!("p_φ = {pf}, p_ψ = {ps}: α = {} < 0 exactly; |p_m| ≤ |p_M| gives −1 ≤ α ≤ 1, and case 4 (α < 0) needs the lower bound", alpha.text()), w)
             .correct("|α| ≤ 1")
     } else {
-        Outcome::new(Verdict::Confirmed, Strength::Exact, "α ∈ [0, 1] in this sample", w)
+        Outcome::new(
+            Verdict::Confirmed,
+            Strength::Exact,
+            "α ∈ [0, 1] in this sample",
+            w,
+        )
     }
 }
 
@@ -344,10 +512,16 @@ pub fn f2_10(mutant: bool) -> Outcome {
         let kappa = Q::from_f64(r.positive());
         let (s, c) = sin_cos_of_tan_half(t);
         let one = Q::int(1);
-        let lhs = (kappa * s.sqr() * s - c * (one - c) * (one - c)) * (one + t.sqr()).sqr() * (one + t.sqr());
+        let lhs = (kappa * s.sqr() * s - c * (one - c) * (one - c))
+            * (one + t.sqr()).sqr()
+            * (one + t.sqr());
         let k = if mutant { 1 } else { 2 };
         let rhs = Q::int(8) * t.sqr() * t * (kappa - t * (one - t) * (one + t) / Q::int(k));
-        Sample { point: vec![("mu".into(), t.get().to_f64())], lhs, rhs }
+        Sample {
+            point: vec![("mu".into(), t.get().to_f64())],
+            lhs,
+            rhs,
+        }
     });
     verdict_of(&[("tan_half_substitution", &id)], "(2.9) at α = 1 times (1+μ²)³ = 8μ³(κ − μ(1−μ)(1+μ)/2), μ = tan(θ/2) > 0: positive roots of (2.10) ↔ roots of (2.9)", "2κ = μ(1 − μ)(1 + μ)")
 }
@@ -358,9 +532,17 @@ pub fn f2_12(mutant: bool) -> Outcome {
         let (p, s, c, _, pt) = rp(r);
         let an = angle_d(s, c);
         let d = pi_tilde(&p.map(Dual::constant), an.sin, an.cos).grad[0];
-        Sample { point: pt, lhs: pi_slope_printed(&p, s, c, if mutant { -1 } else { 1 }), rhs: d }
+        Sample {
+            point: pt,
+            lhs: pi_slope_printed(&p, s, c, if mutant { -1 } else { 1 }),
+            rhs: d,
+        }
     });
-    verdict_of(&[("slope", &id)], "m g a cos θ + A τ τ' = dΠ̃/dθ", "Π̃'(θ) = m g a cos θ + A τ τ'")
+    verdict_of(
+        &[("slope", &id)],
+        "m g a cos θ + A τ τ' = dΠ̃/dθ",
+        "Π̃'(θ) = m g a cos θ + A τ τ'",
+    )
 }
 
 // ---------------------------------------------------------------- statements
@@ -370,15 +552,28 @@ pub fn f2_12(mutant: bool) -> Outcome {
 pub fn s2_omega(mutant: bool) -> Outcome {
     let id = identity_test(220, |r| {
         let (p, s, c, w, pt) = rp(r);
-        let v = if mutant { Q::int(1) / p.m - p.a.sqr() * c.sqr() / p.big_a } else { Q::int(1) / p.m + p.a.sqr() * c.sqr() / p.big_a };
-        Sample { point: pt, lhs: (w.sqr() - phi_printed(&p, s, c)) * p.a * s, rhs: -(v * lagrange(&p, s, c, w).1) }
+        let v = if mutant {
+            Q::int(1) / p.m - p.a.sqr() * c.sqr() / p.big_a
+        } else {
+            Q::int(1) / p.m + p.a.sqr() * c.sqr() / p.big_a
+        };
+        Sample {
+            point: pt,
+            lhs: (w.sqr() - phi_printed(&p, s, c)) * p.a * s,
+            rhs: -(v * lagrange(&p, s, c, w).1),
+        }
     });
     if id.agrees() {
         Outcome::new(Verdict::Confirmed, Strength::Argument,
             "(θ̇² − Φ)·a sin θ = −V N exactly with V = 1/m + a²cos²θ/A > 0 and a sin θ > 0: {θ̇² < Φ} = {N > 0} = {U < 0}, Ω = Ω₀ for all parameters",
             json!({"identity": id.json()}))
     } else {
-        Outcome::new(Verdict::False, Strength::Exact, "(2.8) is not −V N for the stated V", json!({"identity": id.json()}))
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "(2.8) is not −V N for the stated V",
+            json!({"identity": id.json()}),
+        )
     }
 }
 
@@ -397,14 +592,23 @@ pub fn s2_case1(mutant: bool) -> Outcome {
         }
         let pm2 = p.pf.sqr() + p.ps.sqr();
         let rhs = p.g / (p.a * s) + pm2 * c.sqr() / (p.big_a.sqr() * s.sqr().sqr());
-        Sample { point: pt, lhs: phi_printed(&p, s, c), rhs }
+        Sample {
+            point: pt,
+            lhs: phi_printed(&p, s, c),
+            rhs,
+        }
     });
     if id.agrees() {
         Outcome::new(Verdict::Confirmed, Strength::Argument,
             "with p_φ p_ψ = 0: Φ = g/(a sin θ) + p_M² cos²θ/(A² sin⁴θ) exactly, a positive plus a non-negative term on (0, π) (f_r = −cos²θ ≤ 0; see S2.case1fr for the strict sign)",
             json!({"identity": id.json()}))
     } else {
-        Outcome::new(Verdict::False, Strength::Exact, "Φ is not the sum of non-negative terms", json!({"identity": id.json()}))
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "Φ is not the sum of non-negative terms",
+            json!({"identity": id.json()}),
+        )
     }
 }
 
@@ -422,7 +626,12 @@ pub fn s2_case1fr(mutant: bool) -> Outcome {
             "at α = 0, f_r = −cos²θ vanishes at θ = π/2 exactly, so f_r < 0 fails there; Φ(π/2) = g/a > 0 still, so the conclusion Φ > 0 stands", w)
             .correct("f_r(θ) = −cos²θ ≤ 0 on (0, π), zero only at θ = π/2; Φ > 0 on (0, π)")
     } else {
-        Outcome::new(Verdict::Confirmed, Strength::Exact, "f_r ≠ 0 at π/2 for this α", w)
+        Outcome::new(
+            Verdict::Confirmed,
+            Strength::Exact,
+            "f_r ≠ 0 at π/2 for this α",
+            w,
+        )
     }
 }
 
@@ -436,9 +645,14 @@ fn roots_json(r: &EquationRoots) -> serde_json::Value {
 /// Mutant: the claimed threshold 0.2.
 pub fn s2_case2(mutant: bool) -> Outcome {
     let proof = prove_kappa0();
-    let claimed = if mutant { point(0.2) } else { point(3.0).sqrt() / point(9.0) };
+    let claimed = if mutant {
+        point(0.2)
+    } else {
+        point(3.0).sqrt() / point(9.0)
+    };
     let k0 = proof.kappa0.interval();
-    let matches = proof.all_proved() && claimed.subset(k0.convex_hull(claimed)) && !claimed.disjoint(k0);
+    let matches =
+        proof.all_proved() && claimed.subset(k0.convex_hull(claimed)) && !claimed.disjoint(k0);
     let b = Budget::default();
     let two = solve_2_10(super::dec("0.1"), &b).expect("κ > 0");
     let none = solve_2_10(super::dec("0.25"), &b).expect("κ > 0");
@@ -449,14 +663,24 @@ pub fn s2_case2(mutant: bool) -> Outcome {
     } else {
         None
     };
-    let ok = matches && two.complete && two.unique_count() == 2 && none.complete && none.unique_count() == 0 && between.is_some_and(|x| x.inf() > 0.0);
+    let ok = matches
+        && two.complete
+        && two.unique_count() == 2
+        && none.complete
+        && none.unique_count() == 0
+        && between.is_some_and(|x| x.inf() > 0.0);
     let w = json!({"kappa0_proved": enc(k0), "claimed": enc(claimed), "proof_all_steps": proof.all_proved(),
         "kappa_0.1": roots_json(&two), "kappa_0.25": roots_json(&none), "g_minus_kappa_between_roots_times_2": between.map(enc)});
     if ok {
         Outcome::new(Verdict::Confirmed, Strength::Certified,
             format!("κ₀ proof: κ₀ ∈ [{:.16}, {:.16}] ∋ √3/9; κ > κ₀ no positive root, κ < κ₀ two simple roots; sign Φ = sign(κ − μ(1−μ²)/2) (F2.9, F2.10) so Φ < 0 between them: Ω has two components. Samples κ = 0.1 (2 roots), κ = 0.25 (none)", k0.inf(), k0.sup()), w)
     } else {
-        Outcome::new(Verdict::False, Strength::Certified, "the claimed threshold is not the proved κ₀ or the samples disagree", w)
+        Outcome::new(
+            Verdict::False,
+            Strength::Certified,
+            "the claimed threshold is not the proved κ₀ or the samples disagree",
+            w,
+        )
     }
 }
 
@@ -469,25 +693,44 @@ pub fn s2_case2(mutant: bool) -> Outcome {
 pub fn s2_case3(mutant: bool) -> Outcome {
     let n = 32;
     let cells: Vec<_> = (0..n)
-        .map(|i| band_cell(Interval::try_from((i as f64 / n as f64, (i + 1) as f64 / n as f64)).unwrap(), 1e-6))
+        .map(|i| {
+            band_cell(
+                Interval::try_from((i as f64 / n as f64, (i + 1) as f64 / n as f64)).unwrap(),
+                1e-6,
+            )
+        })
         .collect();
     let lemma = cells.iter().all(|c| c.lemma_ok);
     let alpha_text = if mutant { "0" } else { "0.5" };
     let alpha = super::dec(alpha_text);
     let cell = band_cell(alpha, 1e-9);
     let b = Budget::default();
-    let below = if cell.lower > 0.0 { solve_2_9(point(cell.lower * 0.5), alpha, &b).ok() } else { None };
+    let below = if cell.lower > 0.0 {
+        solve_2_9(point(cell.lower * 0.5), alpha, &b).ok()
+    } else {
+        None
+    };
     let above = solve_2_9(point(cell.upper * 2.0 + 1e-3), alpha, &b).ok();
     // G at s = 0.9 is > 0 for α = 0.5 (positivity of κ_crit)
     let g_pos = g_crit(point(0.9), alpha);
-    let two_forms = below.as_ref().is_some_and(|r| r.complete && r.unique_count() == 2) && above.as_ref().is_some_and(|r| r.complete && r.unique_count() == 0);
+    let two_forms = below
+        .as_ref()
+        .is_some_and(|r| r.complete && r.unique_count() == 2)
+        && above
+            .as_ref()
+            .is_some_and(|r| r.complete && r.unique_count() == 0);
     let w = json!({"lemma_on_32_alpha_boxes": lemma, "alpha": alpha_text, "kappa_crit_band": [cell.lower, cell.upper],
         "G(0.9, alpha)": enc(g_pos), "below_band_half": below.as_ref().map(roots_json), "above_band": above.as_ref().map(roots_json)});
     if lemma && two_forms {
         Outcome::new(Verdict::Confirmed, Strength::Argument,
             format!("unimodality lemma certified on all 32 α-boxes of [0, 1]: for each α ∈ (0, 1) one component when κ > κ_crit(α), two when κ < κ_crit(α) (κ_crit > 0); α = 0.5: κ_crit ∈ [{:.6}, {:.6}], 2 roots below, 0 above (certified)", cell.lower, cell.upper), w)
     } else {
-        Outcome::new(Verdict::False, Strength::Certified, format!("at α = {alpha_text} the two forms do not both occur"), w)
+        Outcome::new(
+            Verdict::False,
+            Strength::Certified,
+            format!("at α = {alpha_text} the two forms do not both occur"),
+            w,
+        )
     }
 }
 
@@ -500,12 +743,21 @@ pub fn s2_case4(mutant: bool) -> Outcome {
         if !mutant {
             q.ps = -p.ps;
         }
-        Sample { point: pt, lhs: phi_printed(&p, s, -c), rhs: phi_printed(&q, s, c) }
+        Sample {
+            point: pt,
+            lhs: phi_printed(&p, s, -c),
+            rhs: phi_printed(&q, s, c),
+        }
     });
     if id.agrees() {
         Outcome::new(Verdict::Confirmed, Strength::IdentityTest, "Φ(π − θ) with (p_φ, p_ψ) equals Φ(θ) with (p_φ, −p_ψ), i.e. α → −α: α < 0 is the mirror image about θ = π/2 of |α|", json!({"identity": id.json()}))
     } else {
-        Outcome::new(Verdict::False, Strength::Exact, "the mirror does not map the case to α → −α", json!({"identity": id.json()}))
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "the mirror does not map the case to α → −α",
+            json!({"identity": id.json()}),
+        )
     }
 }
 
@@ -524,7 +776,15 @@ impl RealFn for ClearedSlope {
 pub fn p2_texts(pf: &str, ps: &str) -> P2<Interval> {
     let d = DEFAULTS;
     let dc = super::dec;
-    P2 { m: dc(d[0]), a: dc(d[1]), big_a: dc(d[2]), big_c: dc(d[3]), g: dc(d[4]), pf: dc(pf), ps: dc(ps) }
+    P2 {
+        m: dc(d[0]),
+        a: dc(d[1]),
+        big_a: dc(d[2]),
+        big_c: dc(d[3]),
+        g: dc(d[4]),
+        pf: dc(pf),
+        ps: dc(ps),
+    }
 }
 
 /// Certified equilibria of (2.5) on (0, π) and their types.
@@ -535,12 +795,19 @@ pub fn p2_texts(pf: &str, ps: &str) -> P2<Interval> {
 /// is a sum of positive terms where cos θ > 0, so lo = 1.5 (cos 1.5 > 0,
 /// checked). Types: the sign of f' = sin³θ Π̃'' on each root enclosure
 /// (> 0: minimum of Π̃, a centre; < 0: maximum, a saddle).
-pub fn equilibria(pf: &str, ps: &str) -> (Option<Vec<[f64; 2]>>, Vec<&'static str>, serde_json::Value) {
+pub fn equilibria(
+    pf: &str,
+    ps: &str,
+) -> (Option<Vec<[f64; 2]>>, Vec<&'static str>, serde_json::Value) {
     let p = p2_texts(pf, ps);
     let f = ClearedSlope(p);
     let equal = pf == ps;
     let lo = if equal { 1.5 } else { 0.0 };
-    let lo_ok = if equal { point(1.5).cos().inf() > 0.0 } else { f.eval(point(0.0)).sup() < 0.0 || f.eval(point(0.0)).inf() > 0.0 };
+    let lo_ok = if equal {
+        point(1.5).cos().inf() > 0.0
+    } else {
+        f.eval(point(0.0)).sup() < 0.0 || f.eval(point(0.0)).inf() > 0.0
+    };
     let hi = Interval::PI.sup();
     let iso = crate::roots::isolate(&f, lo, hi, &Budget::default());
     let types: Vec<&'static str> = iso
@@ -568,9 +835,18 @@ pub fn equilibria(pf: &str, ps: &str) -> (Option<Vec<[f64; 2]>>, Vec<&'static st
     (if complete { Some(roots) } else { None }, types, js)
 }
 
-const COUNT_SAMPLES: [(&str, &str); 6] = [("2.5", "2"), ("2", "0.5"), ("1", "0.2"), ("3", "1"), ("0.5", "0.1"), ("4", "3")];
+const COUNT_SAMPLES: [(&str, &str); 6] = [
+    ("2.5", "2"),
+    ("2", "0.5"),
+    ("1", "0.2"),
+    ("3", "1"),
+    ("0.5", "0.1"),
+    ("4", "3"),
+];
 
-fn count_table(samples: &[(&str, &str)]) -> (Vec<serde_json::Value>, Vec<(usize, Vec<&'static str>)>) {
+fn count_table(
+    samples: &[(&str, &str)],
+) -> (Vec<serde_json::Value>, Vec<(usize, Vec<&'static str>)>) {
     let mut js = Vec::new();
     let mut res = Vec::new();
     for (pf, ps) in samples {
@@ -590,8 +866,17 @@ pub fn s2_12count(mutant: bool) -> Outcome {
         samples.extend([("1", "1"), ("0.3", "0.3")]);
     }
     let (js, res) = count_table(&samples);
-    let bad: Vec<usize> = res.iter().enumerate().filter(|(_, (n, _))| *n != 1 && *n != 3).map(|(i, _)| i).collect();
-    let counts: Vec<String> = samples.iter().zip(&res).map(|((a, b), (n, _))| format!("({a}, {b}) → {n}")).collect();
+    let bad: Vec<usize> = res
+        .iter()
+        .enumerate()
+        .filter(|(_, (n, _))| *n != 1 && *n != 3)
+        .map(|(i, _)| i)
+        .collect();
+    let counts: Vec<String> = samples
+        .iter()
+        .zip(&res)
+        .map(|((a, b), (n, _))| format!("({a}, {b}) → {n}"))
+        .collect();
     let w = json!({"samples": js});
     if bad.is_empty() {
         Outcome::new(Verdict::ConfirmedOn, Strength::Certified, format!("one or three roots at every sample (p_φ, p_ψ) with the other parameters at their defaults: {}", counts.join(", ")), w)
@@ -611,10 +896,20 @@ pub fn s2_12type(mutant: bool) -> Outcome {
     }
     let (js, res) = count_table(&samples);
     let ok = |t: &Vec<&str>| *t == ["centre"] || *t == ["centre", "saddle", "centre"];
-    let bad: Vec<String> = samples.iter().zip(&res).filter(|(_, (_, t))| !ok(t)).map(|((a, b), (_, t))| format!("({a}, {b}): {}", t.join(", "))).collect();
+    let bad: Vec<String> = samples
+        .iter()
+        .zip(&res)
+        .filter(|(_, (_, t))| !ok(t))
+        .map(|((a, b), (_, t))| format!("({a}, {b}): {}", t.join(", ")))
+        .collect();
     let w = json!({"samples": js});
     if bad.is_empty() {
-        Outcome::new(Verdict::ConfirmedOn, Strength::Certified, "every sample: one centre, or centre–saddle–centre", w)
+        Outcome::new(
+            Verdict::ConfirmedOn,
+            Strength::Certified,
+            "every sample: one centre, or centre–saddle–centre",
+            w,
+        )
     } else {
         Outcome::new(Verdict::False, Strength::Certified, format!("not one centre nor a saddle and two centres: {}", bad.join("; ")), w)
             .correct("for |α| < 1 one centre or a saddle between two centres (all samples); for α = ±1 a saddle and one centre, or no equilibrium")
@@ -626,13 +921,23 @@ pub fn s2_12type(mutant: bool) -> Outcome {
 pub fn s2_12in_omega(mutant: bool) -> Outcome {
     let id = identity_test(2121, |r| {
         let (p, s, c, _, pt) = rp(r);
-        let lhs = u_printed(&p, s, c, Q::int(0)) - p.a * c / p.big_a * pi_slope_printed(&p, s, c, if mutant { -1 } else { 1 });
-        Sample { point: pt, lhs, rhs: -(p.g * (Q::int(1) + p.m * p.a.sqr() * c.sqr() / p.big_a)) }
+        let lhs = u_printed(&p, s, c, Q::int(0))
+            - p.a * c / p.big_a * pi_slope_printed(&p, s, c, if mutant { -1 } else { 1 });
+        Sample {
+            point: pt,
+            lhs,
+            rhs: -(p.g * (Q::int(1) + p.m * p.a.sqr() * c.sqr() / p.big_a)),
+        }
     });
     if id.agrees() {
         Outcome::new(Verdict::Confirmed, Strength::Argument, "U − (a cos θ/A)Π̃' = −g(1 + ma²cos²θ/A) < 0 exactly: every equilibrium (Π̃' = 0, θ̇ = 0) lies strictly inside Ω, for all parameters", json!({"identity": id.json()}))
     } else {
-        Outcome::new(Verdict::False, Strength::Exact, "no such identity", json!({"identity": id.json()}))
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "no such identity",
+            json!({"identity": id.json()}),
+        )
     }
 }
 
@@ -640,7 +945,13 @@ pub fn s2_12in_omega(mutant: bool) -> Outcome {
 /// where the equilibria lie. Witness: p_φ = p_ψ = 2 (α = 1, κ < κ₀): Ω has two
 /// components and no equilibrium at all. Mutant: the default sample only.
 pub fn s2_12components(mutant: bool) -> Outcome {
-    let mut samples: Vec<(&str, &str)> = vec![("2.5", "2"), ("3", "1"), ("10", "2"), ("10", "1"), ("6", "1")];
+    let mut samples: Vec<(&str, &str)> = vec![
+        ("2.5", "2"),
+        ("3", "1"),
+        ("10", "2"),
+        ("10", "1"),
+        ("6", "1"),
+    ];
     if !mutant {
         samples.push(("2", "2"));
     }
@@ -664,9 +975,13 @@ pub fn s2_12components(mutant: bool) -> Outcome {
             entry["right"] = json!(right);
             entry["in_gap"] = json!(inside);
             // the paper: one on one side, the other two (if any) on the other
-            let ok = inside == 0 && ((left == 1 && (right == 0 || right == 2)) || (right == 1 && (left == 0 || left == 2)));
+            let ok = inside == 0
+                && ((left == 1 && (right == 0 || right == 2))
+                    || (right == 1 && (left == 0 || left == 2)));
             if !ok {
-                fails.push(format!("(p_φ, p_ψ) = ({pf}, {ps}): {left} left, {right} right"));
+                fails.push(format!(
+                    "(p_φ, p_ψ) = ({pf}, {ps}): {left} left, {right} right"
+                ));
             }
         }
         js.push(entry);
@@ -679,7 +994,12 @@ pub fn s2_12components(mutant: bool) -> Outcome {
     } else if checked > 0 {
         Outcome::new(Verdict::ConfirmedOn, Strength::Certified, format!("{checked} disconnected samples: one equilibrium on one side, zero or two on the other"), w)
     } else {
-        Outcome::new(Verdict::NotCheckable, Strength::Certified, "no disconnected sample", w)
+        Outcome::new(
+            Verdict::NotCheckable,
+            Strength::Certified,
+            "no disconnected sample",
+            w,
+        )
     }
 }
 
