@@ -602,7 +602,7 @@ pub fn s1_friction(mutant: bool) -> Outcome {
         let w = DecInterval::new(w);
         [derived_omega(&p, s, c, w), derived_omega0(&p, s, c, w)]
     };
-    let found = find_leaf(&f, window([-0.25, 0.25], [6.0, 10.0]), 1.0 / 64.0, |l| {
+    let found = find_leaf(f, window([-0.25, 0.25], [6.0, 10.0]), 1.0 / 64.0, |l| {
         l == [Label::ProvedIn, Label::ProvedOut]
     });
     match found {
@@ -698,7 +698,7 @@ pub fn s1_12mu(mutant: bool) -> Outcome {
         let w = DecInterval::new(w);
         [derived_omega0(&pa, s, c, w), derived_omega0(&pb, s, c, w)]
     };
-    let found = find_leaf(&f, window([-0.25, 0.25], [3.0, 8.0]), 1.0 / 64.0, |l| {
+    let found = find_leaf(f, window([-0.25, 0.25], [3.0, 8.0]), 1.0 / 64.0, |l| {
         l == [Label::ProvedIn, Label::ProvedOut]
     });
     let w =

@@ -418,7 +418,7 @@ pub fn s3_c0changes(mutant: bool) -> Outcome {
             omega0_dec(&p, dec("1"), th, w),
         ]
     };
-    let found = find_difference(&f, window([0.3, 1.2], [0.0, 6.0]), 1.0 / 64.0);
+    let found = find_difference(f, window([0.3, 1.2], [0.0, 6.0]), 1.0 / 64.0);
     let thdd = |c0: &str| {
         let an = Angle::new(point(1.0));
         let (l1, l2) = logs(&an);
@@ -890,7 +890,7 @@ pub fn s3_sub2(mutant: bool) -> Outcome {
     let w = json!({"samples": js, "in_omega0_identity": id.json(), "outside_omega": outside});
     if zero_or_two && id.agrees() && outside.is_some() {
         Outcome::new(Verdict::ConfirmedOn, Strength::Certified,
-            format!("certified counts over c₀ ∈ {{−10, −3, 0, 3, 10}}, p = 1, 2: {:?} (two or none); at θ̇ = 0 = θ̈ the slack of (3.5) is g > 0 (exact): equilibria in Ω₀; {}", counts, outside.unwrap()), w)
+            format!("certified counts over c₀ ∈ {{−10, −3, 0, 3, 10}}, p = 1, 2: {:?} (two or none); at θ̇ = 0 = θ̈ the slack of (3.5) is g > 0 (exact): equilibria in Ω₀; {}", counts, outside.clone().unwrap_or_default()), w)
     } else {
         Outcome::new(
             Verdict::False,
@@ -936,7 +936,7 @@ pub fn s3_sub3(mutant: bool) -> Outcome {
         "equilibria": js, "counts": counts, "in_omega0_identity": id.json(), "outside_omega": outside});
     if bounded && id.agrees() && outside.is_some() {
         Outcome::new(Verdict::Confirmed, Strength::Argument,
-            format!("(p_ψ − p_φ cos θ)² ≥ (|p_ψ| − |p_φ|)²-type bounds > 0 near θ = 0, π (certified at the samples; at c = ±1 it is (p_ψ ∓ p_φ)² > 0 whenever |p_ψ| ≠ |p_φ|) so Aτ² → ∞ at both ends and the level sets of (3.2) are compact (the paper has reduced to p_φ, p_ψ ≥ 0, where p_ψ ≠ p_φ means |p_ψ| ≠ |p_φ|; for p_ψ = −p_φ the mirror of subcase 2 applies); equilibria in Ω₀ (exact); {}", outside.unwrap()), w)
+            format!("(p_ψ − p_φ cos θ)² ≥ (|p_ψ| − |p_φ|)²-type bounds > 0 near θ = 0, π (certified at the samples; at c = ±1 it is (p_ψ ∓ p_φ)² > 0 whenever |p_ψ| ≠ |p_φ|) so Aτ² → ∞ at both ends and the level sets of (3.2) are compact (the paper has reduced to p_φ, p_ψ ≥ 0, where p_ψ ≠ p_φ means |p_ψ| ≠ |p_φ|; for p_ψ = −p_φ the mirror of subcase 2 applies); equilibria in Ω₀ (exact); {}", outside.clone().unwrap_or_default()), w)
     } else {
         Outcome::new(
             Verdict::False,

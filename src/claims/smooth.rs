@@ -104,6 +104,7 @@ pub fn disc(pf: &str, ps: &str) -> SmoothDisc {
 /// Rotational kinetic energy from the body angular velocity (Euler angles
 /// z-x-z, body axis 3 = symmetry axis): `ω₁ = ψ̇ sθ sφ + θ̇ cφ`,
 /// `ω₂ = ψ̇ sθ cφ − θ̇ sφ`, `ω₃ = ψ̇ cθ + φ̇`.
+#[allow(clippy::too_many_arguments)]
 pub fn t_rot<T: Scalar>(p: &P2<T>, s: T, c: T, sphi: T, cphi: T, w: T, psid: T, phid: T) -> T {
     let w1 = psid * s * sphi + w * cphi;
     let w2 = psid * s * cphi - w * sphi;
