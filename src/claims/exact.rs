@@ -384,3 +384,59 @@ pub fn qdec(text: &str) -> Q {
     let r = Rational::from((num, den));
     Q::new(if neg { -r } else { r })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decimal_text_is_exact() {
+        assert_eq!(qdec("9.81").get(), Rational::from((981, 100)));
+        assert_eq!(qdec("-0.125").get(), Rational::from((-1, 8)));
+        assert_eq!(qdec("3").get(), Rational::from(3));
+    }
+
+    #[test]
+    fn cramer_solves_exactly() {
+        // [[2, 1], [1, 3]] x = [3, 5] → x = (4/5, 7/5)
+        let q = |n: i64| Q::ratio(n, 1);
+        let x = solve(&[vec![q(2), q(1)], vec![q(1), q(3)]], &[q(3), q(5)]);
+        assert_eq!(x[0].get(), Rational::from((4, 5)));
+        assert_eq!(x[1].get(), Rational::from((7, 5)));
+    }
+
+    #[test]
+    fn identity_test_separates_close_formulas() {
+        // sin²θ + cos²θ = 1 holds; (1 + 10⁻⁹) sin²θ + cos²θ = 1 does not.
+        let ok = identity_test(1, |r| {
+            let (s, c) = sin_cos_of_tan_half(r.tan_half());
+            Sample {
+                point: vec![],
+                lhs: s.sqr() + c.sqr(),
+                rhs: Q::int(1),
+            }
+        });
+        assert!(ok.agrees());
+        let bad = identity_test(1, |r| {
+            let (s, c) = sin_cos_of_tan_half(r.tan_half());
+            let eps = Q::ratio(1, 1_000_000_000);
+            Sample {
+                point: vec![],
+                lhs: (Q::int(1) + eps) * s.sqr() + c.sqr(),
+                rhs: Q::int(1),
+            }
+        });
+        assert!(!bad.agrees());
+    }
+
+    #[test]
+    fn jets_give_exact_derivatives() {
+        // d/dθ and d²/dθ² of sin θ cos θ = ½ sin 2θ: cos 2θ and −2 sin 2θ
+        let (s, c) = sin_cos_of_tan_half(Q::ratio(1, 3));
+        let an = angle_dd(s, c);
+        let (v, d1, d2) = jet2(an.sin * an.cos);
+        assert_eq!(v.get(), (s * c).get());
+        assert_eq!(d1.get(), (c.sqr() - s.sqr()).get());
+        assert_eq!(d2.get(), (Q::int(-4) * s * c).get());
+    }
+}

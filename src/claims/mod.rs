@@ -15,9 +15,11 @@
 //! * [`witness`]: certified region differences found with the paver.
 //! * [`example1`], [`smooth`], [`ice`]: the checks of §1, §2, §3.
 //! * [`report`]: `REPORT.md`, `report.json` and `claims.toml`.
+//! * [`figures`]: pictures of the witnesses.
 
 pub mod exact;
 pub mod example1;
+pub mod figures;
 pub mod ice;
 pub mod report;
 pub mod smooth;
@@ -194,7 +196,7 @@ pub fn run_one(c: &Claim, mutant: bool) -> ClaimResult {
         correction: o.correction,
         witness: o.witness,
         proof_file: None,
-        figure: None,
+        figure: figures::figure_path(c.id),
     }
 }
 

@@ -35,6 +35,10 @@ pub fn run_check_paper(a: &CheckPaperArgs) -> CliResult {
         write("REPORT.md", report::markdown(&results))?;
         write("report.json", report::json(&results))?;
         write("claims.toml", report::claims_toml())?;
+        for r in results.iter().filter(|r| r.figure.is_some()) {
+            let mark = claims::figures::witness_box(&r.witness);
+            claims::figures::draw(&r.id, &a.out, mark).map_err(CliError::runtime)?;
+        }
     }
     Ok(())
 }
