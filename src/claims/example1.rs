@@ -751,6 +751,31 @@ pub fn s1_eq(mutant: bool) -> Outcome {
                 "type": if !stable {"not stable"} else if focus {"stable focus"} else {"stable node"}}}),
         )
     };
+    // Jacobian entries in closed form for all parameters (exact identity):
+    // at θ = π/2: ∂θ̈/∂θ = m g b/C (> 0: saddle for b > 0); at θ = −π/2:
+    // ∂θ̈/∂θ = −m g b/C, ∂θ̈/∂θ̇ = −μ(a − b)²/C, so trace² − 4 det =
+    // (μ²(a − b)⁴ − 4 m g b C)/C².
+    let closed = identity_test(117, |r| {
+        let p = P1::random(r);
+        let k = [
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+        ];
+        let (a_up, _) = jacobian(&p, Q::int(1), Q::int(0));
+        let (a_dn, d_dn) = jacobian(&p, Q::int(-1), Q::int(0));
+        let ab = p.a - p.b;
+        let lhs = a_up + k[0] * a_dn + k[1] * d_dn + k[2] * (d_dn.sqr() + Q::int(4) * a_dn);
+        let rhs = p.m * p.g * p.b / p.c
+            - k[0] * p.m * p.g * p.b / p.c
+            - k[1] * p.mu * ab.sqr() / p.c
+            + k[2] * (p.mu.sqr() * ab.sqr().sqr() - Q::int(4) * p.m * p.g * p.b * p.c) / p.c.sqr();
+        Sample {
+            point: vec![],
+            lhs,
+            rhs,
+        }
+    });
     let mu_big = if mutant { "20" } else { "0.8" };
     let d0 = [
         DEFAULTS[0],
@@ -770,8 +795,8 @@ pub fn s1_eq(mutant: bool) -> Outcome {
     ];
     let (s0, st0, f0, w0) = classify(d0);
     let (s1, st1, f1, w1) = classify(d1);
-    let w = json!({"equilibria_identity": eq.json(), "side_true": w0, "side_false": w1});
-    if !(eq.agrees() && s0 && st0) {
+    let w = json!({"equilibria_identity": eq.json(), "jacobian_closed_forms": closed.json(), "side_true": w0, "side_false": w1});
+    if !(eq.agrees() && closed.agrees() && s0 && st0) {
         return Outcome::new(
             Verdict::False,
             Strength::Exact,
@@ -781,7 +806,7 @@ pub fn s1_eq(mutant: bool) -> Outcome {
     }
     if f0 && !f1 && s1 && st1 {
         Outcome::new(Verdict::Conditional, Strength::Exact,
-            "equilibria exactly at cos θ = 0; θ = π/2 is a saddle for all b > 0; θ = −π/2 is stable, a focus iff μ²(a−b)⁴ < 4mgbC: focus at μ = 0.8, stable node at μ = 20 (exact Jacobians)", w)
+            "equilibria exactly at cos θ = 0; Jacobians in closed form for all parameters (identity test): θ = π/2 a saddle for every b > 0, θ = −π/2 stable for μ > 0 and a focus iff μ²(a−b)⁴ < 4mgbC; at the defaults a focus (μ = 0.8), a stable node at μ = 20 (exact)", w)
             .correct("θ = π/2 is a saddle; θ = −π/2 is asymptotically stable for μ > 0: a focus iff μ²(a − b)⁴ < 4 m g b C, a node otherwise (a centre of the linearisation at μ = 0)")
     } else {
         Outcome::new(

@@ -722,7 +722,7 @@ pub fn s2_case3(mutant: bool) -> Outcome {
             .is_some_and(|r| r.complete && r.unique_count() == 0);
     let w = json!({"lemma_on_32_alpha_boxes": lemma, "alpha": alpha_text, "kappa_crit_band": [cell.lower, cell.upper],
         "G(0.9, alpha)": enc(g_pos), "below_band_half": below.as_ref().map(roots_json), "above_band": above.as_ref().map(roots_json)});
-    if lemma && two_forms {
+    if lemma && two_forms && g_pos.inf() > 0.0 {
         Outcome::new(Verdict::Confirmed, Strength::Argument,
             format!("unimodality lemma certified on all 32 α-boxes of [0, 1]: for each α ∈ (0, 1) one component when κ > κ_crit(α), two when κ < κ_crit(α) (κ_crit > 0); α = 0.5: κ_crit ∈ [{:.6}, {:.6}], 2 roots below, 0 above (certified)", cell.lower, cell.upper), w)
     } else {
