@@ -524,7 +524,7 @@ pub fn f1_10(mutant: bool) -> Outcome {
     region_outcome(
         found,
         "Ω of (1.10) vs Ω = {free-flight Λ̈ < 0}",
-        "Ω: −g − h''θ̇² < 0, i.e. g + h''θ̇² > 0 (b θ̇² sin θ < g)",
+        "Ω: −g − h''θ̇² < 0, i.e. b θ̇² sin θ < g (Λ̈ in free flight); the printed set follows from the printed (1.9) at N = 0, μ = 0 and is larger where sin θ > 0 (it carries the factor 2 of (1.7)); the inclusions (1.12) hold in both readings (S1.12)",
         &f,
     )
 }
@@ -547,7 +547,7 @@ pub fn f1_11(mutant: bool) -> Outcome {
     region_outcome(
         found,
         "Ω₀ of (1.11) vs Ω₀ = {N > 0}",
-        "Ω₀: μ h² h' θ̇ − C g − C h'' θ̇² < 0",
+        "Ω₀: μ h² h' θ̇ − C g − C h'' θ̇² < 0 (N > 0 from the Newton equations); the printed set comes from the printed (1.7) and is wrong wherever m h'² ≠ 0; (1.12) still holds (S1.12)",
         &f,
     )
 }

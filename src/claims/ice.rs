@@ -526,7 +526,7 @@ pub fn s3_c0invariant(mutant: bool) -> Outcome {
         "side_only_half_pi": {"p_phi": "2", "p_psi": "2.5", "p_psi - p_phi cos θ over [-1,1]": enc(tau_num), "rhs_at_pi/2_(theta_dot^2 bound = g/a)": at_half_pi.text()}});
     if extra_invariant && no_zero {
         Outcome::new(Verdict::Conditional, Strength::Exact,
-            format!("p_φ = {pf}, p_ψ = {ps}: at cos θ* = 0.8 (θ* ≈ 0.6435) τ = 0 exactly and the Ω₀ boundary θ̇² = {} is the same for c₀ = −5, 0, 5; with |p_ψ| > |p_φ| τ ≠ 0 on [0, π] (certified) and only θ = π/2 (θ̇² = g/a) stays", (vals[0] / (p.a * s)).text()), w)
+            format!("p_φ = {pf}, p_ψ = {ps}: at cos θ* = 0.8 (θ* ≈ 0.6435) τ = 0 exactly and the Ω₀ boundary θ̇² = {} is the same for c₀ = −5, 0, 5; with |p_ψ| > |p_φ| τ ≠ 0 on [0, π] (certified) and only θ = π/2 (θ̇² = g/a) stays; the asymptotes at θ → 0, π (where Aττ' dominates, independent of c₀) are argued, not computed", (vals[0] / (p.a * s)).text()), w)
             .correct("the boundary points of Ω₀ are c₀-invariant at θ = π/2 and, when |p_ψ| < |p_φ|, also at θ* with cos θ* = p_ψ/p_φ (where τ = 0); the asymptotes at θ → 0, π do not move")
     } else if no_zero {
         Outcome::new(
