@@ -342,7 +342,7 @@ pub fn f3_4(mutant: bool) -> Outcome {
     Outcome::new(Verdict::Error, Strength::Certified,
         format!("V₀ at θ = 1 (m = 1, a = 1, A = 0.25): printed {:.4} vs Newton–Euler {:.4}, certified disjoint; U₀ also differs, but U₀/V₀ agrees exactly ({}), so N = −U₀/V₀, (3.5) and Ω₀ are unaffected", vp.mid(), vd.mid(), if ratio.agrees() { "identity test" } else { "NOT" }),
         json!({"identity": w, "theta": "1", "V0_printed": enc(vp), "V0_newton_euler": enc(vd), "disjoint": vp.disjoint(vd)}))
-        .correct("V₀ = 1/m + a² cos²θ/(A + m a² sin²θ), U₀ = −V₀·(N/m of (3.5)) · m, i.e. (3.4) holds only after dividing by m V₀; the sign condition (3.5) is right")
+        .correct("Λ̈ = U₀ + V₀ N with V₀ = 1/m + a² cos²θ/(A + m a² sin²θ) and U₀ = m V₀ × (the printed U₀): the printed (3.4) is the true Λ̈ divided by m V₀ > 0, so its sign, the reaction N = −U₀/V₀ and the condition (3.5) are right")
 }
 
 /// F3.5: right side minus left side of (3.5) equals N/m from Newton–Euler.
