@@ -37,6 +37,7 @@
 pub mod atlas;
 pub mod certificate;
 pub mod check;
+pub mod claims;
 pub mod param;
 pub mod pave;
 pub mod roots;

@@ -37,6 +37,8 @@ enum Command {
     Prove(ProveArgs),
     /// Check proof files independently of the code that produced them.
     Verify(VerifyArgs),
+    /// Recompute every checked claim of the paper and write paper-checks/.
+    CheckPaper(cli::paper::CheckPaperArgs),
 }
 
 fn run(command: Command) -> CliResult {
@@ -50,6 +52,7 @@ fn run(command: Command) -> CliResult {
         Command::CriticalCurve(a) => cli::roots::run_critical_curve(&a),
         Command::Prove(a) => cli::proofs::run_prove(&a),
         Command::Verify(a) => cli::proofs::run_verify(&a),
+        Command::CheckPaper(a) => cli::paper::run_check_paper(&a),
     }
 }
 

@@ -11,6 +11,7 @@ macro_rules! outln {
 
 pub mod atlas;
 pub mod proofs;
+pub mod paper;
 pub mod roots;
 
 use std::fmt;

@@ -1,0 +1,891 @@
+//! §1, Example 1: heavy non-uniform disc, viscous friction — (1.3)–(1.12)
+//! and the claims on Fig. 1b.
+//!
+//! The mechanics the paper states, written here independently of the
+//! `scene` module: G moves on a fixed vertical line at height y; the geometric
+//! centre is `G − b(cos θ, sin θ)`; the lowest rim point P is the contact
+//! point. Velocities come from `v_P = v_G + θ̇ k × (P − G)`, generalised forces
+//! from that velocity's Jacobian, and the motion in contact from the Newton
+//! equations `m ÿ = −m g + Q_y`, `C θ̈ = Q_θ` with `Λ̈ = 0`, solved exactly
+//! (Cramer's rule) for `(ÿ, θ̈, N)`.
+
+use super::exact::{
+    angle_d, angle_dd, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, Identity, Rng,
+    Sample, Q,
+};
+use super::witness::{find_difference, find_leaf, labels_on, window};
+use super::{dec, enc, Claim, Outcome, Strength, Verdict};
+use crate::pave::Label;
+use crate::scalar::{Dual, Scalar};
+use crate::scene::Angle;
+use inari::{DecInterval, Interval};
+use serde_json::json;
+
+/// Parameters of Example 1 in any scalar type.
+#[derive(Clone, Copy, Debug)]
+pub struct P1<T> {
+    pub a: T,
+    pub b: T,
+    pub m: T,
+    pub c: T,
+    pub mu: T,
+    pub g: T,
+}
+
+/// Decimal texts (a, b, m, C, μ, g) of the scene's defaults.
+pub const DEFAULTS: [&str; 6] = ["1", "0.5", "1", "0.3", "0.8", "9.81"];
+const NAMES: [&str; 6] = ["a", "b", "m", "C", "mu", "g"];
+
+impl<T: Copy> P1<T> {
+    pub fn map<U>(&self, f: impl Fn(T) -> U) -> P1<U> {
+        P1 {
+            a: f(self.a),
+            b: f(self.b),
+            m: f(self.m),
+            c: f(self.c),
+            mu: f(self.mu),
+            g: f(self.g),
+        }
+    }
+}
+
+impl P1<Interval> {
+    pub fn texts(t: [&str; 6]) -> P1<Interval> {
+        P1 {
+            a: dec(t[0]),
+            b: dec(t[1]),
+            m: dec(t[2]),
+            c: dec(t[3]),
+            mu: dec(t[4]),
+            g: dec(t[5]),
+        }
+    }
+}
+
+impl P1<Q> {
+    pub fn exact(t: [&str; 6]) -> P1<Q> {
+        P1 {
+            a: qdec(t[0]),
+            b: qdec(t[1]),
+            m: qdec(t[2]),
+            c: qdec(t[3]),
+            mu: qdec(t[4]),
+            g: qdec(t[5]),
+        }
+    }
+    pub fn random(r: &mut Rng) -> P1<Q> {
+        let mut q = || Q::from_f64(r.positive());
+        P1 {
+            a: q(),
+            b: q(),
+            m: q(),
+            c: q(),
+            mu: q(),
+            g: q(),
+        }
+    }
+}
+
+pub fn params_json(t: [&str; 6]) -> serde_json::Value {
+    NAMES
+        .iter()
+        .zip(t)
+        .map(|(k, v)| (k.to_string(), json!(v)))
+        .collect::<serde_json::Map<_, _>>()
+        .into()
+}
+
+/// `h(θ)` of (1.3) as printed.
+pub fn h<T: Scalar>(p: &P1<T>, an: &Angle<T>) -> T {
+    p.a + p.b * an.sin
+}
+
+/// `(h, h', h'')` by nested duals in θ.
+pub fn h_jet<T: Scalar>(p: &P1<T>, s: T, c: T) -> (T, T, T) {
+    let pd = p.map(|x| Dual::constant(Dual::constant(x)));
+    jet2(h(&pd, &angle_dd(s, c)))
+}
+
+/// Height of the lowest rim point above the plane from the geometry, with G
+/// at height y: centre at `y − b sin θ`, lowest point `a` below the centre.
+pub fn contact_height<T: Scalar>(p: &P1<T>, an: &Angle<T>, y: T) -> T {
+    y - p.b * an.sin - p.a
+}
+
+/// Velocity `(horizontal, vertical)` of the material point of the disc at P:
+/// `v_G + θ̇ k × (P − G)`, `P − G = −(b cos θ, b sin θ + a)`.
+pub fn contact_velocity<T: Scalar>(p: &P1<T>, an: &Angle<T>, ydot: T, w: T) -> (T, T) {
+    let rx = -(p.b * an.cos);
+    let ry = -(p.b * an.sin + p.a);
+    (-(w * ry), ydot + w * rx)
+}
+
+/// `(θ̈, N)` in contact from the Newton equations (friction `F = −μ v_Px`).
+/// `friction_sign` is `1` for the stated mechanics (`−1`: a mutant).
+pub fn newton<T: Scalar>(p: &P1<T>, s: T, c: T, w: T, friction_sign: i32) -> (T, T) {
+    let an = Angle {
+        theta: T::int(0),
+        sin: s,
+        cos: c,
+    };
+    let (hh, h1, h2) = h_jet(p, s, c);
+    let _ = hh;
+    let (zero, one) = (T::int(0), T::int(1));
+    // Jacobian of v_P with respect to (ẏ, θ̇)
+    let (jx_y, jz_y) = contact_velocity(p, &an, one, zero);
+    let (jx_w, jz_w) = contact_velocity(p, &an, zero, one);
+    let nu = contact_velocity(p, &an, zero, w).0;
+    let f = T::int(-friction_sign) * p.mu * nu;
+    // m ÿ − jz_y N = −m g + F jx_y;  C θ̈ − jz_w N = F jx_w;  ÿ − h'θ̈ = h''θ̇²
+    let m = vec![
+        vec![p.m, zero, -jz_y],
+        vec![zero, p.c, -jz_w],
+        vec![one, -h1, zero],
+    ];
+    let r = [-(p.m * p.g) + f * jx_y, f * jx_w, h2 * w.sqr()];
+    let x = solve(&m, &r);
+    (x[1], x[2])
+}
+
+/// θ̈ from (1.7) as printed (`factor` 2; a mutant passes 1).
+pub fn printed_1_7<T: Scalar>(p: &P1<T>, s: T, c: T, w: T, factor: i32) -> T {
+    let (hh, h1, h2) = h_jet(p, s, c);
+    let k = T::int(factor);
+    (-(p.m * p.g * h1) - p.mu * hh.sqr() * w - k * p.m * h1 * h2 * w.sqr())
+        / (k * (p.c + p.m * h1.sqr()))
+}
+
+/// The bracket of (1.9)–(1.11) as printed, `μh²h'θ̇ − g(2C + m h'²) − 2C h''θ̇²`
+/// (`with_friction = false`: (1.10)).
+pub fn printed_bracket<T: Scalar>(p: &P1<T>, s: T, c: T, w: T, with_friction: bool) -> T {
+    let (hh, h1, h2) = h_jet(p, s, c);
+    let two = T::int(2);
+    let fr = if with_friction {
+        p.mu * hh.sqr() * h1 * w
+    } else {
+        T::int(0)
+    };
+    fr - p.g * (two * p.c + p.m * h1.sqr()) - two * p.c * h2 * w.sqr()
+}
+
+/// Λ̈ of (1.9) as printed.
+pub fn printed_1_9<T: Scalar>(p: &P1<T>, s: T, c: T, w: T, n: T) -> T {
+    let (_, h1, _) = h_jet(p, s, c);
+    n / p.m + printed_bracket(p, s, c, w, true) / (T::int(2) * (p.c + p.m * h1.sqr()))
+}
+
+/// Ω from the mechanics: Λ̈ in free flight (no reaction, no friction,
+/// ÿ = −g, θ̈ = 0) by (1.8): `−g − h''θ̇²`.
+pub fn derived_omega<T: Scalar>(p: &P1<T>, s: T, c: T, w: T) -> T {
+    let (_, _, h2) = h_jet(p, s, c);
+    -p.g - h2 * w.sqr()
+}
+
+fn iv(lo: f64, hi: f64) -> Interval {
+    Interval::try_from((lo, hi)).unwrap()
+}
+
+fn dec_angle(theta: Interval) -> (DecInterval, DecInterval) {
+    let an = Angle::new(DecInterval::new(theta));
+    (an.sin, an.cos)
+}
+
+fn rand_point(r: &mut Rng) -> (P1<Q>, Q, Q, Q, Vec<(String, f64)>) {
+    let p = P1::random(r);
+    let t = r.tan_half();
+    let (s, c) = sin_cos_of_tan_half(t);
+    let wf = r.signed();
+    let w = Q::from_f64(wf);
+    let pt = vec![
+        ("tan(theta/2)".into(), t.get().to_f64()),
+        ("theta_dot".into(), wf),
+    ];
+    (p, s, c, w, pt)
+}
+
+fn id_json(i: &Identity) -> serde_json::Value {
+    i.json()
+}
+
+// ---------------------------------------------------------------- formulas
+
+/// F1.3: `Λ = y − h(θ)` equals the height of the lowest rim point.
+/// Mutant: `h = a + b cos θ`.
+pub fn f1_3(mutant: bool) -> Outcome {
+    let id = identity_test(13, |r| {
+        let (p, s, c, _, pt) = rand_point(r);
+        let y = Q::from_f64(r.positive());
+        let an = Angle {
+            theta: Q::int(0),
+            sin: s,
+            cos: c,
+        };
+        let hp = if mutant { p.a + p.b * c } else { h(&p, &an) };
+        Sample {
+            point: pt,
+            lhs: y - hp,
+            rhs: contact_height(&p, &an, y),
+        }
+    });
+    formula_verdict(
+        id,
+        "y − h(θ) is the height of the lowest rim point",
+        "Λ = y − a − b sin θ",
+    )
+}
+
+/// F1.4: the slip velocity of the contact point is `θ̇ h(θ)`. Mutant: `θ̇ a`.
+pub fn f1_4(mutant: bool) -> Outcome {
+    let id = identity_test(14, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        let an = Angle {
+            theta: Q::int(0),
+            sin: s,
+            cos: c,
+        };
+        let yd = Q::from_f64(r.signed());
+        let printed = if mutant { w * p.a } else { w * h(&p, &an) };
+        Sample {
+            point: pt,
+            lhs: printed,
+            rhs: contact_velocity(&p, &an, yd, w).0,
+        }
+    });
+    formula_verdict(
+        id,
+        "ν = θ̇ h(θ) is the horizontal velocity of the material contact point (v_G + θ̇k×(P−G))",
+        "ν = θ̇ (a + b sin θ)",
+    )
+}
+
+fn formula_verdict(id: Identity, what: &str, right: &str) -> Outcome {
+    if id.agrees() {
+        Outcome::new(
+            Verdict::Confirmed,
+            Strength::IdentityTest,
+            format!("{what}: exact agreement at random rational points"),
+            id_json(&id),
+        )
+    } else {
+        Outcome::new(
+            Verdict::Error,
+            Strength::Exact,
+            format!("printed and derived differ exactly at a rational point ({what})"),
+            id_json(&id),
+        )
+        .correct(right.to_string())
+    }
+}
+
+/// F1.5: `T = ½ m ẏ + ½ C θ̇²` against `½ m|v_G|² + ½ C θ̇²`; if it differs,
+/// whether the printed (1.7) follows from the printed T (error) or not (typo).
+/// Mutant: the printed T with ẏ².
+pub fn f1_5(mutant: bool) -> Outcome {
+    let half = |x: Q| x / Q::int(2);
+    let t_id = identity_test(15, |r| {
+        let (p, _, _, w, mut pt) = rand_point(r);
+        let ydf = r.signed();
+        pt.push(("y_dot".into(), ydf));
+        let yd = Q::from_f64(ydf);
+        let printed = if mutant {
+            half(p.m * yd.sqr())
+        } else {
+            half(p.m * yd)
+        } + half(p.c * w.sqr());
+        // |v_G|² with v_G = (0, ẏ)
+        let derived = half(p.m * (Q::int(0).sqr() + yd.sqr())) + half(p.c * w.sqr());
+        Sample {
+            point: pt,
+            lhs: printed,
+            rhs: derived,
+        }
+    });
+    if t_id.agrees() {
+        return formula_verdict(t_id, "T = ½ m ẏ² + ½ C θ̇²", "");
+    }
+    // Kinetic-energy theorem (1.6) with the printed T in contact (ẏ = h'θ̇):
+    // ½ m (h''θ̇² + h'θ̈) + C θ̇ θ̈ = −m g h' θ̇ − μ h² θ̇².
+    let used = identity_test(151, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        let (hh, h1, h2) = h_jet(&p, s, c);
+        let thdd = (-(p.m * p.g * h1 * w) - p.mu * hh.sqr() * w.sqr() - half(p.m * h2 * w.sqr()))
+            / (half(p.m * h1) + p.c * w);
+        Sample {
+            point: pt,
+            lhs: printed_1_7(&p, s, c, w, 2),
+            rhs: thdd,
+        }
+    });
+    let witness = json!({"printed_T_vs_mechanics": t_id.json(), "printed_1_7_vs_energy_theorem_with_printed_T": used.json()});
+    if used.agrees() {
+        Outcome::new(
+            Verdict::Error,
+            Strength::IdentityTest,
+            "the printed T is wrong and (1.7) follows from it",
+            witness,
+        )
+        .correct("T = ½ m ẏ² + ½ C θ̇²")
+    } else {
+        Outcome::new(Verdict::Typo, Strength::Exact,
+            "printed T = ½mẏ + ½Cθ̇² is not the kinetic energy (½mẏ² + ½Cθ̇², exact difference at a rational point); (1.7) does not follow from the printed T either, so the slip does not propagate (the error of (1.7) is separate, see F1.7)",
+            witness).correct("T = ½ m ẏ² + ½ C θ̇²")
+    }
+}
+
+/// F1.7: θ̈ of (1.7) against the Newton equations. Mutant: factor 1 (i.e.
+/// the corrected equation).
+pub fn f1_7(mutant: bool) -> Outcome {
+    let k = if mutant { 1 } else { 2 };
+    let id = identity_test(17, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        Sample {
+            point: pt,
+            lhs: printed_1_7(&p, s, c, w, k),
+            rhs: newton(&p, s, c, w, 1).0,
+        }
+    });
+    if id.agrees() {
+        return formula_verdict(id, "(1.7) against the Newton equations with Λ̈ = 0", "");
+    }
+    // Is the difference exactly the spurious factor 2 on the left?
+    let corrected = identity_test(171, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        Sample {
+            point: pt,
+            lhs: printed_1_7(&p, s, c, w, 1),
+            rhs: newton(&p, s, c, w, 1).0,
+        }
+    });
+    // Certified witness at the default parameters, θ = 0, θ̇ = 1.
+    let p = P1::texts(DEFAULTS).map(DecInterval::new);
+    let (s, c) = dec_angle(iv(0.0, 0.0));
+    let one = DecInterval::new(iv(1.0, 1.0));
+    let pr = printed_1_7(&p, s, c, one, k).interval().unwrap();
+    let de = newton(&p, s, c, one, 1).0.interval().unwrap();
+    Outcome::new(Verdict::Error, Strength::Certified,
+        format!("θ̈ at θ = 0, θ̇ = 1 (default parameters): printed {:.4} vs Newton {:.4}, certified disjoint; removing the factor 2 on the left {} the Newton equations", pr.mid(), de.mid(), if corrected.agrees() { "reproduces" } else { "does not reproduce" }),
+        json!({"params": params_json(DEFAULTS), "theta": "0", "theta_dot": "1",
+               "printed_theta_ddot": enc(pr), "newton_theta_ddot": enc(de), "disjoint": pr.disjoint(de),
+               "identity": id.json(), "without_factor_2": corrected.json()}))
+        .correct("(C + m h'²) θ̈ + m h' h'' θ̇² = −m g h' − μ h² θ̇ (no factor 2 on the left); it changes (1.9)–(1.11), see F1.9–F1.11")
+}
+
+/// F1.8: `Λ̈ = ÿ − h''θ̇² − h'θ̈` against the second time derivative of
+/// `Λ = y − h(θ)` along a rational path `tan(θ(t)/2) = u₀ + u₁t + u₂t²`,
+/// `y = y₀ + y₁t + y₂t²`. Mutant: `+h''θ̇²`.
+pub fn f1_8(mutant: bool) -> Outcome {
+    let id = identity_test(18, |r| {
+        let p = P1::random(r);
+        let (u0, u1, u2) = (
+            r.tan_half(),
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+        );
+        let (y0, y1, y2) = (
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+        );
+        type DD = Dual<Dual<Q>>;
+        let tt = DD::variable(Dual::variable(Q::int(0), 0), 0);
+        let cst = |x: Q| DD::constant(Dual::constant(x));
+        let u = cst(u0) + cst(u1) * tt + cst(u2) * tt.sqr();
+        let y = cst(y0) + cst(y1) * tt + cst(y2) * tt.sqr();
+        let (su, cu) = sin_cos_of_tan_half(u);
+        let pd = p.map(cst);
+        let lam = y - h(
+            &pd,
+            &Angle {
+                theta: cst(Q::int(0)),
+                sin: su,
+                cos: cu,
+            },
+        );
+        let lam_dd = jet2(lam).2;
+        // θ̇ = 2u̇/(1 + u²) as a first-order dual in t: θ̈ is its derivative.
+        let ud = Dual {
+            value: u0,
+            grad: [u1, Q::int(0)],
+        };
+        let udot = Dual {
+            value: u1,
+            grad: [Q::int(2) * u2, Q::int(0)],
+        };
+        let thd = Dual::<Q>::int(2) * udot / (Dual::<Q>::int(1) + ud.sqr());
+        let (w, thdd) = (thd.value, thd.grad[0]);
+        let (s, c) = sin_cos_of_tan_half(u0);
+        let (_, h1, h2) = h_jet(&p, s, c);
+        let sign = if mutant { Q::int(-1) } else { Q::int(1) };
+        let printed = Q::int(2) * y2 - sign * h2 * w.sqr() - h1 * thdd;
+        Sample {
+            point: vec![("u0".into(), u0.get().to_f64())],
+            lhs: printed,
+            rhs: lam_dd,
+        }
+    });
+    formula_verdict(id, "Λ̈ = ÿ − h''θ̇² − h'θ̈ against d²Λ/dt² along rational paths (ÿ = N/m − g is the vertical Newton equation)", "Λ̈ = ÿ − h''θ̇² − h'θ̈")
+}
+
+/// F1.9: (1.9) against `N/m − g − h''θ̇² − h'θ̈` with θ̈ from the Newton
+/// equations; then whether it follows from the printed (1.7). Mutant: θ̈ of
+/// the corrected (1.7) on the printed side.
+pub fn f1_9(mutant: bool) -> Outcome {
+    let lhs = |p: &P1<Q>, s: Q, c: Q, w: Q, n: Q| {
+        if mutant {
+            let (_, h1, h2) = h_jet(p, s, c);
+            n / p.m - p.g - h2 * w.sqr() - h1 * printed_1_7(p, s, c, w, 1)
+        } else {
+            printed_1_9(p, s, c, w, n)
+        }
+    };
+    let id = identity_test(19, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        let n = Q::from_f64(r.positive());
+        let (_, h1, h2) = h_jet(&p, s, c);
+        let rhs = n / p.m - p.g - h2 * w.sqr() - h1 * newton(&p, s, c, w, 1).0;
+        Sample {
+            point: pt,
+            lhs: lhs(&p, s, c, w, n),
+            rhs,
+        }
+    });
+    if id.agrees() {
+        return formula_verdict(
+            id,
+            "(1.9) against (1.8) with θ̈ from the Newton equations",
+            "",
+        );
+    }
+    let follows = identity_test(191, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        let n = Q::from_f64(r.positive());
+        let (_, h1, h2) = h_jet(&p, s, c);
+        let rhs = n / p.m - p.g - h2 * w.sqr() - h1 * printed_1_7(&p, s, c, w, 2);
+        Sample {
+            point: pt,
+            lhs: printed_1_9(&p, s, c, w, n),
+            rhs,
+        }
+    });
+    Outcome::new(Verdict::Error, Strength::IdentityTest,
+        format!("(1.9) differs exactly from (1.8) with the Newton θ̈; it {} from the printed (1.7) (inherits its factor 2)", if follows.agrees() { "follows exactly" } else { "does not follow" }),
+        json!({"against_newton": id.json(), "from_printed_1_7": follows.json()}))
+        .correct("Λ̈ = N/m + (μ h² h' θ̇ − C g − C h'' θ̇²)/(C + m h'²)")
+}
+
+fn viscous_pair(
+    printed: fn(&P1<DecInterval>, DecInterval, DecInterval, DecInterval) -> DecInterval,
+    derived: fn(&P1<DecInterval>, DecInterval, DecInterval, DecInterval) -> DecInterval,
+) -> impl Fn(Interval, Interval) -> [DecInterval; 2] + Sync {
+    move |th: Interval, w: Interval| {
+        let p = P1::texts(DEFAULTS).map(DecInterval::new);
+        let (s, c) = dec_angle(th);
+        let w = DecInterval::new(w);
+        [printed(&p, s, c, w), derived(&p, s, c, w)]
+    }
+}
+
+fn region_outcome(
+    found: Option<super::witness::Found>,
+    what: &str,
+    right: &str,
+    f: &dyn Fn(Interval, Interval) -> [DecInterval; 2],
+) -> Outcome {
+    match found {
+        Some(b) => {
+            let again = labels_on(&f, b.bx);
+            Outcome::new(Verdict::Error, Strength::Certified,
+                format!("{what}: box θ ∈ [{:.4}, {:.4}], θ̇ ∈ [{:.4}, {:.4}] is {} the printed set and {} the derived one (default parameters)",
+                    b.bx.theta[0], b.bx.theta[1], b.bx.theta_dot[0], b.bx.theta_dot[1],
+                    if again[0] == Label::ProvedIn { "inside" } else { "outside" },
+                    if again[1] == Label::ProvedIn { "inside" } else { "outside" }),
+                json!({"params": params_json(DEFAULTS), "witness": b.json(), "first": "printed", "second": "derived"}))
+                .correct(right.to_string())
+        }
+        None => Outcome::new(
+            Verdict::ConfirmedOn,
+            Strength::Certified,
+            format!("{what}: no box of the window proved in one set and out of the other"),
+            json!({"params": params_json(DEFAULTS)}),
+        ),
+    }
+}
+
+/// F1.10: Ω as printed against free-flight Λ̈ < 0. Mutant: the printed side
+/// replaced by the derived one.
+pub fn f1_10(mutant: bool) -> Outcome {
+    let pr: fn(&P1<DecInterval>, DecInterval, DecInterval, DecInterval) -> DecInterval = if mutant {
+        derived_omega
+    } else {
+        |p, s, c, w| printed_bracket(p, s, c, w, false)
+    };
+    let f = viscous_pair(pr, derived_omega);
+    let found = find_difference(&f, window([0.5, 1.0], [4.0, 7.0]), 1.0 / 64.0);
+    region_outcome(
+        found,
+        "Ω of (1.10) vs Ω = {free-flight Λ̈ < 0}",
+        "Ω: −g − h''θ̇² < 0, i.e. b θ̇² sin θ < g (Λ̈ in free flight); the printed set follows from the printed (1.9) at N = 0, μ = 0 and is larger where sin θ > 0 (it carries the factor 2 of (1.7)); the inclusions (1.12) hold in both readings (S1.12)",
+        &f,
+    )
+}
+
+/// −N in contact (Ω₀ = {−N < 0}).
+pub fn derived_omega0<T: Scalar>(p: &P1<T>, s: T, c: T, w: T) -> T {
+    -newton(p, s, c, w, 1).1
+}
+
+/// F1.11: Ω₀ as printed against `N > 0` from the Newton equations.
+/// Mutant: the printed side replaced by the derived one.
+pub fn f1_11(mutant: bool) -> Outcome {
+    let pr: fn(&P1<DecInterval>, DecInterval, DecInterval, DecInterval) -> DecInterval = if mutant {
+        derived_omega0
+    } else {
+        |p, s, c, w| printed_bracket(p, s, c, w, true)
+    };
+    let f = viscous_pair(pr, derived_omega0);
+    let found = find_difference(&f, window([-0.25, 0.25], [6.0, 10.0]), 1.0 / 64.0);
+    region_outcome(
+        found,
+        "Ω₀ of (1.11) vs Ω₀ = {N > 0}",
+        "Ω₀: μ h² h' θ̇ − C g − C h'' θ̇² < 0 (N > 0 from the Newton equations); the printed set comes from the printed (1.7) and is wrong wherever m h'² ≠ 0; (1.12) still holds (S1.12)",
+        &f,
+    )
+}
+
+// ---------------------------------------------------------------- statements
+
+/// S1.ideal: with μ = 0, `−N = (mC/(C + m h'²))·(free-flight Λ̈)` exactly, so
+/// Ω = Ω₀ (the factor is positive). Mutant: μ ≠ 0.
+pub fn s1_ideal(mutant: bool) -> Outcome {
+    let id = identity_test(101, |r| {
+        let (mut p, s, c, w, pt) = rand_point(r);
+        if !mutant {
+            p.mu = Q::int(0);
+        }
+        let (_, h1, _) = h_jet(&p, s, c);
+        let factor = p.m * p.c / (p.c + p.m * h1.sqr());
+        Sample {
+            point: pt,
+            lhs: derived_omega0(&p, s, c, w),
+            rhs: factor * derived_omega(&p, s, c, w),
+        }
+    });
+    if id.agrees() {
+        Outcome::new(Verdict::Confirmed, Strength::Argument,
+            "Example 1 with μ = 0: −N = mC/(C + m h'²) · (free-flight Λ̈), a positive factor, so Ω = Ω₀ (identity test); §2 likewise, see S2.omega. In general Λ̈ = U + V N with V = ∇Λ·M⁻¹∇Λ > 0 for an ideal constraint, so N = −U/V > 0 ⟺ U < 0",
+            json!({"identity": id.json()}))
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "with friction, −N is not a positive multiple of the free-flight Λ̈",
+            json!({"identity": id.json()}),
+        )
+    }
+}
+
+/// S1.friction: a certified box of Ω ∖ Ω₀ at the default parameters (μ = 0.8).
+/// Mutant: μ = 0.
+pub fn s1_friction(mutant: bool) -> Outcome {
+    let mu = if mutant { "0" } else { DEFAULTS[4] };
+    let t = [
+        DEFAULTS[0],
+        DEFAULTS[1],
+        DEFAULTS[2],
+        DEFAULTS[3],
+        mu,
+        DEFAULTS[5],
+    ];
+    let f = move |th: Interval, w: Interval| {
+        let p = P1::texts(t).map(DecInterval::new);
+        let (s, c) = dec_angle(th);
+        let w = DecInterval::new(w);
+        [derived_omega(&p, s, c, w), derived_omega0(&p, s, c, w)]
+    };
+    let found = find_leaf(f, window([-0.25, 0.25], [6.0, 10.0]), 1.0 / 64.0, |l| {
+        l == [Label::ProvedIn, Label::ProvedOut]
+    });
+    match found {
+        Some(b) => Outcome::new(Verdict::Confirmed, Strength::Certified,
+            format!("μ = {mu}: box θ ∈ [{:.4}, {:.4}], θ̇ ∈ [{:.4}, {:.4}] lies in Ω ∩ Ω̄₀ (paradox of non-existence)", b.bx.theta[0], b.bx.theta[1], b.bx.theta_dot[0], b.bx.theta_dot[1]),
+            json!({"params": params_json(t), "witness": b.json(), "first": "Ω", "second": "Ω₀"})),
+        None => Outcome::new(Verdict::False, Strength::Certified, format!("μ = {mu}: no box of Ω ∖ Ω₀ found"), json!({"params": params_json(t)})),
+    }
+}
+
+/// S1.12: exact identity `−N (C + m h'²)/m = C·Λ̈_free + μ h² b (θ̇ cos θ)`
+/// (and the same split for the printed (1.10)/(1.11)); with C > 0, μ, b ≥ 0
+/// the inclusions follow. Mutant: friction with the wrong sign.
+pub fn s1_12(mutant: bool) -> Outcome {
+    let sign = if mutant { -1 } else { 1 };
+    let derived = identity_test(112, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        let (hh, h1, _) = h_jet(&p, s, c);
+        let lhs = -newton(&p, s, c, w, sign).1 * (p.c + p.m * h1.sqr()) / p.m;
+        let rhs = p.c * derived_omega(&p, s, c, w) + p.mu * hh.sqr() * p.b * w * c;
+        Sample {
+            point: pt,
+            lhs,
+            rhs,
+        }
+    });
+    let printed = identity_test(113, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        let (hh, _, _) = h_jet(&p, s, c);
+        Sample {
+            point: pt,
+            lhs: printed_bracket(&p, s, c, w, true),
+            rhs: printed_bracket(&p, s, c, w, false) + p.mu * hh.sqr() * p.b * w * c,
+        }
+    });
+    let w = json!({"derived_split": derived.json(), "printed_split": printed.json()});
+    if derived.agrees() && printed.agrees() {
+        Outcome::new(Verdict::Confirmed, Strength::Argument,
+            "g_Ω₀ = C·g_Ω + μh²b·θ̇cosθ exactly (derived and printed forms); where θ̇cosθ > 0, g_Ω₀ < 0 ⇒ g_Ω < 0 (Ω₀ ⊂ Ω); where θ̇cosθ < 0, g_Ω < 0 ⇒ g_Ω₀ < 0 (Ω ⊂ Ω₀); for every a, b ≥ 0, C, μ ≥ 0", w)
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "the friction term does not split off with the sign of θ̇ cos θ",
+            w,
+        )
+    }
+}
+
+/// S1.12mu: Ω does not depend on μ and `g_Ω₀` is affine in μ with slope
+/// `h² b θ̇ cos θ` (exact), so Ω ∖ Ω₀ (where θ̇cosθ > 0) and Ω₀ ∖ Ω (where
+/// θ̇cosθ < 0) grow with μ; a certified box in Ω ∖ Ω₀ at μ = 1.6 but in Ω₀ at
+/// μ = 0.8 shows the growth is strict. Mutant: the two μ swapped.
+pub fn s1_12mu(mutant: bool) -> Outcome {
+    let slope = identity_test(114, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        let (hh, h1, _) = h_jet(&p, s, c);
+        let mut p2 = p;
+        p2.mu = p.mu + Q::int(1);
+        let scale = (p.c + p.m * h1.sqr()) / p.m;
+        let d = derived_omega0(&p2, s, c, w) * scale - derived_omega0(&p, s, c, w) * scale;
+        Sample {
+            point: pt,
+            lhs: d,
+            rhs: hh.sqr() * p.b * w * c,
+        }
+    });
+    let (lo, hi) = if mutant {
+        ("1.6", "0.8")
+    } else {
+        ("0.8", "1.6")
+    };
+    let f = move |th: Interval, w: Interval| {
+        let pa = P1::texts([
+            DEFAULTS[0],
+            DEFAULTS[1],
+            DEFAULTS[2],
+            DEFAULTS[3],
+            lo,
+            DEFAULTS[5],
+        ])
+        .map(DecInterval::new);
+        let pb = P1::texts([
+            DEFAULTS[0],
+            DEFAULTS[1],
+            DEFAULTS[2],
+            DEFAULTS[3],
+            hi,
+            DEFAULTS[5],
+        ])
+        .map(DecInterval::new);
+        let (s, c) = dec_angle(th);
+        let w = DecInterval::new(w);
+        [derived_omega0(&pa, s, c, w), derived_omega0(&pb, s, c, w)]
+    };
+    let found = find_leaf(f, window([-0.25, 0.25], [3.0, 8.0]), 1.0 / 64.0, |l| {
+        l == [Label::ProvedIn, Label::ProvedOut]
+    });
+    let w =
+        json!({"slope_in_mu": slope.json(), "mu_pair": [lo, hi], "box": found.map(|b| b.json())});
+    match (slope.agrees(), found) {
+        (true, Some(b)) => Outcome::new(Verdict::Confirmed, Strength::Argument,
+            format!("Ω is μ-free, g_Ω₀ has slope h²bθ̇cosθ in μ (exact), so Ω Δ Ω₀ is nested increasing in μ; box θ ∈ [{:.3}, {:.3}], θ̇ ∈ [{:.3}, {:.3}] is in Ω₀ at μ = {lo} and out at μ = {hi} (certified)", b.bx.theta[0], b.bx.theta[1], b.bx.theta_dot[0], b.bx.theta_dot[1]), w),
+        _ => Outcome::new(Verdict::False, Strength::Certified, "no certified growth found", w),
+    }
+}
+
+/// Jacobian `(∂θ̈/∂θ, ∂θ̈/∂θ̇)` at `θ̇ = 0` of the Newton equations, exactly.
+fn jacobian(p: &P1<Q>, s: Q, c: Q) -> (Q, Q) {
+    let an = angle_d(s, c);
+    let pd = p.map(Dual::constant);
+    let w = Dual::variable(Q::int(0), 1);
+    let thdd = newton(&pd, an.sin, an.cos, w, 1).0;
+    (thdd.grad[0], thdd.grad[1])
+}
+
+/// S1.eq: equilibria, their type, exactly from the Newton equations at
+/// decimal parameters (θ = ±π/2 have rational sin, cos). Mutant: μ = 20.
+pub fn s1_eq(mutant: bool) -> Outcome {
+    // θ̈(θ, 0)·(C + m h'²) = −m g h' (exact identity): equilibria iff cos θ = 0.
+    let eq = identity_test(115, |r| {
+        let (p, s, c, _, pt) = rand_point(r);
+        let (_, h1, _) = h_jet(&p, s, c);
+        Sample {
+            point: pt,
+            lhs: newton(&p, s, c, Q::int(0), 1).0 * (p.c + p.m * h1.sqr()),
+            rhs: -(p.m * p.g * p.b * c),
+        }
+    });
+    let classify = |t: [&str; 6]| {
+        let p = P1::exact(t);
+        let (a_up, d_up) = jacobian(&p, Q::int(1), Q::int(0));
+        let (a_dn, d_dn) = jacobian(&p, Q::int(-1), Q::int(0));
+        let disc = d_dn.sqr() + Q::int(4) * a_dn;
+        let saddle = a_up.signum() > 0;
+        let stable = a_dn.signum() < 0 && d_dn.signum() < 0;
+        let focus = disc.signum() < 0;
+        (
+            saddle,
+            stable,
+            focus,
+            json!({
+            "params": params_json(t),
+            "at_pi_over_2": {"d_thdd_d_theta": a_up.text(), "d_thdd_d_theta_dot": d_up.text(), "type": if saddle {"saddle"} else {"not a saddle"}},
+            "at_minus_pi_over_2": {"d_thdd_d_theta": a_dn.text(), "d_thdd_d_theta_dot": d_dn.text(), "discriminant_trace2_minus_4det": disc.text(),
+                "type": if !stable {"not stable"} else if focus {"stable focus"} else {"stable node"}}}),
+        )
+    };
+    // Jacobian entries in closed form for all parameters (exact identity):
+    // at θ = π/2: ∂θ̈/∂θ = m g b/C (> 0: saddle for b > 0); at θ = −π/2:
+    // ∂θ̈/∂θ = −m g b/C, ∂θ̈/∂θ̇ = −μ(a − b)²/C, so trace² − 4 det =
+    // (μ²(a − b)⁴ − 4 m g b C)/C².
+    let closed = identity_test(117, |r| {
+        let p = P1::random(r);
+        let k = [
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+        ];
+        let (a_up, _) = jacobian(&p, Q::int(1), Q::int(0));
+        let (a_dn, d_dn) = jacobian(&p, Q::int(-1), Q::int(0));
+        let ab = p.a - p.b;
+        let lhs = a_up + k[0] * a_dn + k[1] * d_dn + k[2] * (d_dn.sqr() + Q::int(4) * a_dn);
+        let rhs = p.m * p.g * p.b / p.c
+            - k[0] * p.m * p.g * p.b / p.c
+            - k[1] * p.mu * ab.sqr() / p.c
+            + k[2] * (p.mu.sqr() * ab.sqr().sqr() - Q::int(4) * p.m * p.g * p.b * p.c) / p.c.sqr();
+        Sample {
+            point: vec![],
+            lhs,
+            rhs,
+        }
+    });
+    let mu_big = if mutant { "20" } else { "0.8" };
+    let d0 = [
+        DEFAULTS[0],
+        DEFAULTS[1],
+        DEFAULTS[2],
+        DEFAULTS[3],
+        mu_big,
+        DEFAULTS[5],
+    ];
+    let d1 = [
+        DEFAULTS[0],
+        DEFAULTS[1],
+        DEFAULTS[2],
+        DEFAULTS[3],
+        "20",
+        DEFAULTS[5],
+    ];
+    let (s0, st0, f0, w0) = classify(d0);
+    let (s1, st1, f1, w1) = classify(d1);
+    let w = json!({"equilibria_identity": eq.json(), "jacobian_closed_forms": closed.json(), "side_true": w0, "side_false": w1});
+    if !(eq.agrees() && closed.agrees() && s0 && st0) {
+        return Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "θ = π/2 is not a saddle or θ = −π/2 is not stable at these parameters",
+            w,
+        );
+    }
+    if f0 && !f1 && s1 && st1 {
+        Outcome::new(Verdict::Conditional, Strength::Exact,
+            "equilibria exactly at cos θ = 0; Jacobians in closed form for all parameters (identity test): θ = π/2 a saddle for every b > 0, θ = −π/2 stable for μ > 0 and a focus iff μ²(a−b)⁴ < 4mgbC; at the defaults a focus (μ = 0.8), a stable node at μ = 20 (exact)", w)
+            .correct("θ = π/2 is a saddle; θ = −π/2 is asymptotically stable for μ > 0: a focus iff μ²(a − b)⁴ < 4 m g b C, a node otherwise (a centre of the linearisation at μ = 0)")
+    } else {
+        Outcome::new(
+            Verdict::Confirmed,
+            Strength::Exact,
+            format!(
+                "saddle at π/2, stable {} at −π/2",
+                if f0 { "focus" } else { "node" }
+            ),
+            w,
+        )
+    }
+}
+
+/// S1.traj: exact identity `J θ̈ + μ h² θ̇ = m b cos θ · g_Ω` (J = C + m h'²,
+/// g_Ω = b θ̇² sin θ − g). On ∂Ω (g_Ω = 0) inside Ω₀ (θ̇ cos θ < 0 by S1.12)
+/// the derivative of g_Ω along the flow is `θ̇²(b θ̇ cos θ − 2μ b h² sin θ/J) < 0`,
+/// so the flow crosses ∂Ω ∩ Ω₀ only into Ω: a contact trajectory cannot enter
+/// Ω̄ ∩ Ω₀. It can enter Ω ∩ Ω̄₀: a certified box in Ω straddling ∂Ω₀ where
+/// `d(−N)/dt > 0`. Mutant: friction with the wrong sign.
+pub fn s1_traj(mutant: bool) -> Outcome {
+    let sign = if mutant { -1 } else { 1 };
+    let id = identity_test(116, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        let (hh, h1, _) = h_jet(&p, s, c);
+        let j = p.c + p.m * h1.sqr();
+        let lhs = j * newton(&p, s, c, w, sign).0 + p.mu * hh.sqr() * w;
+        let rhs = p.m * p.b * c * (p.b * w.sqr() * s - p.g);
+        Sample {
+            point: pt,
+            lhs,
+            rhs,
+        }
+    });
+    // Entering Ω ∩ Ω̄₀: box around (0, 7.36) at the default parameters.
+    let p = P1::texts(DEFAULTS);
+    let bx = ([-0.01, 0.01], [7.2, 7.5]);
+    let th = iv(bx.0[0], bx.0[1]);
+    let wv = iv(bx.1[0], bx.1[1]);
+    let an = Angle::new(Dual::variable(th, 0));
+    let pd = p.map(Dual::constant);
+    let wd = Dual::variable(wv, 1);
+    let (thdd, n) = newton(&pd, an.sin, an.cos, wd, sign);
+    let lie = -(n.grad[0] * wv + n.grad[1] * thdd.value);
+    let g_omega = derived_omega(&p, th.sin(), th.cos(), wv);
+    let n_at = |w: f64| newton(&p, iv(0.0, 0.0).sin(), iv(0.0, 0.0).cos(), iv(w, w), 1).1;
+    let (n_lo, n_hi) = (n_at(bx.1[0]), n_at(bx.1[1]));
+    let enters = lie.inf() > 0.0 && g_omega.sup() < 0.0 && n_lo.inf() > 0.0 && n_hi.sup() < 0.0;
+    let w = json!({"identity": id.json(), "params": params_json(DEFAULTS),
+        "enter_box": {"theta": bx.0, "theta_dot": bx.1, "free_flight_lambda_ddot": enc(g_omega), "d(-N)/dt": enc(lie),
+                      "N_at_(0,7.2)": enc(n_lo), "N_at_(0,7.5)": enc(n_hi)}});
+    if id.agrees() && enters {
+        Outcome::new(Verdict::Confirmed, Strength::Argument,
+            "on ∂Ω ∩ Ω₀ the flow points into Ω (exact identity + sign argument, all parameters with μ > 0); at θ ≈ 0, θ̇ ≈ 7.36 the flow leaves Ω₀ inside Ω (certified box, d(−N)/dt > 0)", w)
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "the flow identity on ∂Ω fails or no exit from Ω₀ inside Ω was certified",
+            w,
+        )
+    }
+}
+
+pub fn claims() -> Vec<Claim> {
+    vec![
+        Claim { id: "F1.3", location: "§1, (1.3)", statement: "Λ = y − h(θ) ≥ 0, h(θ) = a + b sin θ", method: "identity test against the height of the lowest rim point", check: f1_3 },
+        Claim { id: "F1.4", location: "§1, (1.4)", statement: "F = −μν, ν = θ̇ h(θ) (slip velocity at the contact point)", method: "identity test against v_G + θ̇ k × (P − G)", check: f1_4 },
+        Claim { id: "F1.5", location: "§1, (1.5)", statement: "T = ½ m ẏ + ½ C θ̇², Π = m g y", method: "identity test against ½m|v_G|² + ½Cθ̇²; whether (1.7) follows from the printed T", check: f1_5 },
+        Claim { id: "F1.7", location: "§1, (1.7)", statement: "2(C + m h'²) θ̈ + 2 m h' h'' θ̇² = −m g h' − μ h² θ̇", method: "identity test against the Newton equations with Λ̈ = 0 (exact Cramer solve); certified θ̈ enclosures", check: f1_7 },
+        Claim { id: "F1.8", location: "§1, (1.8)", statement: "Λ̈ = ÿ − h'' θ̇² − h' θ̈, ÿ = N/m − g", method: "identity test against d²Λ/dt² along rational paths", check: f1_8 },
+        Claim { id: "F1.9", location: "§1, (1.9)", statement: "Λ̈ = N/m + (μ h² h' θ̇ − g(2C + m h'²) − 2 C h'' θ̇²)/(2(C + m h'²))", method: "identity test against (1.8) with Newton θ̈, and against (1.8) with the printed (1.7)", check: f1_9 },
+        Claim { id: "F1.10", location: "§1, (1.10)", statement: "Ω: −g(2C + m h'²) − 2 C h'' θ̇² < 0", method: "paver: box proved in one of printed/derived Ω and out of the other", check: f1_10 },
+        Claim { id: "F1.11", location: "§1, (1.11)", statement: "Ω₀: μ h² h' θ̇ − g(2C + m h'²) − 2 C h'' θ̇² < 0", method: "paver: box proved in one of printed/derived Ω₀ and out of the other", check: f1_11 },
+        Claim { id: "S1.ideal", location: "§1, text after (1.2)", statement: "for an ideal constraint Ω = Ω₀", method: "identity −N = positive · free-flight Λ̈ at μ = 0", check: s1_ideal },
+        Claim { id: "S1.friction", location: "§1, text after (1.2)", statement: "with friction Ω ≠ Ω₀ in general", method: "paver: certified box of Ω ∖ Ω₀ in Example 1", check: s1_friction },
+        Claim { id: "S1.12", location: "§1, (1.12)", statement: "where θ̇ cos θ > 0, Ω₀ ⊂ Ω; where θ̇ cos θ < 0, Ω ⊂ Ω₀", method: "exact split g_Ω₀ = C g_Ω + μh²b θ̇cosθ (both readings) and sign argument", check: s1_12 },
+        Claim { id: "S1.12mu", location: "§1, after (1.12)", statement: "the difference between the sets grows with μ", method: "exact slope of g_Ω₀ in μ, certified box changing side between μ = 0.8 and 1.6", check: s1_12mu },
+        Claim { id: "S1.eq", location: "§1, Fig. 1b", statement: "θ = π/2 is a saddle, θ = −π/2 a stable focus", method: "exact Jacobians (dual numbers over rationals) at decimal parameters, both sides of the focus/node condition", check: s1_eq },
+        Claim { id: "S1.traj", location: "§1, Fig. 1b", statement: "a phase curve of continuous motion may enter Ω ∩ Ω̄₀, but can be in Ω̄ ∩ Ω₀ only if its initial point lies there", method: "exact flow identity on ∂Ω with sign argument; certified exit box from Ω₀ inside Ω", check: s1_traj },
+    ]
+}

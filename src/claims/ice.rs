@@ -1,0 +1,968 @@
+//! §3: disc with a sharp edge on ice — (3.1)–(3.5) and the statements on c₀,
+//! the forms of Ω₀, the symmetry and the three subcases.
+//!
+//! Mechanics (independent of the `scene` module): the blade forbids slip
+//! along the horizontal normal n of the disc's horizontal diameter e₁, so the
+//! centre's velocity component `v_n = −a θ̇ sin θ`; the ice exerts `N e_z + R n`
+//! at the contact point. Along e₁ no force acts and e₁ turns with ψ̇, so
+//! `v̇_x = v_n ψ̇`. Newton–Euler for `(z̈, θ̈, N, R)`:
+//! `m z̈ − N = −m g`, `A θ̈ + a cos θ N − a sin θ R = ∂T/∂θ`,
+//! `R + m a sin θ θ̈ = m v_x ψ̇ − m a θ̇² cos θ`, and `Λ̈ = z̈ − a cos θ θ̈ + a sin θ θ̇² = 0`.
+//!
+//! In exact identity tests the two logarithms of (3.1), `L₁ = ln tg(θ/2)` and
+//! `L₂ = ln sin θ`, are independent rational symbols; their θ-derivatives come
+//! from the rule `(ln u)' = u'/u` with `u = tg(θ/2)`, `u' = (1 + tg²(θ/2))/2`
+//! and `u = sin θ`. An identity that holds for independent symbols holds for
+//! the true values.
+
+use super::exact::{angle_d, identity_test, sin_cos_of_tan_half, solve, Identity, Rng, Sample, Q};
+use super::smooth::{
+    dt_dtheta, free_lambda_ddot, spin_rates, t_rot_printed, tau_printed, u_printed, P2,
+};
+use super::witness::{find_difference, window};
+use super::{dec, enc, Claim, Outcome, Strength, Verdict};
+use crate::roots::isolate::{isolate, point, RealFn};
+use crate::roots::{solve_3_3, Budget};
+use crate::scalar::{Dual, Scalar};
+use crate::scene::{Angle, IceDisc, Scene, SceneId};
+use inari::{DecInterval, Interval};
+use serde_json::json;
+
+/// v_x of (3.1) as printed, with the two logarithms given.
+pub fn vx_printed<T: Scalar>(p: &P2<T>, c0: T, l1: T, l2: T, sign_pf: i32) -> T {
+    c0 - p.a / p.big_a * (p.ps * l1 - T::int(sign_pf) * p.pf * l2)
+}
+
+/// `(ln tg(θ/2), ln sin θ)` from θ itself (intervals, f64).
+pub fn logs<T: Scalar>(an: &Angle<T>) -> (T, T) {
+    let half = an.theta / T::int(2);
+    ((half.sin() / half.cos()).ln(), an.sin.ln())
+}
+
+/// Right side of (3.5) as printed: `g − a cos θ/(A + m a²)·(m g a cos θ − m a v_x τ + A τ τ')`.
+pub fn rhs_3_5<T: Scalar>(p: &P2<T>, s: T, c: T, vx: T) -> T {
+    let (t, t1) = tau_printed(p, s, c);
+    p.g - p.a * c / (p.big_a + p.m * p.a.sqr())
+        * (p.m * p.g * p.a * c - p.m * p.a * vx * t + p.big_a * t * t1)
+}
+
+/// θ̈ of (3.3) as printed (`sign` −1 on Aττ': a mutant).
+pub fn thdd_3_3<T: Scalar>(p: &P2<T>, s: T, c: T, vx: T, sign: i32) -> T {
+    let (t, t1) = tau_printed(p, s, c);
+    (-(p.m * p.g * p.a * c) + p.m * p.a * vx * t - T::int(sign) * p.big_a * t * t1)
+        / (p.big_a + p.m * p.a.sqr())
+}
+
+/// `(θ̈, N)` in contact from Newton–Euler.
+pub fn newton_euler<T: Scalar>(p: &P2<T>, s: T, c: T, w: T, vx: T) -> (T, T) {
+    let (psid, _) = spin_rates(p, s, c);
+    let (zero, one) = (T::int(0), T::int(1));
+    let m = vec![
+        vec![p.m, zero, -one, zero],
+        vec![zero, p.big_a, p.a * c, -(p.a * s)],
+        vec![zero, p.m * p.a * s, zero, one],
+        vec![one, -(p.a * c), zero, zero],
+    ];
+    let r = [
+        -(p.m * p.g),
+        dt_dtheta(p, s, c, w),
+        p.m * vx * psid - p.m * p.a * w.sqr() * c,
+        -(p.a * s * w.sqr()),
+    ];
+    let x = solve(&m, &r);
+    (x[1], x[2])
+}
+
+/// Λ̈ off contact for a given N, the blade reaction R still acting.
+pub fn lambda_ddot_given_n<T: Scalar>(p: &P2<T>, s: T, c: T, w: T, vx: T, n: T) -> T {
+    let (psid, _) = spin_rates(p, s, c);
+    let zero = T::int(0);
+    let m = vec![
+        vec![p.m, zero, zero],
+        vec![zero, p.big_a, -(p.a * s)],
+        vec![zero, p.m * p.a * s, T::int(1)],
+    ];
+    let r = [
+        -(p.m * p.g) + n,
+        dt_dtheta(p, s, c, w) - p.a * c * n,
+        p.m * vx * psid - p.m * p.a * w.sqr() * c,
+    ];
+    let x = solve(&m, &r);
+    x[0] - p.a * c * x[1] + p.a * s * w.sqr()
+}
+
+struct Pt {
+    p: P2<Q>,
+    s: Q,
+    c: Q,
+    t: Q,
+    w: Q,
+    l1: Q,
+    l2: Q,
+    c0: Q,
+    pt: Vec<(String, f64)>,
+}
+
+fn rp(r: &mut Rng) -> Pt {
+    let p = P2::random(r);
+    let t = r.tan_half();
+    let (s, c) = sin_cos_of_tan_half(t);
+    let wf = r.signed();
+    let (l1, l2, c0) = (
+        Q::from_f64(r.signed()),
+        Q::from_f64(r.signed()),
+        Q::from_f64(r.signed()),
+    );
+    Pt {
+        p,
+        s,
+        c,
+        t,
+        w: Q::from_f64(wf),
+        l1,
+        l2,
+        c0,
+        pt: vec![
+            ("tan(theta/2)".into(), t.get().to_f64()),
+            ("theta_dot".into(), wf),
+        ],
+    }
+}
+
+fn verdict_of(ids: &[(&str, &Identity)], what: &str, right: &str) -> Outcome {
+    let w: serde_json::Map<String, serde_json::Value> =
+        ids.iter().map(|(k, i)| (k.to_string(), i.json())).collect();
+    if ids.iter().all(|(_, i)| i.agrees()) {
+        Outcome::new(
+            Verdict::Confirmed,
+            Strength::IdentityTest,
+            format!("{what}: exact agreement at random rational points"),
+            w.into(),
+        )
+    } else {
+        let bad: Vec<&str> = ids
+            .iter()
+            .filter(|(_, i)| !i.agrees())
+            .map(|(k, _)| *k)
+            .collect();
+        Outcome::new(
+            Verdict::Error,
+            Strength::Exact,
+            format!("{what}: exact difference ({})", bad.join(", ")),
+            w.into(),
+        )
+        .correct(right.to_string())
+    }
+}
+
+/// The ice disc at the §2 defaults with p_φ, p_ψ, c₀ from text.
+pub fn ice_disc(pf: &str, ps: &str, c0: &str) -> IceDisc {
+    let o = vec![
+        ("p_phi".to_string(), pf.to_string()),
+        ("p_psi".to_string(), ps.to_string()),
+        ("c0".to_string(), c0.to_string()),
+    ];
+    match Scene::build(SceneId::IceDisc, &o).expect("valid").0 {
+        Scene::Ice(d) => d,
+        _ => unreachable!(),
+    }
+}
+
+fn p2(pf: &str, ps: &str) -> P2<Interval> {
+    super::smooth::p2_texts(pf, ps)
+}
+
+// ---------------------------------------------------------------- formulas
+
+/// F3.1: `dv_x/dθ` of (3.1) equals `v̇_x/θ̇ = v_n ψ̇/θ̇ = −a sin θ ψ̇`, so (3.1)
+/// is a first integral of the contact motion. Mutant: `+ p_φ ln sin θ`.
+pub fn f3_1(mutant: bool) -> Outcome {
+    let id = identity_test(31, |r| {
+        let x = rp(r);
+        let (s, c, t) = (x.s, x.c, x.t);
+        let z = Q::int(0);
+        // (ln u)' = u'/u
+        let l1 = Dual {
+            value: x.l1,
+            grad: [(Q::int(1) + t.sqr()) / Q::int(2) / t, z],
+        };
+        let l2 = Dual {
+            value: x.l2,
+            grad: [c / s, z],
+        };
+        let vx = vx_printed(
+            &x.p.map(Dual::constant),
+            Dual::constant(x.c0),
+            l1,
+            l2,
+            if mutant { -1 } else { 1 },
+        );
+        let (psid, _) = spin_rates(&x.p, s, c);
+        Sample {
+            point: x.pt,
+            lhs: vx.grad[0],
+            rhs: -(x.p.a * s * psid),
+        }
+    });
+    verdict_of(&[("d_vx_d_theta", &id)], "d/dθ of (3.1)'s v_x = −a τ = v̇_x/θ̇ from the e₁ momentum equation v̇_x = v_n ψ̇, v_n = −aθ̇ sin θ: (3.1) is a first integral", "v_x + (a/A)(p_ψ ln tg(θ/2) − p_φ ln sin θ) = c₀")
+}
+
+/// F3.2: energy from the translational and rotational kinetic energy with
+/// `v_n = −aθ̇ sin θ`, `ż = a cos θ θ̇`. Mutant: `(A + m a² sin²θ)` on the left.
+pub fn f3_2(mutant: bool) -> Outcome {
+    let id = identity_test(32, |r| {
+        let x = rp(r);
+        let (p, s, c, w) = (x.p, x.s, x.c, x.w);
+        let vx = Q::from_f64(r.signed());
+        let (psid, phid) = spin_rates(&p, s, c);
+        let two = Q::int(2);
+        let vn = -(p.a * w * s);
+        let zd = p.a * c * w;
+        let t_total =
+            p.m * (vx.sqr() + vn.sqr() + zd.sqr()) / two + t_rot_printed(&p, s, c, w, psid, phid);
+        let h2 = two * (t_total + p.m * p.g * p.a * s);
+        let (tau, _) = tau_printed(&p, s, c);
+        let k = if mutant {
+            p.big_a + p.m * p.a.sqr() * s.sqr()
+        } else {
+            p.big_a + p.m * p.a.sqr()
+        };
+        let rhs = h2
+            - two * p.m * p.g * p.a * s
+            - p.m * vx.sqr()
+            - p.big_a * tau.sqr()
+            - p.pf.sqr() / p.big_c;
+        Sample {
+            point: x.pt,
+            lhs: k * w.sqr(),
+            rhs,
+        }
+    });
+    verdict_of(&[("energy", &id)], "(3.2) from T = ½m(v_x² + v_n² + ż²) + rotational T at the integrals' rates, plus m g a sin θ", "(A + m a²) θ̇² = 2h − 2 m g a sin θ − m v_x² − A τ² − p_φ²/C")
+}
+
+/// F3.3: (3.3) as the θ-derivative of (3.2) with `v_x' = −aτ`, and against
+/// Newton–Euler. Mutant: `+ A τ τ'`.
+pub fn f3_3(mutant: bool) -> Outcome {
+    let sign = if mutant { -1 } else { 1 };
+    let deriv = identity_test(33, |r| {
+        let x = rp(r);
+        let (p, s, c) = (x.p, x.s, x.c);
+        let an = angle_d(s, c);
+        let pd = p.map(Dual::constant);
+        let (tau, _) = tau_printed(&p, s, c);
+        let vx = Dual {
+            value: x.c0,
+            grad: [-(p.a * tau), Q::int(0)],
+        };
+        let (taud, _) = tau_printed(&pd, an.sin, an.cos);
+        let two = Dual::<Q>::int(2);
+        let f = -(two * pd.m * pd.g * pd.a * an.sin) - pd.m * vx.sqr() - pd.big_a * taud.sqr();
+        Sample {
+            point: x.pt,
+            lhs: thdd_3_3(&p, s, c, x.c0, sign),
+            rhs: f.grad[0] / (Q::int(2) * (p.big_a + p.m * p.a.sqr())),
+        }
+    });
+    let newton = identity_test(331, |r| {
+        let x = rp(r);
+        Sample {
+            point: x.pt,
+            lhs: thdd_3_3(&x.p, x.s, x.c, x.c0, sign),
+            rhs: newton_euler(&x.p, x.s, x.c, x.w, x.c0).0,
+        }
+    });
+    verdict_of(
+        &[("derivative_of_3_2", &deriv), ("newton_euler", &newton)],
+        "(3.3) = ½ d/dθ of (3.2) with v_x' = −aτ, and θ̈ of Newton–Euler with the blade constraint",
+        "(A + m a²) θ̈ = −m g a cos θ + m a v_x τ − A τ τ'",
+    )
+}
+
+/// F3.4: U₀, V₀ against Λ̈(N) from Newton–Euler without the contact row.
+/// Mutant: the derived V₀ = 1/m + a²cos²θ/(A + m a² sin²θ), U₀ scaled to match.
+pub fn f3_4(mutant: bool) -> Outcome {
+    let u0p =
+        |p: &P2<Q>, s: Q, c: Q, w: Q, vx: Q| -> Q { p.a * w.sqr() * s - rhs_3_5(p, s, c, vx) };
+    let v0d = |p: &P2<Q>, s: Q, c: Q| {
+        Q::int(1) / p.m + p.a.sqr() * c.sqr() / (p.big_a + p.m * p.a.sqr() * s.sqr())
+    };
+    let printed = |p: &P2<Q>, s: Q, c: Q, w: Q, vx: Q| -> (Q, Q) {
+        if mutant {
+            (u0p(p, s, c, w, vx) * v0d(p, s, c) * p.m, v0d(p, s, c))
+        } else {
+            (u0p(p, s, c, w, vx), Q::int(1) / p.m)
+        }
+    };
+    let v0 = identity_test(34, |r| {
+        let x = rp(r);
+        let d = lambda_ddot_given_n(&x.p, x.s, x.c, x.w, x.c0, Q::int(1))
+            - lambda_ddot_given_n(&x.p, x.s, x.c, x.w, x.c0, Q::int(0));
+        Sample {
+            point: x.pt,
+            lhs: printed(&x.p, x.s, x.c, x.w, x.c0).1,
+            rhs: d,
+        }
+    });
+    let u0 = identity_test(341, |r| {
+        let x = rp(r);
+        Sample {
+            point: x.pt,
+            lhs: printed(&x.p, x.s, x.c, x.w, x.c0).0,
+            rhs: lambda_ddot_given_n(&x.p, x.s, x.c, x.w, x.c0, Q::int(0)),
+        }
+    });
+    let ratio = identity_test(342, |r| {
+        let x = rp(r);
+        let (u, v) = printed(&x.p, x.s, x.c, x.w, x.c0);
+        let ud = lambda_ddot_given_n(&x.p, x.s, x.c, x.w, x.c0, Q::int(0));
+        let vd = lambda_ddot_given_n(&x.p, x.s, x.c, x.w, x.c0, Q::int(1)) - ud;
+        Sample {
+            point: x.pt,
+            lhs: u * vd,
+            rhs: ud * v,
+        }
+    });
+    let w = json!({"V0": v0.json(), "U0": u0.json(), "U0_over_V0": ratio.json()});
+    if v0.agrees() && u0.agrees() {
+        return Outcome::new(
+            Verdict::Confirmed,
+            Strength::IdentityTest,
+            "U₀ and V₀ agree with Newton–Euler",
+            w,
+        );
+    }
+    // certified: V₀ at θ = 1 (default parameters)
+    let p = p2("2.5", "2").map(DecInterval::new);
+    let an = Angle::new(DecInterval::new(point(1.0)));
+    let vd = DecInterval::new(Interval::try_from((1.0, 1.0)).unwrap()) / p.m
+        + p.a.sqr() * an.cos.sqr() / (p.big_a + p.m * p.a.sqr() * an.sin.sqr());
+    let vp = DecInterval::new(point(1.0)) / p.m;
+    let (vd, vp) = (vd.interval().unwrap(), vp.interval().unwrap());
+    Outcome::new(Verdict::Error, Strength::Certified,
+        format!("V₀ at θ = 1 (m = 1, a = 1, A = 0.25): printed {:.4} vs Newton–Euler {:.4}, certified disjoint; U₀ also differs, but U₀/V₀ agrees exactly ({}), so N = −U₀/V₀, (3.5) and Ω₀ are unaffected", vp.mid(), vd.mid(), if ratio.agrees() { "identity test" } else { "NOT" }),
+        json!({"identity": w, "theta": "1", "V0_printed": enc(vp), "V0_newton_euler": enc(vd), "disjoint": vp.disjoint(vd)}))
+        .correct("Λ̈ = U₀ + V₀ N with V₀ = 1/m + a² cos²θ/(A + m a² sin²θ) and U₀ = m V₀ × (the printed U₀): the printed (3.4) is the true Λ̈ divided by m V₀ > 0, so its sign, the reaction N = −U₀/V₀ and the condition (3.5) are right")
+}
+
+/// F3.5: right side minus left side of (3.5) equals N/m from Newton–Euler.
+/// Mutant: `+ m a v_x τ` in the bracket.
+pub fn f3_5(mutant: bool) -> Outcome {
+    let id = identity_test(35, |r| {
+        let x = rp(r);
+        let (p, s, c, w) = (x.p, x.s, x.c, x.w);
+        let vx = if mutant { -x.c0 } else { x.c0 };
+        let slack = rhs_3_5(&p, s, c, vx) - p.a * w.sqr() * s;
+        let _ = vx;
+        Sample {
+            point: x.pt,
+            lhs: slack,
+            rhs: newton_euler(&p, s, c, w, x.c0).1 / p.m,
+        }
+    });
+    verdict_of(
+        &[("slack_equals_N_over_m", &id)],
+        "g − a cos θ/(A+ma²)(…) − a θ̇² sin θ = N/m from Newton–Euler: (3.5) ⟺ N ≥ 0",
+        "",
+    )
+}
+
+// ---------------------------------------------------------------- statements
+
+/// S3.omega: Λ̈ with zero reaction (N = R = 0: free flight) is U of (2.7).
+/// Mutant: the blade reaction R kept (Λ̈ at N = 0 from Newton–Euler).
+pub fn s3_omega(mutant: bool) -> Outcome {
+    let id = identity_test(36, |r| {
+        let x = rp(r);
+        let lhs = if mutant {
+            lambda_ddot_given_n(&x.p, x.s, x.c, x.w, x.c0, Q::int(0))
+        } else {
+            free_lambda_ddot(&x.p, x.s, x.c, x.w)
+        };
+        Sample {
+            point: x.pt,
+            lhs,
+            rhs: u_printed(&x.p, x.s, x.c, x.w),
+        }
+    });
+    if id.agrees() {
+        Outcome::new(Verdict::Confirmed, Strength::IdentityTest, "free-flight Λ̈ of the disc on ice (N = R = 0: m z̈ = −mg, Aθ̈ = ∂T/∂θ) is U of (2.7) exactly: Ω is that of the smooth plane", json!({"identity": id.json()}))
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "Λ̈ at zero normal reaction with the blade acting is not U",
+            json!({"identity": id.json()}),
+        )
+    }
+}
+
+/// Ω₀ of (3.5) as `{g < 0}`, in decorated intervals.
+fn omega0_dec(p: &P2<Interval>, c0: Interval, th: Interval, w: Interval) -> DecInterval {
+    let pd = p.map(DecInterval::new);
+    let an = Angle::new(DecInterval::new(th));
+    let (l1, l2) = logs(&an);
+    let vx = vx_printed(&pd, DecInterval::new(c0), l1, l2, 1);
+    pd.a * DecInterval::new(w).sqr() * an.sin - rhs_3_5(&pd, an.sin, an.cos, vx)
+}
+
+/// S3.c0changes: with (p_φ, p_ψ) ≠ 0 a certified box in Ω₀ at c₀ = 0 and out
+/// at c₀ = 1, and θ̈ (3.3) certified different; with p_φ = p_ψ = 0 (exact)
+/// neither depends on c₀. Mutant: p_φ = p_ψ = 0 on the first side too.
+pub fn s3_c0changes(mutant: bool) -> Outcome {
+    let (pf, ps) = if mutant { ("0", "0") } else { ("2.5", "2") };
+    let p = p2(pf, ps);
+    let f = move |th: Interval, w: Interval| {
+        [
+            omega0_dec(&p, dec("0"), th, w),
+            omega0_dec(&p, dec("1"), th, w),
+        ]
+    };
+    let found = find_difference(f, window([0.3, 1.2], [0.0, 6.0]), 1.0 / 64.0);
+    let thdd = |c0: &str| {
+        let an = Angle::new(point(1.0));
+        let (l1, l2) = logs(&an);
+        thdd_3_3(&p, an.sin, an.cos, vx_printed(&p, dec(c0), l1, l2, 1), 1)
+    };
+    let (a0, a1) = (thdd("0"), thdd("1"));
+    let zero_p = identity_test(37, |r| {
+        let mut x = rp(r);
+        x.p.pf = Q::int(0);
+        x.p.ps = Q::int(0);
+        let c1 = Q::from_f64(r.signed());
+        let v = |c0: Q| vx_printed(&x.p, c0, x.l1, x.l2, 1);
+        Sample {
+            point: x.pt,
+            lhs: rhs_3_5(&x.p, x.s, x.c, v(x.c0)) + thdd_3_3(&x.p, x.s, x.c, v(x.c0), 1),
+            rhs: rhs_3_5(&x.p, x.s, x.c, v(c1)) + thdd_3_3(&x.p, x.s, x.c, v(c1), 1),
+        }
+    });
+    let w = json!({"p_phi": pf, "p_psi": ps, "omega0_c0=0_vs_c0=1": found.map(|b| b.json()),
+        "theta_ddot_at_theta=1": {"c0=0": enc(a0), "c0=1": enc(a1), "disjoint": a0.disjoint(a1)},
+        "p=0_no_c0_dependence": zero_p.json()});
+    match (found, a0.disjoint(a1), zero_p.agrees()) {
+        (Some(b), true, true) => Outcome::new(Verdict::Conditional, Strength::Certified,
+            format!("(p_φ, p_ψ) = (2.5, 2): box θ ∈ [{:.3}, {:.3}], θ̇ ∈ [{:.3}, {:.3}] in Ω₀ for one of c₀ = 0, 1 and out for the other; θ̈(1) differs (certified). p_φ = p_ψ = 0: neither depends on c₀ (exact, τ = 0)", b.bx.theta[0], b.bx.theta[1], b.bx.theta_dot[0], b.bx.theta_dot[1]), w)
+            .correct("changing c₀ changes the portrait and Ω₀ exactly when (p_φ, p_ψ) ≠ (0, 0) (τ ≢ 0); for p_φ = p_ψ = 0 nothing depends on c₀ (subcase 1)"),
+        _ => Outcome::new(Verdict::False, Strength::Certified, format!("(p_φ, p_ψ) = ({pf}, {ps}): no certified change with c₀"), w),
+    }
+}
+
+/// S3.c0linear: second difference in c₀ of (3.5)'s right side vanishes and the
+/// slope is `m a² cos θ τ/(A + m a²)` (exact). Mutant: v_x with c₀².
+pub fn s3_c0linear(mutant: bool) -> Outcome {
+    let v = |x: &Pt, c0: Q| vx_printed(&x.p, if mutant { c0.sqr() } else { c0 }, x.l1, x.l2, 1);
+    let second = identity_test(38, |r| {
+        let x = rp(r);
+        let f = |c0: i32| rhs_3_5(&x.p, x.s, x.c, v(&x, Q::int(c0)));
+        Sample {
+            point: x.pt.clone(),
+            lhs: f(2) - Q::int(2) * f(1) + f(0),
+            rhs: Q::int(0),
+        }
+    });
+    let slope = identity_test(381, |r| {
+        let x = rp(r);
+        let f = |c0: i32| rhs_3_5(&x.p, x.s, x.c, v(&x, Q::int(c0)));
+        let (tau, _) = tau_printed(&x.p, x.s, x.c);
+        Sample {
+            point: x.pt.clone(),
+            lhs: f(1) - f(0),
+            rhs: x.p.m * x.p.a.sqr() * x.c * tau / (x.p.big_a + x.p.m * x.p.a.sqr()),
+        }
+    });
+    let w = json!({"second_difference": second.json(), "slope": slope.json()});
+    if second.agrees() && slope.agrees() {
+        Outcome::new(
+            Verdict::Confirmed,
+            Strength::IdentityTest,
+            "the right side of (3.5) is affine in c₀ with slope m a² cos θ τ/(A + m a²) (exact)",
+            w,
+        )
+    } else {
+        Outcome::new(Verdict::False, Strength::Exact, "not affine in c₀", w)
+    }
+}
+
+/// Exact right side of (3.5) at tan(θ/2) = t for given c₀ (the logs as symbols).
+fn rhs_exact(p: &P2<Q>, t: Q, c0: Q, l1: Q, l2: Q) -> Q {
+    let (s, c) = sin_cos_of_tan_half(t);
+    rhs_3_5(p, s, c, vx_printed(p, c0, l1, l2, 1))
+}
+
+/// S3.c0invariant: the c₀-slope `m a² cos θ τ/(A + m a²)` vanishes at θ = π/2
+/// and where τ = 0, i.e. cos θ = p_ψ/p_φ. With |p_ψ| < |p_φ| that is a second
+/// invariant slice (exact: p_φ = 2.5, p_ψ = 2, cos θ* = 4/5, t = 1/3); with
+/// |p_ψ| > |p_φ| τ ≠ 0 on [0, π] (certified) and only θ = π/2 remains.
+/// Mutant: only the second side.
+pub fn s3_c0invariant(mutant: bool) -> Outcome {
+    let (pf, ps) = if mutant { ("2", "2.5") } else { ("2.5", "2") };
+    let p = P2::exact(["1", "1", "0.25", "0.5", "9.81", pf, ps]);
+    let t = Q::ratio(1, 3);
+    let (s, c) = sin_cos_of_tan_half(t);
+    let (tau, _) = tau_printed(&p, s, c);
+    let (l1, l2) = (Q::ratio(-11, 10), Q::ratio(-1, 2)); // any values: τ = 0 kills them
+    let vals: Vec<Q> = [-5, 0, 5]
+        .iter()
+        .map(|&k| rhs_exact(&p, t, Q::int(k), l1, l2))
+        .collect();
+    let extra_invariant =
+        tau.is_zero() && vals.iter().all(|v| *v == vals[0]) && vals[0].signum() > 0;
+    // the other ordering: τ ≠ 0 on all of [0, π]
+    let q = p2("2", "2.5");
+    let c_all = Interval::try_from((-1.0, 1.0)).unwrap();
+    let tau_num = q.ps - q.pf * c_all;
+    let no_zero = tau_num.inf() > 0.0;
+    let at_half_pi = rhs_exact(
+        &P2::exact(["1", "1", "0.25", "0.5", "9.81", "2", "2.5"]),
+        Q::int(1),
+        Q::int(7),
+        l1,
+        l2,
+    );
+    let w = json!({"side_extra": {"p_phi": pf, "p_psi": ps, "theta_star": "cos θ* = p_ψ/p_φ", "tan_half": "1/3", "tau": tau.text(),
+            "rhs_3_5_at_c0=-5,0,5": vals.iter().map(|v| v.text()).collect::<Vec<_>>(),
+            "boundary_theta_dot_squared": (vals[0] / (p.a * s)).text()},
+        "side_only_half_pi": {"p_phi": "2", "p_psi": "2.5", "p_psi - p_phi cos θ over [-1,1]": enc(tau_num), "rhs_at_pi/2_(theta_dot^2 bound = g/a)": at_half_pi.text()}});
+    if extra_invariant && no_zero {
+        Outcome::new(Verdict::Conditional, Strength::Exact,
+            format!("p_φ = {pf}, p_ψ = {ps}: at cos θ* = 0.8 (θ* ≈ 0.6435) τ = 0 exactly and the Ω₀ boundary θ̇² = {} is the same for c₀ = −5, 0, 5; with |p_ψ| > |p_φ| τ ≠ 0 on [0, π] (certified) and only θ = π/2 (θ̇² = g/a) stays; the asymptotes at θ → 0, π (where Aττ' dominates, independent of c₀) are argued, not computed", (vals[0] / (p.a * s)).text()), w)
+            .correct("the boundary points of Ω₀ are c₀-invariant at θ = π/2 and, when |p_ψ| < |p_φ|, also at θ* with cos θ* = p_ψ/p_φ (where τ = 0); the asymptotes at θ → 0, π do not move")
+    } else if no_zero {
+        Outcome::new(
+            Verdict::Confirmed,
+            Strength::Certified,
+            "τ ≠ 0 on [0, π]: only θ = π/2 is invariant",
+            w,
+        )
+    } else {
+        Outcome::new(Verdict::False, Strength::Exact, "unexpected", w)
+    }
+}
+
+/// S3.c0anypoint: a point where τ = 0 (θ* above, θ̇ = 0) is in Ω₀ for every
+/// c₀ (exact). Mutant: the point tan(θ/2) = 1/2, where τ ≠ 0.
+pub fn s3_c0anypoint(mutant: bool) -> Outcome {
+    let p = P2::exact(["1", "1", "0.25", "0.5", "9.81", "2.5", "2"]);
+    let t = if mutant {
+        Q::ratio(1, 2)
+    } else {
+        Q::ratio(1, 3)
+    };
+    let (s, c) = sin_cos_of_tan_half(t);
+    let (tau, _) = tau_printed(&p, s, c);
+    let (l1, l2) = (Q::ratio(-11, 10), Q::ratio(-1, 2));
+    let slope = rhs_exact(&p, t, Q::int(1), l1, l2) - rhs_exact(&p, t, Q::int(0), l1, l2);
+    let base = rhs_exact(&p, t, Q::int(0), l1, l2);
+    let w = json!({"params": super::smooth::params_json(&["1", "1", "0.25", "0.5", "9.81", "2.5", "2"]), "tan_half_theta": t.text(), "theta_dot": "0",
+        "tau": tau.text(), "rhs_slope_in_c0": slope.text(), "rhs_at_c0=0": base.text()});
+    if slope.is_zero() && base.signum() > 0 {
+        Outcome::new(Verdict::False, Strength::Exact,
+            "p_φ = 2.5, p_ψ = 2, θ* with cos θ* = 0.8 (≠ 0, π/2, π), θ̇ = 0: τ(θ*) = 0, the right side of (3.5) does not depend on c₀ and equals g(A + m a² sin²θ*)/(A + m a²) > 0, so the point is in Ω₀ for every c₀", w)
+            .correct("for every point with θ ≠ 0, π/2, π and τ(θ) ≠ 0 (p_ψ ≠ p_φ cos θ) some c₀ puts it in Ω₀ and some out")
+    } else if !slope.is_zero() {
+        Outcome::new(
+            Verdict::Confirmed,
+            Strength::Exact,
+            "non-zero slope in c₀ at this point: both sides reachable",
+            w,
+        )
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "zero slope and not inside",
+            w,
+        )
+    }
+}
+
+/// `(3.5)`'s right side as a function of θ for the forms classification.
+struct Rhs35 {
+    p: P2<Interval>,
+    c0: Interval,
+}
+
+impl RealFn for Rhs35 {
+    fn eval<T: Scalar>(&self, theta: T) -> T {
+        let p = self.p.map(T::lift);
+        let an = Angle::new(theta);
+        let (l1, l2) = logs(&an);
+        rhs_3_5(
+            &p,
+            an.sin,
+            an.cos,
+            vx_printed(&p, T::lift(self.c0), l1, l2, 1),
+        )
+    }
+}
+
+/// S3.forms: the θ̇-slice of Ω₀ at θ is `{a sin θ θ̇² < R(θ)}`: empty where
+/// R < 0, a symmetric interval where R > 0 (never all of R). So a form is
+/// the pattern of θ-intervals where R > 0; it is classified by certified
+/// isolation of the roots of R on [0.01, π − 0.01] over a grid of
+/// (p_φ, p_ψ, c₀). Mutant: a single sample.
+pub fn s3_forms(mutant: bool) -> Outcome {
+    let ps_list: &[(&str, &str)] = if mutant {
+        &[("2.5", "2")]
+    } else {
+        &[
+            ("2.5", "2"),
+            ("2", "2.5"),
+            ("1", "0.2"),
+            ("3", "1"),
+            ("1", "1"),
+            ("0.5", "2"),
+        ]
+    };
+    let c0_list: &[&str] = if mutant {
+        &["0"]
+    } else {
+        &["-20", "-5", "0", "5", "20"]
+    };
+    let mut forms: std::collections::BTreeMap<String, Vec<String>> = Default::default();
+    let mut undecided = 0;
+    for (pf, ps) in ps_list {
+        for c0 in c0_list {
+            let f = Rhs35 {
+                p: p2(pf, ps),
+                c0: dec(c0),
+            };
+            let (lo, hi) = (0.01, Interval::PI.inf() - 0.01);
+            let iso = isolate(&f, lo, hi, &Budget::default());
+            if !iso.complete {
+                undecided += 1;
+                continue;
+            }
+            let mut signs = vec![f.eval(point(lo)).inf() > 0.0];
+            for r in &iso.roots {
+                let _ = r;
+                let last = *signs.last().unwrap();
+                signs.push(!last);
+            }
+            let pattern: String = signs.iter().map(|&b| if b { '+' } else { '-' }).collect();
+            let comps = signs.iter().filter(|&&b| b).count();
+            let key = format!("{comps} interval(s) of Ω₀-slices, sign pattern {pattern}");
+            forms
+                .entry(key)
+                .or_default()
+                .push(format!("({pf}, {ps}, c0 = {c0})"));
+        }
+    }
+    let names: Vec<String> = forms.keys().cloned().collect();
+    let w = json!({"window": "theta in [0.01, pi - 0.01]", "forms": forms, "undecided_samples": undecided});
+    Outcome::new(Verdict::NotCheckable, Strength::Certified,
+        format!("Fig. 3 is lost, so the forms a, b, c cannot be matched; certified forms found on the window over {} samples: {}", ps_list.len() * c0_list.len() - undecided, names.join("; ")), w)
+        .correct("the forms found are listed in the witness: the θ-projection of Ω₀ is a union of 1, 2 or more intervals depending on (p_φ, p_ψ, c₀); (a) and (b) of §2 are one and two intervals")
+}
+
+/// S3.symmetry: under θ → π − θ (cos → −cos, ln tg(θ/2) → −ln tg(θ/2)),
+/// θ̇ → −θ̇, p_ψ → −p_ψ: v_x, (3.5), U are invariant and θ̈ of (3.3) changes
+/// sign; likewise Example 1 (no p_ψ) and (2.5). Mutant: p_ψ kept.
+pub fn s3_symmetry(mutant: bool) -> Outcome {
+    let id = identity_test(39, |r| {
+        let x = rp(r);
+        let mut q = x.p;
+        if !mutant {
+            q.ps = -x.p.ps;
+        }
+        let (c, w) = (-x.c, -x.w);
+        let v1 = vx_printed(&x.p, x.c0, x.l1, x.l2, 1);
+        let v2 = vx_printed(&q, x.c0, -x.l1, x.l2, 1);
+        // random combination of the four invariants
+        let k = [
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+        ];
+        let lhs = v1
+            + k[0] * (rhs_3_5(&x.p, x.s, x.c, v1) - x.p.a * x.w.sqr() * x.s)
+            + k[1] * u_printed(&x.p, x.s, x.c, x.w)
+            + k[2] * thdd_3_3(&x.p, x.s, x.c, v1, 1);
+        let rhs = v2
+            + k[0] * (rhs_3_5(&q, x.s, c, v2) - q.a * w.sqr() * x.s)
+            + k[1] * u_printed(&q, x.s, c, w)
+            - k[2] * thdd_3_3(&q, x.s, c, v2, 1);
+        Sample {
+            point: x.pt,
+            lhs,
+            rhs,
+        }
+    });
+    let ex1 = identity_test(391, |r| {
+        use super::example1::{derived_omega, derived_omega0, newton, P1};
+        let p = P1::random(r);
+        let (s, c) = sin_cos_of_tan_half(r.tan_half());
+        let w = Q::from_f64(r.signed());
+        let k = [Q::from_f64(r.signed()), Q::from_f64(r.signed())];
+        let lhs = derived_omega(&p, s, c, w)
+            + k[0] * derived_omega0(&p, s, c, w)
+            + k[1] * newton(&p, s, c, w, 1).0;
+        let rhs = derived_omega(&p, s, -c, -w) + k[0] * derived_omega0(&p, s, -c, -w)
+            - k[1] * newton(&p, s, -c, -w, 1).0;
+        Sample {
+            point: vec![],
+            lhs,
+            rhs,
+        }
+    });
+    let smooth = identity_test(392, |r| {
+        let x = rp(r);
+        let mut q = x.p;
+        if !mutant {
+            q.ps = -x.p.ps;
+        }
+        Sample {
+            point: x.pt,
+            lhs: super::smooth::lagrange(&x.p, x.s, x.c, x.w).0,
+            rhs: -super::smooth::lagrange(&q, x.s, -x.c, -x.w).0,
+        }
+    });
+    let w = json!({"ice": id.json(), "example_1": ex1.json(), "smooth_2_5": smooth.json()});
+    if id.agrees() && ex1.agrees() && smooth.agrees() {
+        Outcome::new(Verdict::Confirmed, Strength::IdentityTest, "θ → π − θ, θ̇ → −θ̇, p_ψ → −p_ψ: v_x, (3.5), U invariant and θ̈ → −θ̈ (ice); Example 1's Ω, Ω₀, θ̈ and §2's (2.5) likewise (exact)", w)
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "the map does not leave the equations invariant",
+            w,
+        )
+    }
+}
+
+/// S3.sub1: p_φ = p_ψ = 0. τ = 0; (3.5)'s right side = g(A + m a² sin²θ)/(A + m a²) ≤ g
+/// (exact) while Ω is θ̇² < g/(a sin θ): Ω₀ ⊂ Ω; v_x' = −aτ = 0; (3.3) is
+/// (A + m a²)θ̈ = −m g a cos θ, an inverted pendulum (unstable at θ = π/2).
+/// Mutant: p_φ = 1.
+pub fn s3_sub1(mutant: bool) -> Outcome {
+    let id = identity_test(310, |r| {
+        let mut x = rp(r);
+        x.p.pf = if mutant { Q::int(1) } else { Q::int(0) };
+        x.p.ps = Q::int(0);
+        let p = x.p;
+        let v = vx_printed(&p, x.c0, x.l1, x.l2, 1);
+        let k = Q::from_f64(r.signed());
+        let lhs = rhs_3_5(&p, x.s, x.c, v)
+            + k * (thdd_3_3(&p, x.s, x.c, v, 1) * (p.big_a + p.m * p.a.sqr()));
+        let rhs = p.g * (p.big_a + p.m * p.a.sqr() * x.s.sqr()) / (p.big_a + p.m * p.a.sqr())
+            - k * p.m * p.g * p.a * x.c;
+        Sample {
+            point: x.pt,
+            lhs,
+            rhs,
+        }
+    });
+    // unstable at π/2: d θ̈/dθ = m g a sin θ/(A + m a²) > 0 there (exact, defaults)
+    let p = P2::exact(["1", "1", "0.25", "0.5", "9.81", "0", "0"]);
+    let an = angle_d(Q::int(1), Q::int(0));
+    let pd = p.map(Dual::constant);
+    let slope = thdd_3_3(&pd, an.sin, an.cos, Dual::constant(Q::int(0)), 1).grad[0];
+    let w = json!({"identity": id.json(), "d_thdd_d_theta_at_pi/2": slope.text()});
+    if id.agrees() && slope.signum() > 0 {
+        Outcome::new(Verdict::Confirmed, Strength::Argument, "τ = 0; (3.5) = g(A + ma²sin²θ)/(A + ma²) ≤ g, no c₀ (exact), so Ω₀ ⊂ Ω (Ω: aθ̇² sin θ < g); v_x' = −aτ = 0; (A + ma²)θ̈ = −mga cos θ (exact): inverted pendulum, θ = π/2 unstable", w)
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "subcase 1 does not reduce as stated",
+            w,
+        )
+    }
+}
+
+/// Equilibria of (3.3) on (0, π) for p_φ = p_ψ = p, certified: f = θ̈(A + m a²)
+/// written with `(1 − cos θ)/sin θ = sin θ/(1 + cos θ)` and
+/// `v_x = c₀ + (a p/A) ln(1 + cos θ)` (the two logs of (3.1) combine; both sides
+/// have derivative −sin θ/(1 + cos θ) and vanish at π/2) is analytic at θ = 0
+/// (f(0) = −m g a); it is isolated on [0, 2.8] and the end [2.8, π) is taken
+/// from the crate's edge proof of (3.3).
+struct EqualP(P2<Interval>, Interval);
+
+impl RealFn for EqualP {
+    fn eval<T: Scalar>(&self, theta: T) -> T {
+        let p = self.0.map(T::lift);
+        let (s, c) = theta.sin_cos();
+        let one = T::int(1);
+        let vx = T::lift(self.1) + p.a * p.pf / p.big_a * (one + c).ln();
+        let tan_half = s / (one + c);
+        // τ = p tg(θ/2)/A, τ τ' = p² tg²(θ/2)/(A² sin θ)
+        let tau = p.pf * tan_half / p.big_a;
+        let tau_tau1 = p.pf.sqr() * tan_half.sqr() / (p.big_a.sqr() * s);
+        let _ = tau_tau1;
+        -(p.m * p.g * p.a * c) + p.m * p.a * vx * tau - p.pf.sqr() * s / (p.big_a * (one + c).sqr())
+    }
+}
+
+fn ice_equilibria(pf: &str, ps: &str, c0: &str) -> (Option<Vec<[f64; 2]>>, serde_json::Value) {
+    let ice = ice_disc(pf, ps, c0);
+    if pf == ps {
+        let f = EqualP(p2(pf, ps), dec(c0));
+        let crate_r = solve_3_3(&ice, &Budget::default());
+        let edge = crate_r.edges.iter().find(|e| e.end.contains("pi"));
+        let end = edge.is_some_and(|e| e.proved);
+        let hi = edge.map_or(2.8, |e| e.part[0]);
+        let iso = isolate(&f, 0.0, hi, &Budget::default());
+        let f0 = f.eval(point(0.0));
+        let complete = iso.complete && end && f0.sup() < 0.0;
+        let roots: Vec<[f64; 2]> = iso.roots.iter().map(|r| [r.lo, r.hi]).collect();
+        (
+            complete.then(|| roots.clone()),
+            json!({"c0": c0, "complete": complete, "roots": roots, "f(0)": enc(f0), "search": [0.0, hi], "end_pi_from_crate": end}),
+        )
+    } else {
+        let r = solve_3_3(&ice, &Budget::default());
+        let roots: Vec<[f64; 2]> = r.roots.iter().map(|x| [x.lo, x.hi]).collect();
+        (
+            r.complete.then(|| roots.clone()),
+            json!({"c0": c0, "complete": r.complete, "roots": roots}),
+        )
+    }
+}
+
+/// U(θ, 0) over an enclosure (Ω: U < 0).
+fn u_on(pf: &str, ps: &str, th: [f64; 2]) -> Interval {
+    let p = p2(pf, ps);
+    let an = Angle::new(Interval::try_from((th[0], th[1])).unwrap());
+    u_printed(&p, an.sin, an.cos, point(0.0))
+}
+
+/// Equilibria lie in Ω₀: (3.5)'s right side = g + a cos θ θ̈ (exact), so at
+/// θ̇ = 0, θ̈ = 0 the slack is g > 0.
+fn in_omega0_identity() -> Identity {
+    identity_test(311, |r| {
+        let x = rp(r);
+        let v = vx_printed(&x.p, x.c0, x.l1, x.l2, 1);
+        Sample {
+            point: x.pt,
+            lhs: rhs_3_5(&x.p, x.s, x.c, v),
+            rhs: x.p.g + x.p.a * x.c * thdd_3_3(&x.p, x.s, x.c, v, 1),
+        }
+    })
+}
+
+fn subcase(
+    pairs: &[(&str, &str)],
+    c0s: &[&str],
+) -> (Vec<serde_json::Value>, Vec<usize>, Option<String>) {
+    let mut js = Vec::new();
+    let mut counts = Vec::new();
+    let mut outside = None;
+    for (pf, ps) in pairs {
+        for c0 in c0s {
+            let (roots, j) = ice_equilibria(pf, ps, c0);
+            let mut j = j;
+            j["p_phi"] = json!(pf);
+            j["p_psi"] = json!(ps);
+            if let Some(rs) = roots {
+                counts.push(rs.len());
+                for r in &rs {
+                    let u = u_on(pf, ps, *r);
+                    if u.inf() > 0.0 && outside.is_none() {
+                        outside = Some(format!("(p_φ, p_ψ, c₀) = ({pf}, {ps}, {c0}): equilibrium θ ∈ [{:.6}, {:.6}] has U ∈ [{:.4}, {:.4}] > 0 (outside Ω)", r[0], r[1], u.inf(), u.sup()));
+                    }
+                }
+            } else {
+                counts.push(usize::MAX);
+            }
+            js.push(j);
+        }
+    }
+    (js, counts, outside)
+}
+
+/// S3.sub2: p_φ = p_ψ ≠ 0: certified equilibrium counts over c₀, the Ω₀
+/// identity, and an equilibrium outside Ω. Mutant: p_ψ ≠ p_φ samples.
+pub fn s3_sub2(mutant: bool) -> Outcome {
+    let pairs: &[(&str, &str)] = if mutant {
+        &[("2", "1")]
+    } else {
+        &[("1", "1"), ("2", "2")]
+    };
+    let c0s = ["-10", "-3", "0", "3", "10"];
+    let (js, counts, outside) = subcase(pairs, &c0s);
+    let id = in_omega0_identity();
+    let all_known = counts.iter().all(|&n| n != usize::MAX);
+    let zero_or_two = all_known
+        && counts.iter().all(|&n| n == 0 || n == 2)
+        && counts.contains(&0)
+        && counts.contains(&2);
+    let w = json!({"samples": js, "in_omega0_identity": id.json(), "outside_omega": outside});
+    if zero_or_two && id.agrees() && outside.is_some() {
+        Outcome::new(Verdict::ConfirmedOn, Strength::Certified,
+            format!("certified counts over c₀ ∈ {{−10, −3, 0, 3, 10}}, p = 1, 2: {:?} (two or none); at θ̇ = 0 = θ̈ the slack of (3.5) is g > 0 (exact): equilibria in Ω₀; {}", counts, outside.clone().unwrap_or_default()), w)
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Certified,
+            format!(
+                "counts {counts:?}, outside Ω: {}",
+                outside.unwrap_or_else(|| "none found".into())
+            ),
+            w,
+        )
+    }
+}
+
+/// S3.sub3: |p_ψ| ≠ |p_φ|: A τ² ≥ 0 in (3.2) grows like (p_ψ ∓ p_φ)²/(A sin²θ) at
+/// θ → 0, π (certified lower bounds near both ends), the other terms are
+/// ≥ 0, so every level set of (3.2) is compact in (0, π) × R: bounded; equilibria
+/// in Ω₀ (exact) and one outside Ω. Mutant: p_φ = p_ψ.
+pub fn s3_sub3(mutant: bool) -> Outcome {
+    let pairs: &[(&str, &str)] = if mutant {
+        &[("1", "1")]
+    } else {
+        &[
+            ("2", "1"),
+            ("1", "2"),
+            ("2.5", "2"),
+            ("4", "3.5"),
+            ("3.5", "4"),
+        ]
+    };
+    let mut ends = Vec::new();
+    for (pf, ps) in pairs {
+        let p = p2(pf, ps);
+        // (p_ψ − p_φ c)² over c ∈ [cos 0.1, 1] and [−1, −cos 0.1]
+        let c_hi = Interval::try_from((point(0.1).cos().inf(), 1.0)).unwrap();
+        let lo0 = (p.ps - p.pf * c_hi).sqr();
+        let lo1 = (p.ps + p.pf * c_hi).sqr();
+        ends.push((pf, ps, lo0.inf() > 0.0 && lo1.inf() > 0.0, lo0, lo1));
+    }
+    let bounded = ends.iter().all(|e| e.2);
+    let (js, counts, outside) = subcase(pairs, &["-10", "-3", "0", "3", "10"]);
+    let id = in_omega0_identity();
+    let w = json!({"ends": ends.iter().map(|e| json!({"p_phi": e.0, "p_psi": e.1, "(p_psi - p_phi c)^2 near 0": enc(e.3), "near pi": enc(e.4)})).collect::<Vec<_>>(),
+        "equilibria": js, "counts": counts, "in_omega0_identity": id.json(), "outside_omega": outside});
+    if bounded && id.agrees() && outside.is_some() {
+        Outcome::new(Verdict::Confirmed, Strength::Argument,
+            format!("(p_ψ − p_φ cos θ)² ≥ (|p_ψ| − |p_φ|)²-type bounds > 0 near θ = 0, π (certified at the samples; at c = ±1 it is (p_ψ ∓ p_φ)² > 0 whenever |p_ψ| ≠ |p_φ|) so Aτ² → ∞ at both ends and the level sets of (3.2) are compact (the paper has reduced to p_φ, p_ψ ≥ 0, where p_ψ ≠ p_φ means |p_ψ| ≠ |p_φ|; for p_ψ = −p_φ the mirror of subcase 2 applies); equilibria in Ω₀ (exact); {}", outside.clone().unwrap_or_default()), w)
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Certified,
+            "Aτ² stays bounded at an end, or no equilibrium outside Ω",
+            w,
+        )
+    }
+}
+
+pub fn claims() -> Vec<Claim> {
+    vec![
+        Claim { id: "F3.1", location: "§3, (3.1)", statement: "v_x + (a/A)(p_ψ ln tg(θ/2) − p_φ ln sin θ) = c₀ is a first integral", method: "identity test of dv_x/dθ against v̇_x = v_n ψ̇ (logs as symbols, (ln u)' = u'/u)", check: f3_1 },
+        Claim { id: "F3.2", location: "§3, (3.2)", statement: "(A + m a²) θ̇² = 2h − 2 m g a sin θ − m v_x² − A τ² − p_φ²/C", method: "identity test against the kinetic energy with the blade constraint", check: f3_2 },
+        Claim { id: "F3.3", location: "§3, (3.3)", statement: "(A + m a²) θ̈ = −m g a cos θ + m a v_x τ − A τ τ'", method: "identity tests: derivative of (3.2), Newton–Euler with the blade constraint", check: f3_3 },
+        Claim { id: "F3.4", location: "§3, (3.4)", statement: "Λ̈ = U₀ + V₀ N, V₀ = 1/m, U₀ = −g + a θ̇² sin θ + a cos θ/(A + m a²)·(m g a cos θ − m a v_x τ + A τ τ')", method: "identity tests against Λ̈(N) from Newton–Euler; certified V₀ enclosures", check: f3_4 },
+        Claim { id: "F3.5", location: "§3, (3.5)", statement: "Λ̈ = 0 with some N ≥ 0 iff a θ̇² sin θ ≤ g − a cos θ/(A + m a²)·(m g a cos θ − m a v_x τ + A τ τ'): Ω₀", method: "identity test: slack = N/m from Newton–Euler", check: f3_5 },
+        Claim { id: "S3.omega", location: "§3, after (3.2)", statement: "Ω (inequality (2.7)) is exactly as for the smooth plane", method: "identity test: free-flight Λ̈ = U of (2.7)", check: s3_omega },
+        Claim { id: "S3.c0changes", location: "§3, after (3.5)", statement: "changing c₀ changes both the phase portrait (3.2) and Ω₀", method: "paver box and θ̈ enclosures for c₀ = 0, 1; exact identity for p_φ = p_ψ = 0", check: s3_c0changes },
+        Claim { id: "S3.c0invariant", location: "§3, after (3.5)", statement: "invariant under c₀ are only the boundary points of Ω₀ at θ = π/2 and its vertical asymptotes at θ → +0, π − 0", method: "exact c₀-slope, zero of τ, certified τ ≠ 0 for the other ordering", check: s3_c0invariant },
+        Claim { id: "S3.c0linear", location: "§3, after (3.5)", statement: "the right side of (3.5) is linear in c₀", method: "identity tests: second difference, slope", check: s3_c0linear },
+        Claim { id: "S3.c0anypoint", location: "§3, after (3.5)", statement: "for any p_φ, p_ψ not both zero and any point with θ ≠ 0, π/2, π some c₀ puts it in Ω₀ and some out", method: "exact evaluation at a point with τ = 0", check: s3_c0anypoint },
+        Claim { id: "S3.forms", location: "§3, after (3.5)", statement: "depending on the integrals, Ω₀ has the form of Fig. 3a, b or c", method: "certified roots of (3.5)'s right side on [0.01, π − 0.01] over a parameter grid; forms = sign patterns", check: s3_forms },
+        Claim { id: "S3.symmetry", location: "§3, symmetry", statement: "p_ψ → −p_ψ, θ → π − θ leaves the equations of motion and of Ω, Ω₀ unchanged", method: "identity tests (ice, Example 1, §2)", check: s3_symmetry },
+        Claim { id: "S3.sub1", location: "§3, subcase 1", statement: "p_ψ = p_φ = 0: τ = 0, (3.5) free of c₀, Ω₀ ⊂ Ω, v_x = const, dynamically an inverted pendulum", method: "identity tests and exact linearisation", check: s3_sub1 },
+        Claim { id: "S3.sub2", location: "§3, subcase 2", statement: "p_ψ = p_φ ≠ 0: depending on c₀, two equilibria or none; they lie in Ω₀ but may lie outside Ω", method: "certified isolation over c₀ samples (θ → 0 end analytic), exact Ω₀ identity, certified U > 0 at an equilibrium", check: s3_sub2 },
+        Claim { id: "S3.sub3", location: "§3, subcase 3", statement: "p_ψ ≠ p_φ: all phase trajectories of (3.2) are bounded; equilibria in Ω₀ but may lie outside Ω", method: "certified end bounds of Aτ², equilibria by the isolator, exact Ω₀ identity", check: s3_sub3 },
+    ]
+}

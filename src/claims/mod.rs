@@ -1,0 +1,220 @@
+//! The paper's formulas and statements as executable checks.
+//!
+//! Every claim has a fixed id, its place in the paper, the statement as the
+//! paper makes it, how it is checked, and a check function that computes a
+//! [`Verdict`] with its evidence. Nothing here copies a verdict from the
+//! paper: each comes out of a computation (exact rational identity tests,
+//! interval enclosures, the paver, the root isolator and the κ₀ proof).
+//!
+//! Each check takes a `mutant` flag: `true` feeds the same check a
+//! deliberately wrong variant of the formula or parameters (documented at the
+//! check), so tests can show that the check can come out the other way.
+//!
+//! * [`exact`]: rationals behind the [`Scalar`](crate::scalar::Scalar) trait,
+//!   identity tests (Schwartz–Zippel), small exact linear solves.
+//! * [`witness`]: certified region differences found with the paver.
+//! * [`example1`], [`smooth`], [`ice`]: the checks of §1, §2, §3.
+//! * [`report`]: `REPORT.md`, `report.json` and `claims.toml`.
+//! * [`figures`]: pictures of the witnesses.
+
+pub mod exact;
+pub mod example1;
+pub mod figures;
+pub mod ice;
+pub mod report;
+pub mod smooth;
+pub mod witness;
+
+use rayon::prelude::*;
+use serde::Serialize;
+use std::fmt;
+
+/// What the computation shows about a claim.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Verdict {
+    /// True for all parameters (argument checked by computation).
+    Confirmed,
+    /// Certified over a stated parameter box or set.
+    ConfirmedOn,
+    /// A slip without consequence.
+    Typo,
+    /// A formula is wrong: the right one and what it changes are given.
+    Error,
+    /// The statement fails: certified witness.
+    False,
+    /// True exactly under a stated condition: witnesses on both sides.
+    Conditional,
+    /// Cannot be checked (reason given).
+    NotCheckable,
+}
+
+impl fmt::Display for Verdict {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str(match self {
+            Verdict::Confirmed => "confirmed",
+            Verdict::ConfirmedOn => "confirmed-on",
+            Verdict::Typo => "typo",
+            Verdict::Error => "error",
+            Verdict::False => "false",
+            Verdict::Conditional => "conditional",
+            Verdict::NotCheckable => "not-checkable",
+        })
+    }
+}
+
+/// What backs a verdict.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Strength {
+    /// Interval proof (outward rounding, decimal parameters enclosed).
+    Certified,
+    /// Exact rational arithmetic.
+    Exact,
+    /// Exact agreement at random rational points (Schwartz–Zippel).
+    IdentityTest,
+    /// A written derivation whose steps are checked by computation.
+    Argument,
+}
+
+impl fmt::Display for Strength {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str(match self {
+            Strength::Certified => "certified",
+            Strength::Exact => "exact",
+            Strength::IdentityTest => "identity-test",
+            Strength::Argument => "argument",
+        })
+    }
+}
+
+/// What one check returns.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    pub verdict: Verdict,
+    pub strength: Strength,
+    /// One line of evidence.
+    pub summary: String,
+    /// For a verdict other than `confirmed`: the correct statement or formula.
+    pub correction: Option<String>,
+    pub witness: serde_json::Value,
+}
+
+impl Outcome {
+    pub fn new(
+        verdict: Verdict,
+        strength: Strength,
+        summary: impl Into<String>,
+        witness: serde_json::Value,
+    ) -> Outcome {
+        Outcome {
+            verdict,
+            strength,
+            summary: summary.into(),
+            correction: None,
+            witness,
+        }
+    }
+    pub fn correct(mut self, c: impl Into<String>) -> Outcome {
+        self.correction = Some(c.into());
+        self
+    }
+}
+
+/// One entry of the registry.
+pub struct Claim {
+    pub id: &'static str,
+    pub location: &'static str,
+    /// The statement as the paper makes it.
+    pub statement: &'static str,
+    /// How it is checked.
+    pub method: &'static str,
+    pub check: fn(bool) -> Outcome,
+}
+
+/// A claim with its computed verdict.
+#[derive(Clone, Debug, Serialize)]
+pub struct ClaimResult {
+    pub id: String,
+    pub location: String,
+    pub statement: String,
+    pub verdict: Verdict,
+    pub strength: Strength,
+    pub summary: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub correction: Option<String>,
+    pub witness: serde_json::Value,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub proof_file: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub figure: Option<String>,
+}
+
+/// Every claim, in report order.
+pub fn registry() -> Vec<Claim> {
+    let mut v = example1::claims();
+    v.extend(smooth::claims());
+    v.extend(ice::claims());
+    v
+}
+
+/// Ids of [`registry`] in order.
+pub fn ids() -> Vec<&'static str> {
+    registry().iter().map(|c| c.id).collect()
+}
+
+/// An id not in the registry.
+#[derive(Debug, thiserror::Error, PartialEq)]
+#[error("unknown claim id `{0}` (see `paper-checks/claims.toml` for the list)")]
+pub struct UnknownClaim(pub String);
+
+/// Runs the claims with the given ids (all when empty), in registry order.
+pub fn run(ids: &[String]) -> Result<Vec<ClaimResult>, UnknownClaim> {
+    let reg = registry();
+    for id in ids {
+        if !reg.iter().any(|c| c.id == id) {
+            return Err(UnknownClaim(id.clone()));
+        }
+    }
+    let chosen: Vec<&Claim> = reg
+        .iter()
+        .filter(|c| ids.is_empty() || ids.iter().any(|i| i == c.id))
+        .collect();
+    Ok(chosen.par_iter().map(|c| run_one(c, false)).collect())
+}
+
+/// Runs one claim's check (`mutant` as documented at the check).
+pub fn run_one(c: &Claim, mutant: bool) -> ClaimResult {
+    let o = (c.check)(mutant);
+    ClaimResult {
+        id: c.id.into(),
+        location: c.location.into(),
+        statement: c.statement.into(),
+        verdict: o.verdict,
+        strength: o.strength,
+        summary: o.summary,
+        correction: o.correction,
+        witness: o.witness,
+        proof_file: None,
+        figure: figures::figure_path(c.id),
+    }
+}
+
+/// Runs one claim by id, optionally as its mutant.
+pub fn check(id: &str, mutant: bool) -> Result<ClaimResult, UnknownClaim> {
+    registry()
+        .iter()
+        .find(|c| c.id == id)
+        .map(|c| run_one(c, mutant))
+        .ok_or_else(|| UnknownClaim(id.into()))
+}
+
+/// Decimal text to an enclosure (panics on bad text: only constants here).
+pub(crate) fn dec(text: &str) -> inari::Interval {
+    crate::param::enclose_decimal("claim parameter", text).expect("valid decimal")
+}
+
+/// `[inf, sup]` of an enclosure for a witness.
+pub(crate) fn enc(x: inari::Interval) -> serde_json::Value {
+    serde_json::json!([x.inf(), x.sup()])
+}

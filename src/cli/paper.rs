@@ -1,0 +1,44 @@
+//! `detach check-paper`: recompute every paper claim and write the report.
+
+use super::{CliError, CliResult};
+use detach::claims::{self, report};
+use std::path::PathBuf;
+
+#[derive(clap::Args, Debug)]
+pub struct CheckPaperArgs {
+    /// Print report.json to stdout instead of the table.
+    #[arg(long)]
+    pub json: bool,
+    /// Where to write REPORT.md, report.json and claims.toml.
+    #[arg(long, default_value = "paper-checks")]
+    pub out: PathBuf,
+    /// Check only these claim ids (repeatable); the files are then not written.
+    #[arg(long = "claim", value_name = "ID")]
+    pub claims: Vec<String>,
+}
+
+pub fn run_check_paper(a: &CheckPaperArgs) -> CliResult {
+    let results = claims::run(&a.claims).map_err(CliError::usage)?;
+    if a.json {
+        print!("{}", report::json(&results));
+    } else {
+        print!("{}", report::table(&results));
+    }
+    if a.claims.is_empty() {
+        std::fs::create_dir_all(&a.out)
+            .map_err(|e| CliError::runtime(format!("{}: {e}", a.out.display())))?;
+        let write = |name: &str, text: String| {
+            let path = a.out.join(name);
+            std::fs::write(&path, text)
+                .map_err(|e| CliError::runtime(format!("{}: {e}", path.display())))
+        };
+        write("REPORT.md", report::markdown(&results))?;
+        write("report.json", report::json(&results))?;
+        write("claims.toml", report::claims_toml())?;
+        for r in results.iter().filter(|r| r.figure.is_some()) {
+            let mark = claims::figures::witness_box(&r.witness);
+            claims::figures::draw(&r.id, &a.out, mark).map_err(CliError::runtime)?;
+        }
+    }
+    Ok(())
+}

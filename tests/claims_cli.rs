@@ -1,0 +1,73 @@
+//! `detach check-paper` at the binary level: exit codes, table, JSON, files.
+
+use std::process::Command;
+
+fn detach(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_detach"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+#[test]
+fn unknown_claim_exits_2() {
+    let o = detach(&["check-paper", "--claim", "F9.9"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("unknown claim id"));
+}
+
+#[test]
+fn one_claim_prints_its_row_and_writes_nothing() {
+    let dir = std::env::temp_dir().join(format!("detach-claims-cli-{}", std::process::id()));
+    let out = dir.to_str().unwrap();
+    let o = detach(&["check-paper", "--claim", "F1.7", "--out", out]);
+    assert_eq!(o.status.code(), Some(0));
+    let t = String::from_utf8(o.stdout).unwrap();
+    assert!(t.contains("| F1.7 |") && t.contains("**error**"), "{t}");
+    assert!(!dir.join("REPORT.md").exists());
+}
+
+#[test]
+fn full_run_writes_the_report_and_json() {
+    let dir = std::env::temp_dir().join(format!("detach-claims-full-{}", std::process::id()));
+    let out = dir.to_str().unwrap();
+    let o = detach(&["check-paper", "--json", "--out", out]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let arr = v.as_array().unwrap();
+    assert_eq!(arr.len(), detach::claims::ids().len());
+    for r in arr {
+        for k in [
+            "id", "location", "verdict", "strength", "summary", "witness",
+        ] {
+            assert!(r.get(k).is_some(), "{k} missing in {r}");
+        }
+    }
+    let written = std::fs::read_to_string(dir.join("report.json")).unwrap();
+    assert_eq!(
+        serde_json::from_str::<serde_json::Value>(&written).unwrap(),
+        v
+    );
+    assert!(std::fs::read_to_string(dir.join("REPORT.md"))
+        .unwrap()
+        .contains("## Claims not confirmed"));
+    assert!(dir.join("figures/F1_10.svg").exists() && dir.join("figures/F1_10.png").exists());
+    let toml = std::fs::read_to_string(dir.join("claims.toml")).unwrap();
+    assert_eq!(toml.matches("[[claim]]").count(), arr.len());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn committed_claims_list_matches_the_registry() {
+    let committed = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/paper-checks/claims.toml"
+    ))
+    .unwrap();
+    assert_eq!(committed, detach::claims::report::claims_toml());
+}
