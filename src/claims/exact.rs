@@ -142,6 +142,9 @@ impl Scalar for Q {
     fn ln(self) -> Self {
         panic!("ln is not rational")
     }
+    fn tan(self) -> Self {
+        panic!("tan is not rational")
+    }
 }
 
 /// `(sin θ, cos θ)` for `t = tan(θ/2)`.
