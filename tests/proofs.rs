@@ -151,3 +151,19 @@ fn critical_band_agrees_with_the_isolator() {
         }
     }
 }
+
+#[test]
+fn paper_checks_cite_existing_proof_files() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut cited = 0;
+    for id in detach::claims::ids() {
+        if let Some(files) = detach::claims::proof_file(id) {
+            for f in files.split(", ") {
+                let bytes = std::fs::read(root.join(f)).unwrap_or_else(|e| panic!("{id}: {f}: {e}"));
+                assert_eq!(check_bytes(&bytes).unwrap().verdict, Verdict::Valid, "{id}: {f}");
+                cited += 1;
+            }
+        }
+    }
+    assert!(cited >= 4);
+}

@@ -195,8 +195,24 @@ pub fn run_one(c: &Claim, mutant: bool) -> ClaimResult {
         summary: o.summary,
         correction: o.correction,
         witness: o.witness,
-        proof_file: None,
+        proof_file: proof_file(c.id).map(String::from),
         figure: figures::figure_path(c.id),
+    }
+}
+
+/// The committed proof files (`proofs/`, re-checked by `detach verify`) that
+/// certify part of a claim's evidence.
+pub fn proof_file(id: &str) -> Option<&'static str> {
+    match id {
+        // κ₀ ∈ [lo, hi] and the root counts of (2.10) on both sides of it.
+        "S2.case2" => Some("proofs/kappa0.json"),
+        // The band: two roots below, none above, on 31 α-boxes.
+        "S2.case3" => Some("proofs/critical-band.json"),
+        // Disjoint certified area bounds of the printed and derived sets.
+        "F1.10" | "F1.11" => Some(
+            "proofs/atlas-viscous-disc-printed.json, proofs/atlas-viscous-disc-derived.json",
+        ),
+        _ => None,
     }
 }
 

@@ -51,7 +51,18 @@ pub fn table(results: &[ClaimResult]) -> String {
             cell(&r.location),
             r.verdict,
             r.strength,
-            cell(&r.summary)
+            match &r.proof_file {
+                // Files `detach verify` re-checks, relative to paper-checks/.
+                Some(f) => format!(
+                    "{} (proof: {})",
+                    cell(&r.summary),
+                    f.split(", ")
+                        .map(|p| format!("[`{p}`](../{p})"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                None => cell(&r.summary),
+            }
         );
     }
     out
