@@ -8,6 +8,7 @@
 pub mod atlas;
 pub mod certificate;
 pub mod check;
+pub mod elementary;
 pub mod param;
 pub mod pave;
 pub mod roots;
