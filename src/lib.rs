@@ -5,6 +5,7 @@
 //! Every claimed number is an outward-rounded [`inari`] enclosure; `f64` is
 //! used only to steer searches and to draw, and such output says so.
 
+pub mod area;
 pub mod atlas;
 pub mod certificate;
 pub mod check;

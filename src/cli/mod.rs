@@ -9,6 +9,7 @@ macro_rules! outln {
     };
 }
 
+pub mod area;
 pub mod atlas;
 pub mod proofs;
 pub mod roots;
