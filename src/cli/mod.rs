@@ -11,6 +11,7 @@ macro_rules! outln {
 
 pub mod area;
 pub mod atlas;
+pub mod methods;
 pub mod proofs;
 pub mod roots;
 
