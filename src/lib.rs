@@ -34,10 +34,12 @@
 //! inari requires: copy this repository's `.cargo/config.toml`
 //! (`-Ctarget-cpu=haswell` on x86-64) into the dependent project.
 
+pub mod area;
 pub mod atlas;
 pub mod certificate;
 pub mod check;
 pub mod claims;
+pub mod elementary;
 pub mod param;
 pub mod pave;
 pub mod roots;

@@ -3,7 +3,9 @@
 mod cli;
 
 use clap::{Parser, Subcommand};
+use cli::area::AreaArgs;
 use cli::atlas::{AtlasArgs, PaveArgs, ScenesArgs};
+use cli::methods::MethodsArgs;
 use cli::proofs::{ProveArgs, VerifyArgs};
 use cli::roots::{CriticalCurveArgs, Kappa0Args, RootsArgs, TangencyArgs};
 use cli::CliResult;
@@ -23,6 +25,10 @@ enum Command {
     Atlas(AtlasArgs),
     /// Pave one scene and print its area bounds (table or --json).
     Pave(PaveArgs),
+    /// Certified areas of Ω, Ω₀ and the four cells by quadrature over θ.
+    Area(AreaArgs),
+    /// Run every paving method over a range of ε: table, JSON, speed–accuracy chart.
+    Methods(MethodsArgs),
     /// List the scenes, their parameters, defaults, domains and variants.
     Scenes(ScenesArgs),
     /// Certified roots of (2.9), (2.10), (2.12) or the equilibria of (3.3).
@@ -45,6 +51,8 @@ fn run(command: Command) -> CliResult {
     match command {
         Command::Atlas(a) => cli::atlas::run_atlas(&a),
         Command::Pave(a) => cli::atlas::run_pave(&a),
+        Command::Area(a) => cli::area::run_area(&a),
+        Command::Methods(a) => cli::methods::run_methods(&a),
         Command::Scenes(a) => cli::atlas::run_scenes(&a),
         Command::Roots(a) => cli::roots::run_roots(&a),
         Command::Kappa0(a) => cli::roots::run_kappa0(&a),

@@ -10,6 +10,7 @@
 //! Both files have the same content; the SVG merges equal pixels into
 //! rectangles, so its size depends on the picture, not on the leaf count.
 
+pub mod chart;
 mod portrait;
 mod raster;
 

@@ -9,7 +9,9 @@ macro_rules! outln {
     };
 }
 
+pub mod area;
 pub mod atlas;
+pub mod methods;
 pub mod proofs;
 pub mod paper;
 pub mod roots;

@@ -11,6 +11,7 @@
 
 pub mod area;
 pub mod export;
+pub mod method;
 
 use crate::scalar::is_defined;
 use crate::scene::{Constraints, Domain, Scene, Variant};

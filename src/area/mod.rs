@@ -1,0 +1,567 @@
+//! Certified areas by quadrature over θ.
+//!
+//! Every region of a scene is `{q < 0}` with `q` quadratic in θ̇ and
+//! θ-dependent coefficients, so for fixed θ a region's θ̇-slice inside the
+//! window `[lo, hi]` is at most two intervals whose ends are roots of `q` or
+//! window ends, and a partition cell's slice is an intersection of such sets.
+//! The area is `∫ L(θ) dθ`, `L` the slice length.
+//!
+//! On a θ-piece where the shape of the slice is decided (sign of the leading
+//! coefficient and of the discriminant, which root lies where, by interval
+//! comparisons on the piece), `L` is a sum of differences of smooth functions
+//! and its integral is enclosed by a Taylor rule with a Lagrange remainder:
+//! `∫ L = Σ_{k<n} L_k(m) ∫ (θ−m)^k + R`, `R ∈ L_n(piece) ∫ (θ−m)^n` (`n`
+//! even, so `(θ−m)^n ≥ 0`), the coefficients from interval Taylor arithmetic
+//! ([`taylor`]). Where the shape is not decided (a root crossing a window end
+//! or another root, the discriminant vanishing, a singular line), the piece is
+//! bisected; what is left undecided at the end is bounded by `[0, hi − lo]`
+//! times its width. Refinement goes to the pieces that hold most of the width.
+//!
+//! Everything is interval arithmetic: the domain ends (π) are enclosures, the
+//! slivers between them and the double grid are bounded separately.
+
+pub mod taylor;
+
+use crate::elementary::slab_constraints;
+use crate::scalar::is_defined;
+use crate::scene::{Domain, Quadratic, Scene, Variant};
+use inari::{const_interval, DecInterval, Interval};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::cmp::Ordering;
+use taylor::{Taylor, N};
+
+const ZERO: Interval = const_interval!(0.0, 0.0);
+
+/// When to stop refining.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct AreaOptions {
+    /// Target width of the enclosure (absolute).
+    pub tol: f64,
+    /// Most θ-pieces; when reached, the enclosure is returned as it is.
+    pub max_pieces: usize,
+}
+
+impl Default for AreaOptions {
+    fn default() -> Self {
+        AreaOptions {
+            tol: 1e-10,
+            max_pieces: 1 << 20,
+        }
+    }
+}
+
+/// A certified area and how it was obtained.
+#[derive(Clone, Copy, Debug)]
+pub struct AreaEnclosure {
+    /// Contains the true area.
+    pub area: Interval,
+    /// θ-pieces of the final subdivision.
+    pub pieces: usize,
+    /// Of those, pieces whose slice shape stayed undecided (bounded crudely).
+    pub undecided_pieces: usize,
+    /// Refinement rounds.
+    pub rounds: usize,
+    /// The set is empty by construction (Ω₀ = Ω asked with opposite signs).
+    pub proved_empty: bool,
+}
+
+impl AreaEnclosure {
+    pub fn width(&self) -> f64 {
+        self.area.wid()
+    }
+}
+
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum AreaError {
+    #[error("the tolerance must be a positive finite number, got {0}")]
+    BadTol(f64),
+    #[error("max-pieces must be at least 1")]
+    BadBudget,
+    #[error("the domain is empty")]
+    EmptyDomain,
+    #[error("a cell needs at least one of Ω, Ω₀ (in or out)")]
+    NoLiteral,
+}
+
+/// One side of a cell: constraint `q` (0 = Ω, 1 = Ω₀) asked negative (`inside`)
+/// or positive.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Lit {
+    q: usize,
+    inside: bool,
+}
+
+/// An end of a slice interval: a window end, or a root of literal `lit`'s
+/// quadratic (`which` picks the formula, see [`root_forms`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum End {
+    Lo,
+    Hi,
+    Root { lit: u8, which: u8 },
+}
+
+/// An end with an enclosure of its value over the piece.
+#[derive(Clone, Copy, Debug)]
+struct Bound {
+    end: End,
+    enc: Interval,
+}
+
+/// How a literal's set looks on a piece.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Shape {
+    /// Quadratic with two roots; `s` is the sign used in the stable root
+    /// formula `Q = −(a1 + s√D)/2`, roots `Q/a2` (which = 0) and `a0/Q` (1).
+    Quad { s: i8 },
+    /// Linear (`a2 ≡ 0`): root `−a0/a1`.
+    Linear,
+    /// No root needed (the set is empty or the whole window).
+    Flat,
+}
+
+/// Sign-applied coefficients `(a2, a1, a0)` of literal `l`: `{a(θ̇) < 0}` is
+/// the literal's set.
+fn lit_coeffs<T: crate::scalar::Scalar>(q: &Quadratic<T>, inside: bool) -> (T, T, T) {
+    if inside {
+        (q.c2, q.c1, q.c0)
+    } else {
+        (-q.c2, -q.c1, -q.c0)
+    }
+}
+
+fn cmp(a: &Bound, b: &Bound) -> Option<Ordering> {
+    if a.end == b.end {
+        return Some(Ordering::Equal);
+    }
+    if a.enc.sup() < b.enc.inf() {
+        Some(Ordering::Less)
+    } else if a.enc.inf() > b.enc.sup() {
+        Some(Ordering::Greater)
+    } else {
+        None
+    }
+}
+
+/// A union of disjoint open intervals, in order.
+type Slice = Vec<(Bound, Bound)>;
+
+/// `s ∩ t`, or `None` when an order is not decided on the piece.
+fn intersect(s: &Slice, t: &Slice) -> Option<Slice> {
+    let mut out = Vec::new();
+    for a in s {
+        for b in t {
+            let lo = match cmp(&a.0, &b.0)? {
+                Ordering::Less => b.0,
+                _ => a.0,
+            };
+            let hi = match cmp(&a.1, &b.1)? {
+                Ordering::Greater => b.1,
+                _ => a.1,
+            };
+            if cmp(&lo, &hi)? == Ordering::Less {
+                out.push((lo, hi));
+            }
+        }
+    }
+    Some(out)
+}
+
+/// Exact-zero test on an interval coefficient (a formula that is identically
+/// zero, e.g. `c1` of Ω).
+fn is_zero(x: Interval) -> bool {
+    x == ZERO
+}
+
+/// The decided slice of one literal over a piece, from interval coefficients.
+fn literal_slice(
+    li: u8,
+    (a2, a1, a0): (Interval, Interval, Interval),
+    window: &[Bound; 2],
+) -> Option<(Shape, Slice)> {
+    let full = || vec![(window[0], window[1])];
+    let clip = |s: Slice| -> Option<Slice> {
+        // Intersect with the window; −∞/+∞ ends are already window ends.
+        intersect(&s, &full())
+    };
+    if is_zero(a2) {
+        if is_zero(a1) {
+            return if a0.sup() < 0.0 {
+                Some((Shape::Flat, full()))
+            } else if a0.inf() >= 0.0 {
+                Some((Shape::Flat, vec![]))
+            } else {
+                None
+            };
+        }
+        let r = Bound {
+            end: End::Root { lit: li, which: 0 },
+            enc: -a0 / a1,
+        };
+        if !r.enc.is_common_interval() {
+            return None;
+        }
+        let s = if a1.inf() > 0.0 {
+            vec![(window[0], r)]
+        } else if a1.sup() < 0.0 {
+            vec![(r, window[1])]
+        } else {
+            return None;
+        };
+        return Some((Shape::Linear, clip(s)?));
+    }
+    let up = if a2.inf() > 0.0 {
+        true
+    } else if a2.sup() < 0.0 {
+        false
+    } else {
+        return None;
+    };
+    let d = a1.sqr() - Interval::try_from((4.0, 4.0)).unwrap() * a2 * a0;
+    if d.sup() < 0.0 {
+        return Some((Shape::Flat, if up { vec![] } else { full() }));
+    }
+    if d.inf() <= 0.0 {
+        return None;
+    }
+    let s: i8 = if a1.mid() >= 0.0 { 1 } else { -1 };
+    let [ra, rb] = root_forms(a2, a1, a0, s);
+    let (ba, bb) = (
+        Bound {
+            end: End::Root { lit: li, which: 0 },
+            enc: ra,
+        },
+        Bound {
+            end: End::Root { lit: li, which: 1 },
+            enc: rb,
+        },
+    );
+    if !(ra.is_common_interval() && rb.is_common_interval()) {
+        return None;
+    }
+    let (lo, hi) = match cmp(&ba, &bb)? {
+        Ordering::Less => (ba, bb),
+        Ordering::Greater => (bb, ba),
+        Ordering::Equal => return None,
+    };
+    let s_set = if up {
+        vec![(lo, hi)]
+    } else {
+        // Below the lower root, above the upper one; ±∞ become window ends.
+        let mut v = Vec::new();
+        if cmp(&lo, &window[0])? == Ordering::Greater {
+            v.push((window[0], lo));
+        }
+        if cmp(&hi, &window[1])? == Ordering::Less {
+            v.push((hi, window[1]));
+        }
+        return Some((Shape::Quad { s }, clip(v)?));
+    };
+    Some((Shape::Quad { s }, clip(s_set)?))
+}
+
+/// The two roots by the cancellation-free pair `Q/a2`, `a0/Q`,
+/// `Q = −(a1 + s√D)/2`.
+fn root_forms<T: crate::scalar::Scalar>(a2: T, a1: T, a0: T, s: i8) -> [T; 2] {
+    let d = a1.sqr() - T::int(4) * a2 * a0;
+    let sq = d.sqrt();
+    let q = -(if s > 0 { a1 + sq } else { a1 - sq }) / T::int(2);
+    [q / a2, a0 / q]
+}
+
+/// What a piece contributes.
+#[derive(Clone, Copy, Debug)]
+struct Piece {
+    t: [f64; 2],
+    integral: Interval,
+    decided: bool,
+}
+
+/// The cell to integrate, resolved against the scene.
+struct Job<'a> {
+    scene: &'a Scene,
+    variant: Variant,
+    lits: Vec<Lit>,
+    window: [Interval; 2],
+}
+
+fn pt(x: f64) -> Interval {
+    Interval::try_from((x, x)).expect("finite")
+}
+
+/// `∫_{t0}^{t1} (θ − m)^k dθ` for `k < N + 1`, in intervals.
+fn moments(t0: f64, t1: f64, m: f64) -> [Interval; N + 1] {
+    let (a, b) = (pt(t0) - pt(m), pt(t1) - pt(m));
+    let mut out = [ZERO; N + 1];
+    let (mut pa, mut pb) = (a, b);
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = (pb - pa) / pt((k + 1) as f64);
+        pa *= a;
+        pb *= b;
+    }
+    out
+}
+
+impl Job<'_> {
+    /// The slice shape on `theta`, with the literal shapes it uses.
+    fn shape(&self, theta: Interval) -> Option<(Vec<Shape>, Slice)> {
+        let c = slab_constraints(self.scene, self.variant, theta);
+        let quads = [c.omega, c.omega0];
+        let window = [
+            Bound {
+                end: End::Lo,
+                enc: self.window[0],
+            },
+            Bound {
+                end: End::Hi,
+                enc: self.window[1],
+            },
+        ];
+        let mut shapes = Vec::with_capacity(self.lits.len());
+        let mut slice: Slice = vec![(window[0], window[1])];
+        for (i, l) in self.lits.iter().enumerate() {
+            let (a2, a1, a0) = lit_coeffs(&quads[l.q], l.inside);
+            let iv = |x: DecInterval| -> Option<Interval> {
+                // `com`: defined and continuous on the piece, hence (for these
+                // formulas) analytic, as the Taylor rule needs.
+                (is_defined(x) && x.decoration() == inari::Decoration::Com)
+                    .then(|| x.interval())
+                    .flatten()
+                    .filter(|i| i.is_common_interval())
+            };
+            let (shape, s) = literal_slice(i as u8, (iv(a2)?, iv(a1)?, iv(a0)?), &window)?;
+            shapes.push(shape);
+            slice = intersect(&slice, &s)?;
+        }
+        Some((shapes, slice))
+    }
+
+    /// Taylor coefficients of every end of `slice` around `x` (a point or the
+    /// whole piece), summed as `Σ (hi − lo)`.
+    fn length_series(&self, x: Interval, shapes: &[Shape], slice: &Slice) -> Option<Taylor> {
+        let c = self
+            .scene
+            .constraints(self.variant, &crate::scene::Angle::new(Taylor::variable(x)));
+        let quads = [c.omega, c.omega0];
+        let mut roots: Vec<[Taylor; 2]> = Vec::with_capacity(shapes.len());
+        for (l, shape) in self.lits.iter().zip(shapes) {
+            let (a2, a1, a0) = lit_coeffs(&quads[l.q], l.inside);
+            roots.push(match *shape {
+                Shape::Quad { s } => root_forms(a2, a1, a0, s),
+                Shape::Linear => {
+                    let r = -a0 / a1;
+                    [r, r]
+                }
+                Shape::Flat => [Taylor::constant(ZERO); 2],
+            });
+        }
+        let end = |b: &Bound| match b.end {
+            End::Lo => Taylor::constant(self.window[0]),
+            End::Hi => Taylor::constant(self.window[1]),
+            End::Root { lit, which } => roots[lit as usize][which as usize],
+        };
+        let mut total = Taylor::constant(ZERO);
+        for (lo, hi) in slice {
+            total = total + (end(hi) - end(lo));
+        }
+        total.is_finite().then_some(total)
+    }
+
+    fn piece(&self, t0: f64, t1: f64) -> Piece {
+        let h = pt(t1) - pt(t0);
+        let theta = Interval::try_from((t0, t1)).expect("ordered");
+        // The slice length always lies in [0, hi − lo].
+        let l_max = (self.window[1] - self.window[0]).convex_hull(ZERO);
+        let crude = Piece {
+            t: [t0, t1],
+            integral: h * l_max,
+            decided: false,
+        };
+        let Some((shapes, slice)) = self.shape(theta) else {
+            return crude;
+        };
+        // Zeroth order: width × the range of L over the piece.
+        let mut l_range = ZERO;
+        for (lo, hi) in &slice {
+            l_range += (hi.enc - lo.enc).intersection(l_max);
+        }
+        let mut integral = (h * l_range).intersection(crude.integral);
+        if slice
+            .iter()
+            .any(|(a, b)| a.end != End::Lo || b.end != End::Hi)
+        {
+            let m = 0.5 * t0 + 0.5 * t1;
+            if let (Some(at_m), Some(over)) = (
+                self.length_series(pt(m), &shapes, &slice),
+                self.length_series(theta, &shapes, &slice),
+            ) {
+                let mom = moments(t0, t1, m);
+                // (θ − m)^n ≥ 0 for the remainder's mean value.
+                let n = N - 1;
+                const { assert!((N - 1) % 2 == 0) };
+                let mut s = over.c[n] * mom[n];
+                for (c, mk) in at_m.c.iter().zip(&mom).take(n) {
+                    s += *c * *mk;
+                }
+                let t = integral.intersection(s);
+                if !t.is_empty() {
+                    integral = t;
+                }
+            }
+        }
+        Piece {
+            t: [t0, t1],
+            integral,
+            decided: true,
+        }
+    }
+}
+
+/// Area of the set of points of `domain` where each constraint of `lits`
+/// (`Some(true)` = inside Ω / Ω₀, `Some(false)` = outside, `None` = free) holds.
+pub fn cell_area(
+    scene: &Scene,
+    variant: Variant,
+    domain: &Domain,
+    literals: [Option<bool>; 2],
+    opts: AreaOptions,
+) -> Result<AreaEnclosure, AreaError> {
+    if !(opts.tol.is_finite() && opts.tol > 0.0) {
+        return Err(AreaError::BadTol(opts.tol));
+    }
+    if opts.max_pieces == 0 {
+        return Err(AreaError::BadBudget);
+    }
+    if domain.is_empty() {
+        return Err(AreaError::EmptyDomain);
+    }
+    let mut lits: Vec<Lit> = literals
+        .iter()
+        .enumerate()
+        .filter_map(|(q, l)| l.map(|inside| Lit { q, inside }))
+        .collect();
+    if lits.is_empty() {
+        return Err(AreaError::NoLiteral);
+    }
+    if scene.omega0_is_omega(variant) && lits.len() == 2 {
+        if lits[0].inside != lits[1].inside {
+            return Ok(AreaEnclosure {
+                area: ZERO,
+                pieces: 0,
+                undecided_pieces: 0,
+                rounds: 0,
+                proved_empty: true,
+            });
+        }
+        lits.truncate(1);
+    }
+    let job = Job {
+        scene,
+        variant,
+        lits,
+        window: domain.theta_dot,
+    };
+    let b = domain.inner_box();
+    // Slivers between the true θ-ends and the double box, and the same for θ̇
+    // (the window ends themselves are exact enclosures, used directly).
+    let height = (domain.theta_dot[1] - domain.theta_dot[0]).convex_hull(ZERO);
+    let sliver = |x: Interval| (x.convex_hull(ZERO) * height).convex_hull(ZERO);
+    let slivers = sliver(pt(b[0][0]) - domain.theta[0]) + sliver(domain.theta[1] - pt(b[0][1]));
+
+    // Start from a uniform grid so the first round already runs in parallel.
+    let start = 64usize;
+    let grid: Vec<f64> = (0..=start)
+        .map(|i| {
+            if i == start {
+                b[0][1]
+            } else {
+                b[0][0] + (b[0][1] - b[0][0]) * (i as f64 / start as f64)
+            }
+        })
+        .collect();
+    let mut pieces: Vec<Piece> = grid
+        .windows(2)
+        .filter(|w| w[0] < w[1])
+        .collect::<Vec<_>>()
+        .par_iter()
+        .map(|w| job.piece(w[0], w[1]))
+        .collect();
+    let total = |ps: &[Piece]| ps.iter().fold(slivers, |a, p| a + p.integral);
+    let mut rounds = 0;
+    loop {
+        let area = total(&pieces);
+        let excess = area.wid() - 0.5 * opts.tol;
+        if area.wid() <= opts.tol || pieces.len() >= opts.max_pieces {
+            break;
+        }
+        // Split the widest pieces that together hold the excess width.
+        let mut order: Vec<usize> = (0..pieces.len())
+            .filter(|&i| {
+                let t = pieces[i].t;
+                let m = 0.5 * t[0] + 0.5 * t[1];
+                t[0] < m && m < t[1]
+            })
+            .collect();
+        if order.is_empty() {
+            break;
+        }
+        order.sort_by(|&i, &j| {
+            pieces[j]
+                .integral
+                .wid()
+                .total_cmp(&pieces[i].integral.wid())
+                .then(i.cmp(&j))
+        });
+        let (mut acc, mut chosen) = (0.0, Vec::new());
+        for i in order {
+            if acc >= excess || pieces.len() + chosen.len() >= opts.max_pieces {
+                break;
+            }
+            acc += pieces[i].integral.wid();
+            chosen.push(i);
+        }
+        if chosen.is_empty() {
+            break;
+        }
+        chosen.sort_unstable();
+        let children: Vec<[Piece; 2]> = chosen
+            .par_iter()
+            .map(|&i| {
+                let t = pieces[i].t;
+                let m = 0.5 * t[0] + 0.5 * t[1];
+                [job.piece(t[0], m), job.piece(m, t[1])]
+            })
+            .collect();
+        let mut next = Vec::with_capacity(pieces.len() + chosen.len());
+        let mut c = chosen.iter().zip(children).peekable();
+        for (i, p) in pieces.into_iter().enumerate() {
+            match c.peek() {
+                Some((&j, _)) if j == i => {
+                    let (_, kids) = c.next().expect("peeked");
+                    next.extend(kids);
+                }
+                _ => next.push(p),
+            }
+        }
+        pieces = next;
+        rounds += 1;
+    }
+    let area = total(&pieces);
+    Ok(AreaEnclosure {
+        area,
+        pieces: pieces.len(),
+        undecided_pieces: pieces.iter().filter(|p| !p.decided).count(),
+        rounds,
+        proved_empty: false,
+    })
+}
+
+/// The six regions and cells of [`crate::scene::REGION_NAMES`], as literals.
+pub const CELLS: [[Option<bool>; 2]; 6] = [
+    [Some(true), None],
+    [None, Some(true)],
+    [Some(true), Some(true)],
+    [Some(false), Some(false)],
+    [Some(false), Some(true)],
+    [Some(true), Some(false)],
+];

@@ -1,0 +1,144 @@
+//! The speed–accuracy chart of `detach methods`: undecided area against
+//! time, log–log, one panel per problem, one curve per method (and peer).
+
+use super::{draw_err, register_fonts, AtlasError};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+
+/// One curve: `(time in seconds, undecided area)` points, ordered by ε.
+#[derive(Clone, Debug)]
+pub struct Curve {
+    pub label: String,
+    /// Peers are drawn dashed, detach's methods solid.
+    pub peer: bool,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// One panel of the chart.
+#[derive(Clone, Debug)]
+pub struct Panel {
+    pub title: String,
+    pub curves: Vec<Curve>,
+}
+
+const PALETTE: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(23, 190, 207),
+];
+
+/// Draws the panels side by side into an SVG and a PNG of `size` pixels.
+pub fn draw_speed_accuracy(
+    panels: &[Panel],
+    title: &str,
+    size: (u32, u32),
+    svg: &Path,
+    png: &Path,
+) -> Result<(), AtlasError> {
+    register_fonts()?;
+    for p in [svg, png] {
+        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|source| AtlasError::Io {
+                path: dir.to_path_buf(),
+                source,
+            })?;
+        }
+    }
+    {
+        let root = SVGBackend::new(svg, size).into_drawing_area();
+        render(&root, panels, title)?;
+        root.present().map_err(draw_err)?;
+    }
+    let root = BitMapBackend::new(png, size).into_drawing_area();
+    render(&root, panels, title)?;
+    root.present().map_err(draw_err)
+}
+
+fn render<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    panels: &[Panel],
+    title: &str,
+) -> Result<(), AtlasError> {
+    root.fill(&WHITE).map_err(draw_err)?;
+    let root = root
+        .titled(title, ("sans-serif", 22).into_font())
+        .map_err(draw_err)?;
+    let n = panels.len().max(1);
+    let areas = root.split_evenly((1, n));
+    // One colour per label across panels.
+    let mut labels: Vec<&str> = Vec::new();
+    for c in panels.iter().flat_map(|p| &p.curves) {
+        if !labels.contains(&c.label.as_str()) {
+            labels.push(&c.label);
+        }
+    }
+    for (panel, area) in panels.iter().zip(&areas) {
+        let pts = panel.curves.iter().flat_map(|c| &c.points);
+        let ok = |&&(t, u): &&(f64, f64)| t > 0.0 && u > 0.0 && t.is_finite() && u.is_finite();
+        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for &(t, u) in pts.filter(ok) {
+            x0 = x0.min(t);
+            x1 = x1.max(t);
+            y0 = y0.min(u);
+            y1 = y1.max(u);
+        }
+        if x0 > x1 {
+            (x0, x1, y0, y1) = (1e-3, 1.0, 1e-3, 1.0);
+        }
+        let mut chart = ChartBuilder::on(area)
+            .caption(&panel.title, ("sans-serif", 18).into_font())
+            .margin(12)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
+            .build_cartesian_2d(
+                (x0 / 1.5..x1 * 1.5).log_scale(),
+                (y0 / 1.5..y1 * 1.5).log_scale(),
+            )
+            .map_err(draw_err)?;
+        chart
+            .configure_mesh()
+            .x_desc("wall time (s)")
+            .y_desc("undecided area (outer − inner)")
+            .x_label_formatter(&|v| format!("{v:.0e}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .label_style(("sans-serif", 13))
+            .draw()
+            .map_err(draw_err)?;
+        for c in &panel.curves {
+            let i = labels.iter().position(|l| *l == c.label).unwrap_or(0);
+            let color = PALETTE[i % PALETTE.len()];
+            let pts: Vec<(f64, f64)> = c.points.iter().filter(ok).copied().collect();
+            let style = color.stroke_width(2);
+            let series = if c.peer {
+                chart
+                    .draw_series(DashedLineSeries::new(pts.clone(), 8, 5, style))
+                    .map_err(draw_err)?
+            } else {
+                chart
+                    .draw_series(LineSeries::new(pts.clone(), style))
+                    .map_err(draw_err)?
+            };
+            series
+                .label(c.label.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+            chart
+                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                .map_err(draw_err)?;
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 13))
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(draw_err)?;
+    }
+    Ok(())
+}

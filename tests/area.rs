@@ -1,0 +1,157 @@
+//! Certified areas by quadrature (`detach::area`) against independent
+//! references, the paving's bounds, and the identities between cells.
+
+use detach::area::{cell_area, AreaError, AreaOptions, CELLS};
+use detach::pave::{pave_scene, standard_cells, PaveOptions};
+use detach::scene::{Scene, SceneId, Variant};
+use inari::Interval;
+
+/// `tests/data/area_reference.py` (mpmath 1.3.0, 30 digits, tanh-sinh between
+/// the breakpoints of the slice length), formulas written from the paper.
+const SMOOTH_OMEGA: f64 = 41.334_523_421_053_71;
+const VISCOUS_OMEGA: f64 = 101.430_743_457_751_43;
+const VISCOUS_OMEGA0: f64 = 100.075_398_243_812_93;
+const ICE_OMEGA0: f64 = 40.539_992_020_382_4;
+
+fn area(id: SceneId, v: Variant, cell: [Option<bool>; 2]) -> Interval {
+    let s = Scene::default_of(id);
+    cell_area(&s, v, &s.domain(), cell, AreaOptions::default())
+        .unwrap()
+        .area
+}
+
+/// The reference double and its neighbours: the true value lies within.
+fn contains(x: Interval, r: f64) -> bool {
+    x.inf() <= r * (1.0 + 2e-16) && r * (1.0 - 2e-16) <= x.sup()
+}
+
+#[test]
+fn references_are_enclosed_to_1e_9() {
+    let (t, n) = (Some(true), None);
+    for (id, v, cell, r) in [
+        (SceneId::SmoothDisc, Variant::Derived, [t, n], SMOOTH_OMEGA),
+        (SceneId::SmoothDisc, Variant::Printed, [t, n], SMOOTH_OMEGA),
+        (SceneId::IceDisc, Variant::Derived, [t, n], SMOOTH_OMEGA),
+        (
+            SceneId::ViscousDisc,
+            Variant::Derived,
+            [t, n],
+            VISCOUS_OMEGA,
+        ),
+        (
+            SceneId::ViscousDisc,
+            Variant::Derived,
+            [n, t],
+            VISCOUS_OMEGA0,
+        ),
+        (SceneId::IceDisc, Variant::Derived, [n, t], ICE_OMEGA0),
+    ] {
+        let a = area(id, v, cell);
+        assert!(contains(a, r), "{id} {v} {cell:?}: {a:?} misses {r}");
+        assert!(a.wid() <= 1e-9, "{id} {v} {cell:?}: width {}", a.wid());
+    }
+}
+
+#[test]
+fn every_cell_of_every_scene_to_1e_9_and_the_cells_add_up() {
+    for id in SceneId::ALL {
+        let s = Scene::default_of(id);
+        for v in [Variant::Derived, Variant::Printed] {
+            let a: Vec<Interval> = CELLS.iter().map(|c| area(id, v, *c)).collect();
+            for (c, x) in CELLS.iter().zip(&a) {
+                assert!(x.wid() <= 1e-9, "{id} {v} {c:?}: {x:?}");
+                assert!(x.inf() >= 0.0, "{id} {v} {c:?}: {x:?}");
+            }
+            // The four cells tile the domain; Ω and Ω₀ split into two cells each.
+            let whole = a[2] + a[3] + a[4] + a[5];
+            assert!(
+                !whole.intersection(s.domain().area()).is_empty(),
+                "{id} {v}"
+            );
+            assert!(!(a[2] + a[5]).intersection(a[0]).is_empty(), "{id} {v} Ω");
+            assert!(!(a[2] + a[4]).intersection(a[1]).is_empty(), "{id} {v} Ω₀");
+        }
+    }
+}
+
+#[test]
+fn quadrature_and_paving_bounds_intersect() {
+    for id in SceneId::ALL {
+        let s = Scene::default_of(id);
+        for v in [Variant::Derived, Variant::Printed] {
+            let opts = PaveOptions {
+                eps: 1.0 / 256.0,
+                max_boxes: 1_000_000,
+            };
+            let p = pave_scene(&s, v, opts, |_, _, _| {}).unwrap();
+            for (spec, c) in standard_cells().iter().zip(CELLS) {
+                let b = p.area_bounds(spec, s.domain().uncovered_area_sup());
+                let q = area(id, v, c);
+                assert!(
+                    b.inner_area <= q.sup() && q.inf() <= b.outer_area,
+                    "{id} {v} {c:?}: quadrature {q:?}, paving [{}, {}]",
+                    b.inner_area,
+                    b.outer_area
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn windows_and_parameters() {
+    // A window that cuts through the slice: the area scales with what is kept.
+    let s = Scene::default_of(SceneId::SmoothDisc);
+    let d = s
+        .domain()
+        .window(Some(["0.5", "2.5"]), Some(["-3", "4"]))
+        .unwrap();
+    let a = cell_area(&s, Variant::Derived, &d, CELLS[0], AreaOptions::default()).unwrap();
+    let all = cell_area(&s, Variant::Derived, &d, CELLS[3], AreaOptions::default()).unwrap();
+    assert!(a.area.wid() <= 1e-9 && all.area.wid() <= 1e-9);
+    assert!(!(a.area + all.area).intersection(d.area()).is_empty());
+    // b = 0: the centre of mass at the centre, Ω is the whole domain.
+    let (s0, _) = Scene::build(SceneId::ViscousDisc, &[("b".into(), "0".into())]).unwrap();
+    let w = cell_area(
+        &s0,
+        Variant::Derived,
+        &s0.domain(),
+        CELLS[0],
+        AreaOptions::default(),
+    )
+    .unwrap()
+    .area;
+    assert!(!w.intersection(s0.domain().area()).is_empty() && w.wid() <= 1e-9);
+}
+
+#[test]
+fn bad_options_are_errors() {
+    let s = Scene::default_of(SceneId::SmoothDisc);
+    let d = s.domain();
+    let bad = |tol: f64, max_pieces: usize| {
+        cell_area(
+            &s,
+            Variant::Derived,
+            &d,
+            CELLS[0],
+            AreaOptions { tol, max_pieces },
+        )
+    };
+    assert_eq!(bad(0.0, 10).unwrap_err(), AreaError::BadTol(0.0));
+    assert!(matches!(bad(f64::NAN, 10), Err(AreaError::BadTol(_))));
+    assert_eq!(bad(1e-3, 0).unwrap_err(), AreaError::BadBudget);
+    assert_eq!(
+        cell_area(
+            &s,
+            Variant::Derived,
+            &d,
+            [None, None],
+            AreaOptions::default()
+        )
+        .unwrap_err(),
+        AreaError::NoLiteral
+    );
+    // A small budget still gives a valid, wider enclosure.
+    let coarse = bad(1e-12, 70).unwrap();
+    assert!(contains(coarse.area, SMOOTH_OMEGA) && coarse.pieces <= 70);
+}
