@@ -369,6 +369,10 @@ fn print_table(r: &PaveReport) {
     }
 }
 
+/// Hard memory budget of one paving, in leaves (peak memory is about 230
+/// bytes per leaf).
+pub const MAX_LEAVES: usize = 20_000_000;
+
 fn options(flags: &PaveFlags, default_eps: f64) -> Result<PaveOptions, CliError> {
     let eps = flags.eps.unwrap_or(default_eps);
     if !(eps.is_finite() && eps > 0.0 && eps <= 1.0) {
@@ -378,6 +382,14 @@ fn options(flags: &PaveFlags, default_eps: f64) -> Result<PaveOptions, CliError>
     }
     if flags.max_boxes == 0 {
         return Err(CliError::usage("--max-boxes must be at least 1"));
+    }
+    if flags.max_boxes > MAX_LEAVES {
+        return Err(CliError::usage(format!(
+            "--max-boxes {} is over the memory budget of {MAX_LEAVES} leaves \
+             (about 230 bytes each while paving, so {} GB)",
+            flags.max_boxes,
+            MAX_LEAVES * 230 / 1_000_000_000
+        )));
     }
     Ok(PaveOptions {
         eps,
