@@ -259,7 +259,9 @@ fn undefined_warnings(paving: &Paving) -> (f64, Vec<String>) {
     let area = undefined.iter().fold(zero, |a, l| a + l.bx.area());
     let total = paving.root.area();
     let mut warnings = Vec::new();
-    if !undefined.is_empty() && 2.0 * area.inf() > total.sup() {
+    let all = !undefined.is_empty() && undefined.len() == paving.leaves.len();
+    // (areas of tiny windows may underflow: "all leaves" is counted, not summed)
+    if all || !undefined.is_empty() && 2.0 * area.inf() > total.sup() {
         let hull = |f: fn(&detach::pave::PhaseBox) -> [f64; 2]| {
             undefined
                 .iter()
@@ -269,7 +271,7 @@ fn undefined_warnings(paving: &Paving) -> (f64, Vec<String>) {
                 })
         };
         let (th, thd) = (hull(|b| b.theta), hull(|b| b.theta_dot));
-        let what = if undefined.len() == paving.leaves.len() {
+        let what = if all {
             "every leaf is undefined".to_string()
         } else {
             format!(
