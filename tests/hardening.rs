@@ -366,6 +366,11 @@ fn counts_and_numbers_are_read_as_written() {
         &["pave", "--scene", "smooth-disc", "--param", "A=1e400"],
         "too large",
     );
+    // a budget beyond the memory budget is refused before any work
+    assert_bad_input(
+        &["pave", "--scene", "smooth-disc", "--max-boxes", "1e12"],
+        "memory budget",
+    );
 }
 
 #[test]

@@ -263,7 +263,9 @@ fn undefined_warnings(paving: &Paving) -> (f64, Vec<String>) {
     let area = undefined.iter().fold(zero, |a, l| a + l.bx.area());
     let total = paving.root.area();
     let mut warnings = Vec::new();
-    if !undefined.is_empty() && 2.0 * area.inf() > total.sup() {
+    let all = !undefined.is_empty() && undefined.len() == paving.leaves.len();
+    // (areas of tiny windows may underflow: "all leaves" is counted, not summed)
+    if all || !undefined.is_empty() && 2.0 * area.inf() > total.sup() {
         let hull = |f: fn(&detach::pave::PhaseBox) -> [f64; 2]| {
             undefined
                 .iter()
@@ -273,7 +275,7 @@ fn undefined_warnings(paving: &Paving) -> (f64, Vec<String>) {
                 })
         };
         let (th, thd) = (hull(|b| b.theta), hull(|b| b.theta_dot));
-        let what = if undefined.len() == paving.leaves.len() {
+        let what = if all {
             "every leaf is undefined".to_string()
         } else {
             format!(
@@ -373,6 +375,10 @@ fn print_table(r: &PaveReport) {
     }
 }
 
+/// Hard memory budget of one paving, in leaves (peak memory is about 230
+/// bytes per leaf).
+pub const MAX_LEAVES: usize = 20_000_000;
+
 fn options(flags: &PaveFlags, default_eps: f64) -> Result<PaveOptions, CliError> {
     let eps = flags.eps.unwrap_or(default_eps);
     if !(eps.is_finite() && eps > 0.0 && eps <= 1.0) {
@@ -382,6 +388,14 @@ fn options(flags: &PaveFlags, default_eps: f64) -> Result<PaveOptions, CliError>
     }
     if flags.max_boxes == 0 {
         return Err(CliError::usage("--max-boxes must be at least 1"));
+    }
+    if flags.max_boxes > MAX_LEAVES {
+        return Err(CliError::usage(format!(
+            "--max-boxes {} is over the memory budget of {MAX_LEAVES} leaves \
+             (about 230 bytes each while paving, so {} GB)",
+            flags.max_boxes,
+            MAX_LEAVES * 230 / 1_000_000_000
+        )));
     }
     Ok(PaveOptions {
         eps,
