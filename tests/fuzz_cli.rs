@@ -437,7 +437,12 @@ fn non_finite_number(stdout: &str) -> Option<String> {
     None
 }
 
+/// `cases`, or `DETACH_FUZZ_CASES` when set.
 fn fuzz(cases: u32) -> u32 {
+    let cases = std::env::var("DETACH_FUZZ_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(cases);
     let dir = std::env::temp_dir().join(format!("detach-fuzz-{}", std::process::id()));
     let mut runner = TestRunner::new(Config {
         cases,
@@ -445,9 +450,16 @@ fn fuzz(cases: u32) -> u32 {
         ..Config::default()
     });
     let ran = std::sync::atomic::AtomicU32::new(0);
+    let failed = std::sync::atomic::AtomicBool::new(false);
     let result = runner.run(&command_line(), |args| {
         ran.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        check(&args, &dir).map_err(TestCaseError::fail)
+        check(&args, &dir).map_err(|e| {
+            // the first failure at once: shrinking can take a while
+            if !failed.swap(true, std::sync::atomic::Ordering::Relaxed) {
+                eprintln!("fuzz_cli: first failure (shrinking follows): {e}");
+            }
+            TestCaseError::fail(e)
+        })
     });
     std::fs::remove_dir_all(&dir).ok();
     if let Err(e) = result {
