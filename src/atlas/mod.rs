@@ -10,11 +10,17 @@
 //! Both files have the same content; the SVG merges equal pixels into
 //! rectangles, so its size depends on the picture, not on the leaf count.
 
+mod canvas;
 mod portrait;
 mod raster;
+mod ticks;
 
+pub use canvas::{
+    layout, native, parse_size, plain, text_width, Figure, FigureError, Formats, MAX_SIDE,
+};
 pub use portrait::{level_lines, phase_portrait, trajectories, Polyline};
 pub use raster::{merge_rects, rasterize, Class, PixelRect, Raster};
+pub use ticks::{nice_ticks, tick_label};
 
 use crate::pave::Paving;
 use crate::scene::{Scene, Variant};
@@ -63,6 +69,8 @@ pub enum AtlasError {
         path: PathBuf,
         source: std::io::Error,
     },
+    #[error("picture size {0}×{1} is too large (at most {MAX_SIDE} pixels a side)")]
+    TooLarge(u32, u32),
     #[error("drawing failed: {0}")]
     Draw(String),
     #[error("the embedded font could not be registered")]
@@ -135,11 +143,25 @@ pub fn draw_atlas(
     svg_path: &Path,
     png_path: &Path,
 ) -> Result<(), AtlasError> {
+    draw_atlas_files(paving, info, style, Some(svg_path), Some(png_path))
+}
+
+/// [`draw_atlas`] writing only the files given.
+pub fn draw_atlas_files(
+    paving: &Paving,
+    info: &PictureInfo,
+    style: &AtlasStyle,
+    svg_path: Option<&Path>,
+    png_path: Option<&Path>,
+) -> Result<(), AtlasError> {
     if style.width < MIN_WIDTH || style.height < MIN_HEIGHT {
         return Err(AtlasError::TooSmall(style.width, style.height));
     }
+    if style.width > MAX_SIDE || style.height > MAX_SIDE {
+        return Err(AtlasError::TooLarge(style.width, style.height));
+    }
     register_fonts()?;
-    for p in [svg_path, png_path] {
+    for p in [svg_path, png_path].into_iter().flatten() {
         if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).map_err(|source| AtlasError::Io {
                 path: dir.to_path_buf(),
@@ -149,13 +171,13 @@ pub fn draw_atlas(
     }
     let prep = prepare(paving, info, style);
     let size = (style.width, style.height);
-    {
-        let root = SVGBackend::new(svg_path, size).into_drawing_area();
+    if let Some(p) = svg_path {
+        let root = Figure::svg(p, size).into_drawing_area();
         render(&root, paving, &prep)?;
         root.present().map_err(draw_err)?;
     }
-    {
-        let root = BitMapBackend::new(png_path, size).into_drawing_area();
+    if let Some(p) = png_path {
+        let root = Figure::png(p, size).into_drawing_area();
         render(&root, paving, &prep)?;
         root.present().map_err(draw_err)?;
     }
@@ -205,7 +227,7 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
     let params: Vec<String> = info
         .params
         .iter()
-        .map(|(n, v)| format!("{n}={v}"))
+        .map(|(n, v)| format!("{} = {v}", param_markup(n)))
         .collect();
     let title = format!(
         "{} ({})   {}",
@@ -227,6 +249,36 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         title,
         subtitle,
         incomplete: !(info.complete && paving.complete),
+    }
+}
+
+/// A parameter's name as typeset markup (`p_phi` → p with subscript φ).
+pub fn param_markup(name: &str) -> String {
+    let greek = |s: &str| -> String {
+        match s {
+            "mu" => "μ".into(),
+            "phi" => "φ".into(),
+            "psi" => "ψ".into(),
+            "alpha" => "α".into(),
+            "kappa" => "κ".into(),
+            "theta" => "θ".into(),
+            other => other.into(),
+        }
+    };
+    match name.split_once('_') {
+        Some((base, sub)) => format!("{}_{{{}}}", greek(base), greek(sub)),
+        None => {
+            // `c0` → c with subscript 0.
+            let digits = name.trim_start_matches(|c: char| !c.is_ascii_digit());
+            if !digits.is_empty()
+                && digits.len() < name.len()
+                && digits.chars().all(|c| c.is_ascii_digit())
+            {
+                format!("{}_{{{digits}}}", greek(&name[..name.len() - digits.len()]))
+            } else {
+                greek(name)
+            }
+        }
     }
 }
 
@@ -274,19 +326,17 @@ const INK: RGBColor = RGBColor(0x22, 0x22, 0x22);
 const LINE: RGBColor = RGBColor(0x10, 0x10, 0x30);
 const WARN: RGBColor = RGBColor(0xB0, 0x20, 0x20);
 
-fn render<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    paving: &Paving,
-    prep: &Prepared,
-) -> Result<(), AtlasError> {
+type Area<'a> = DrawingArea<Figure<'a>, Shift>;
+
+fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasError> {
     let (width, height) = root.dim_in_pixel();
     root.fill(&WHITE).map_err(draw_err)?;
 
     // Title and subtitle.
-    let title_font = ("sans-serif", 21).into_font().style(FontStyle::Bold);
+    let title_font = ("sans-serif", 22).into_font().style(FontStyle::Bold);
     root.draw_text(&prep.title, &title_font.color(&INK), (16, 10))
         .map_err(draw_err)?;
-    let sub_font = ("sans-serif", 15).into_font();
+    let sub_font = ("sans-serif", 16).into_font();
     root.draw_text(&prep.subtitle, &sub_font.color(&INK), (16, 38))
         .map_err(draw_err)?;
 
@@ -337,32 +387,19 @@ fn render<DB: DrawingBackend>(
             .map_err(draw_err)?;
     }
 
-    // Axes.
-    let label_font = ("sans-serif", 15).into_font();
-    let num_fmt = |v: &f64| {
-        let s = format!("{v:.2}");
-        let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
-        if s == "-0" {
-            "0".into()
-        } else {
-            s.replace('-', "−")
-        }
-    };
+    // Axes: θ̇ ticks by plotters, θ ticks at multiples of π/4 by hand.
+    let label_font = ("sans-serif", 16).into_font();
     chart
         .configure_mesh()
         .disable_mesh()
-        .x_desc("θ")
-        .y_desc("dθ/dt")
-        .axis_desc_style(("sans-serif", 18))
         .label_style(label_font.color(&INK))
         .x_labels(0)
-        .y_label_formatter(&num_fmt)
+        .y_label_formatter(&|v| tick_text(*v))
         .y_labels(11)
         .axis_style(INK)
         .draw()
         .map_err(draw_err)?;
     let (pw, ph) = plot.dim_in_pixel();
-    // θ ticks at multiples of π/4, drawn by hand below the plot area.
     let below = chart_area
         .clone()
         .shrink((Y_LABELS_W, MARGIN_TOP + ph), (pw, X_LABELS_H));
@@ -379,6 +416,17 @@ fn render<DB: DrawingBackend>(
             .draw_text(&pi_label(t), &tick_font, (x, 8))
             .map_err(draw_err)?;
     }
+    // Axis names, upright: θ below, θ̇ (θ with a dot) left of the plot.
+    let desc = ("sans-serif", 20)
+        .into_font()
+        .color(&INK)
+        .pos(Pos::new(HPos::Center, VPos::Center));
+    below
+        .draw_text("θ", &desc, (pw as i32 / 2, 34))
+        .map_err(draw_err)?;
+    let left = chart_area.clone().shrink((0, MARGIN_TOP), (Y_LABELS_W, ph));
+    left.draw_text(THETA_DOT, &desc, (12, ph as i32 / 2))
+        .map_err(draw_err)?;
     plot.draw(&Rectangle::new(
         [(0, 0), (pw as i32 - 1, ph as i32 - 1)],
         INK.stroke_width(1),
@@ -393,55 +441,36 @@ fn render<DB: DrawingBackend>(
     Ok(())
 }
 
-/// Draws the symbol of a class at `pos` (top left), complements with an
-/// overbar drawn as a line (combining marks do not render reliably in PNG
-/// text). Returns the x coordinate where the symbol ends.
-fn draw_symbol<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    class: Class,
-    pos: (i32, i32),
-    font: &FontDesc,
-) -> Result<i32, AtlasError> {
-    let (not_omega, not_omega0) = match class {
-        Class::Persists => (false, false),
-        Class::Released => (true, true),
-        Class::NonUniqueness => (true, false),
-        Class::NonExistence => (false, true),
-        Class::Undecided | Class::Undefined => {
-            area.draw_text(class.symbol(), &font.color(&INK), pos)
-                .map_err(draw_err)?;
-            let (w, _) = area
-                .estimate_text_size(class.symbol(), &font.color(&INK))
-                .map_err(draw_err)?;
-            return Ok(pos.0 + w as i32);
-        }
-    };
-    let mut x = pos.0;
-    for (token, bar) in [("Ω", not_omega), (" ∩ ", false), ("Ω₀", not_omega0)] {
-        area.draw_text(token, &font.color(&INK), (x, pos.1))
-            .map_err(draw_err)?;
-        let (w, _) = area
-            .estimate_text_size(token, &font.color(&INK))
-            .map_err(draw_err)?;
-        if bar {
-            area.draw(&PathElement::new(
-                vec![(x + 1, pos.1 - 4), (x + w as i32 - 1, pos.1 - 4)],
-                INK.stroke_width(1),
-            ))
-            .map_err(draw_err)?;
-        }
-        x += w as i32;
+/// θ̇ as θ followed by a combining dot above (placed by the text layout).
+pub const THETA_DOT: &str = "θ\u{307}";
+
+/// A tick label: at most 3 significant digits, a true minus sign.
+fn tick_text(v: f64) -> String {
+    let s = format!("{v:.2}");
+    let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.replace('-', "−")
     }
-    Ok(x)
 }
 
-fn draw_legend<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    prep: &Prepared,
-) -> Result<(), AtlasError> {
-    let head = ("sans-serif", 16).into_font().style(FontStyle::Bold);
-    let name = ("sans-serif", 15).into_font().style(FontStyle::Bold);
-    let body = ("sans-serif", 13).into_font();
+/// The symbol of a class as markup: complements carry a combining overbar.
+fn symbol_markup(class: Class) -> &'static str {
+    match class {
+        Class::Persists => "Ω ∩ Ω_{0}",
+        Class::Released => "Ω\u{304} ∩ Ω\u{304}_{0}",
+        Class::NonUniqueness => "Ω\u{304} ∩ Ω_{0}",
+        Class::NonExistence => "Ω ∩ Ω\u{304}_{0}",
+        Class::Undecided => "undecided",
+        Class::Undefined => "undefined",
+    }
+}
+
+fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), AtlasError> {
+    let head = ("sans-serif", 17).into_font().style(FontStyle::Bold);
+    let name = ("sans-serif", 17).into_font();
+    let body = ("sans-serif", 14).into_font();
     let (x0, sw, sh) = (12, 34, 24);
     let mut y = MARGIN_TOP as i32 + 2;
     area.draw_text("Certified cells", &head.color(&INK), (x0, y))
@@ -466,8 +495,9 @@ fn draw_legend<DB: DrawingBackend>(
         .map_err(draw_err)?;
         let tx = x0 + sw + 10;
         let share = format!("{:.1} % of box", 100.0 * prep.shares[i]);
-        let end = draw_symbol(area, class, (tx, y - 2), &name)?;
-        area.draw_text(&share, &body.color(&INK), (end.max(tx + 70) + 12, y))
+        area.draw_text(symbol_markup(class), &name.color(&INK), (tx, y - 3))
+            .map_err(draw_err)?;
+        area.draw_text(&share, &body.color(&INK), (tx + 110, y))
             .map_err(draw_err)?;
         area.draw_text(class.meaning(), &body.color(&INK), (tx, y + 15))
             .map_err(draw_err)?;
@@ -481,7 +511,7 @@ fn draw_legend<DB: DrawingBackend>(
     ))
     .map_err(draw_err)?;
     let tx = x0 + sw + 10;
-    area.draw_text("phase portrait", &name.color(&INK), (tx, y - 2))
+    area.draw_text("phase portrait", &name.color(&INK), (tx, y - 3))
         .map_err(draw_err)?;
     area.draw_text("f64, not certified", &body.color(&INK), (tx, y + 15))
         .map_err(draw_err)?;
@@ -498,7 +528,7 @@ fn draw_legend<DB: DrawingBackend>(
     }
     if prep.incomplete {
         y += 10;
-        let warn = ("sans-serif", 14).into_font().style(FontStyle::Bold);
+        let warn = ("sans-serif", 15).into_font().style(FontStyle::Bold);
         for n in [
             "INCOMPLETE: box budget reached,",
             "refinement stopped early",
