@@ -1,7 +1,8 @@
 //! Phase portraits in plain `f64` (for drawing only, not certified).
 //!
 //! Scenes with a conserved energy get level lines of it (marching squares);
-//! the others get trajectories of θ̈ integrated by RK4.
+//! the others get trajectories of θ̈ integrated by Dormand–Prince 5(4) with
+//! error control.
 
 use crate::pave::PhaseBox;
 use crate::scene::{Angle, Scene, Variant};
@@ -163,28 +164,128 @@ fn chain(segs: &[(Edge, Edge)]) -> Vec<Vec<Edge>> {
 
 /// Trajectories of `θ̈ = acc(θ, θ̇)` through a grid of seeds, forwards and
 /// backwards in time, each way for at most a fixed arc length (measured in
-/// units of the box), stopped when leaving `root` or on non-finite values.
-/// Each trajectory is followed by a small arrowhead at its seed, pointing
-/// forwards in time.
+/// units of the box), clipped where they leave `root` (the last point is on
+/// its edge) or stopped on non-finite values or at rest. Each trajectory is
+/// followed by a small arrowhead at its seed, pointing forwards in time.
 pub fn trajectories(acc: impl Fn(f64, f64) -> f64, root: &PhaseBox) -> Vec<Polyline> {
+    trajectories_with_heads(acc, root)
+        .into_iter()
+        .flat_map(|(line, head)| std::iter::once(line).chain(head))
+        .collect()
+}
+
+/// Dormand–Prince 5(4) coefficients (the field is autonomous: no nodes).
+const DP_A: [[f64; 6]; 7] = [
+    [0.0; 6],
+    [0.2, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+    [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+        0.0,
+        0.0,
+    ],
+    [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+        0.0,
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+];
+/// Fifth-order weights minus the embedded fourth-order ones.
+const DP_E: [f64; 7] = [
+    35.0 / 384.0 - 5179.0 / 57600.0,
+    0.0,
+    500.0 / 1113.0 - 7571.0 / 16695.0,
+    125.0 / 192.0 - 393.0 / 640.0,
+    -2187.0 / 6784.0 + 92097.0 / 339200.0,
+    11.0 / 84.0 - 187.0 / 2100.0,
+    -1.0 / 40.0,
+];
+
+/// One Dormand–Prince step of size `dt` from `s`: the fifth-order result and
+/// the error estimate (both as phase-plane vectors).
+fn dp_step(
+    f: &impl Fn((f64, f64)) -> (f64, f64),
+    s: (f64, f64),
+    dt: f64,
+) -> ((f64, f64), (f64, f64)) {
+    let mut k = [(0.0, 0.0); 7];
+    for i in 0..7 {
+        let (mut x, mut y) = s;
+        for (j, kj) in k.iter().enumerate().take(i) {
+            x += dt * DP_A[i][j] * kj.0;
+            y += dt * DP_A[i][j] * kj.1;
+        }
+        k[i] = f((x, y));
+    }
+    // The seventh stage is evaluated at the fifth-order result (FSAL).
+    let mut n = s;
+    let mut e = (0.0, 0.0);
+    for i in 0..7 {
+        if i < 6 {
+            n.0 += dt * DP_A[6][i] * k[i].0;
+            n.1 += dt * DP_A[6][i] * k[i].1;
+        }
+        e.0 += dt * DP_E[i] * k[i].0;
+        e.1 += dt * DP_E[i] * k[i].1;
+    }
+    (n, e)
+}
+
+/// Where the segment from `a` (inside) to `b` (outside) crosses the edge of
+/// `root`.
+fn exit_point(root: &PhaseBox, a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    let mut t: f64 = 1.0;
+    let mut cut = |lo: f64, hi: f64, p: f64, q: f64| {
+        if q > hi && q != p {
+            t = t.min((hi - p) / (q - p));
+        }
+        if q < lo && q != p {
+            t = t.min((lo - p) / (q - p));
+        }
+    };
+    cut(root.theta[0], root.theta[1], a.0, b.0);
+    cut(root.theta_dot[0], root.theta_dot[1], a.1, b.1);
+    let t = t.clamp(0.0, 1.0);
+    (
+        (a.0 + t * (b.0 - a.0)).clamp(root.theta[0], root.theta[1]),
+        (a.1 + t * (b.1 - a.1)).clamp(root.theta_dot[0], root.theta_dot[1]),
+    )
+}
+
+/// [`trajectories`], each curve with its arrowhead (if the field is nonzero
+/// at the seed).
+pub fn trajectories_with_heads(
+    acc: impl Fn(f64, f64) -> f64,
+    root: &PhaseBox,
+) -> Vec<(Polyline, Option<Polyline>)> {
     let (w, h) = (
         root.theta[1] - root.theta[0],
         root.theta_dot[1] - root.theta_dot[0],
     );
     let (seeds_x, seeds_y) = (8usize, 6usize);
     let max_arc = 0.9;
+    // Local error per step, relative to the box; steps also move at most
+    // 1/600 of the box, so the polyline is smooth at pixel scale.
+    let tol = 1e-7;
+    let max_move = 1.0 / 600.0;
     let f = |s: (f64, f64)| (s.1, acc(s.0, s.1));
-    let inside = |s: (f64, f64)| s.0.is_finite() && s.1.is_finite() && root.contains(s.0, s.1);
-    // Step so that one step moves about 1/500 of the box.
-    let step = |s: (f64, f64)| {
-        let (a, b) = f(s);
-        let speed = (a / w).hypot(b / h);
-        if speed > 0.0 {
-            (1.0 / (500.0 * speed)).min(0.05)
-        } else {
-            0.05
-        }
-    };
+    let norm = |v: (f64, f64)| (v.0 / w).hypot(v.1 / h);
+    let finite = |s: (f64, f64)| s.0.is_finite() && s.1.is_finite();
     let mut out = Vec::new();
     for i in 0..seeds_x {
         for j in 0..seeds_y {
@@ -199,26 +300,51 @@ pub fn trajectories(acc: impl Fn(f64, f64) -> f64, root: &PhaseBox) -> Vec<Polyl
                 let mut s = seed;
                 let mut line = vec![s];
                 let mut arc = 0.0;
-                while arc < max_arc && line.len() < 20_000 {
-                    let dt = dir * step(s);
-                    let k1 = f(s);
-                    let k2 = f((s.0 + 0.5 * dt * k1.0, s.1 + 0.5 * dt * k1.1));
-                    let k3 = f((s.0 + 0.5 * dt * k2.0, s.1 + 0.5 * dt * k2.1));
-                    let k4 = f((s.0 + dt * k3.0, s.1 + dt * k3.1));
-                    let n = (
-                        s.0 + dt / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0),
-                        s.1 + dt / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1),
-                    );
-                    if !inside(n) {
+                let mut dt = {
+                    let v = norm(f(s));
+                    if v > 0.0 && v.is_finite() {
+                        max_move / v
+                    } else {
+                        0.0
+                    }
+                };
+                let mut steps = 0;
+                while dt > 0.0 && arc < max_arc && steps < 200_000 {
+                    steps += 1;
+                    let speed = norm(f(s));
+                    if !(speed.is_finite() && speed > 1e-12) {
+                        break; // at rest (an equilibrium) or singular
+                    }
+                    dt = dt.min(max_move / speed);
+                    let (n, e) = dp_step(&f, s, dir * dt);
+                    let err = norm(e);
+                    if !(finite(n) && err.is_finite()) {
+                        dt *= 0.25;
+                        if dt * speed < 1e-12 {
+                            break;
+                        }
+                        continue;
+                    }
+                    if err > tol {
+                        dt *= (0.9 * (tol / err).powf(0.2)).clamp(0.1, 0.9);
+                        if dt * speed < 1e-12 {
+                            break;
+                        }
+                        continue;
+                    }
+                    if !root.contains(n.0, n.1) {
+                        line.push(exit_point(root, s, n));
                         break;
                     }
-                    let moved = ((n.0 - s.0) / w).hypot((n.1 - s.1) / h);
-                    arc += moved;
+                    arc += norm((n.0 - s.0, n.1 - s.1));
                     s = n;
                     line.push(s);
-                    if moved < 1e-9 {
-                        break; // at rest (an equilibrium)
-                    }
+                    let grow = if err > 0.0 {
+                        (0.9 * (tol / err).powf(0.2)).clamp(1.0, 5.0)
+                    } else {
+                        5.0
+                    };
+                    dt *= grow;
                 }
                 both.push(line);
             }
@@ -227,10 +353,7 @@ pub fn trajectories(acc: impl Fn(f64, f64) -> f64, root: &PhaseBox) -> Vec<Polyl
             bwd.reverse();
             bwd.extend(fwd.iter().skip(1));
             if bwd.len() > 1 {
-                out.push(bwd);
-            }
-            if let Some(head) = arrowhead(seed, f(seed), w, h) {
-                out.push(head);
+                out.push((bwd, arrowhead(seed, f(seed), w, h)));
             }
         }
     }
