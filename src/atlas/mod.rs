@@ -18,7 +18,7 @@ mod ticks;
 pub use canvas::{
     layout, native, parse_size, plain, text_width, Figure, FigureError, Formats, MAX_SIDE,
 };
-pub use portrait::{level_lines, phase_portrait, trajectories, Polyline};
+pub use portrait::{level_lines, phase_portrait, phase_portrait_px, thin, trajectories, Polyline};
 pub use raster::{merge_rects, rasterize, Class, PixelRect, Raster};
 pub use ticks::{nice_ticks, tick_label};
 
@@ -81,6 +81,9 @@ pub enum AtlasError {
 pub const MIN_WIDTH: u32 = 640;
 pub const MIN_HEIGHT: u32 = 400;
 
+/// Least distance in pixels between two drawn phase curves.
+const LINE_SPACING: f64 = 6.0;
+
 // Layout in pixels, independent of the picture size.
 const TITLE_H: u32 = 62;
 const LEGEND_W: u32 = 300;
@@ -126,7 +129,7 @@ struct Prepared {
     raster: Raster,
     rects: Vec<PixelRect>,
     /// Phase curves in plot-area pixel coordinates.
-    lines: Vec<Vec<(i32, i32)>>,
+    lines: Vec<Vec<(f64, f64)>>,
     /// Share of the root box's area in each class, in [`Class::ALL`] order.
     shares: [f64; 6],
     title: String,
@@ -197,21 +200,7 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         root.theta[1] - root.theta[0],
         root.theta_dot[1] - root.theta_dot[0],
     );
-    let to_px = |(t, v): (f64, f64)| {
-        (
-            ((t - root.theta[0]) / w * f64::from(pw)).round() as i32,
-            ((root.theta_dot[1] - v) / h * f64::from(ph)).round() as i32,
-        )
-    };
-    let lines = phase_portrait(info.scene, info.variant, &root)
-        .into_iter()
-        .map(|l| {
-            let mut px: Vec<(i32, i32)> = l.into_iter().map(to_px).collect();
-            px.dedup();
-            px
-        })
-        .filter(|l| l.len() > 1)
-        .collect();
+    let lines = phase_portrait_px(info.scene, info.variant, &root, (pw, ph), LINE_SPACING);
     let mut shares = [0.0; 6];
     for leaf in &paving.leaves {
         let i = Class::ALL
@@ -382,10 +371,14 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
     }
 
     // Phase portrait.
-    for l in &prep.lines {
-        plot.draw(&PathElement::new(l.clone(), LINE.mix(0.75).stroke_width(1)))
-            .map_err(draw_err)?;
-    }
+    native(&plot, |fig, o| {
+        for l in &prep.lines {
+            let pts: Vec<(f64, f64)> = l.iter().map(|p| (o.0 + p.0, o.1 + p.1)).collect();
+            fig.stroke(&pts, LINE.mix(0.8).to_backend_color(), 1.1)?;
+        }
+        Ok(())
+    })
+    .map_err(AtlasError::Draw)?;
 
     // Axes: θ̇ ticks by plotters, θ ticks at multiples of π/4 by hand.
     let label_font = ("sans-serif", 16).into_font();

@@ -31,6 +31,20 @@ pub fn level_lines(
     ny: usize,
     levels: usize,
 ) -> Vec<Polyline> {
+    level_lines_by_level(f, root, nx, ny, levels)
+        .into_iter()
+        .flatten()
+        .collect()
+}
+
+/// [`level_lines`] grouped by level, in increasing order of level.
+pub fn level_lines_by_level(
+    f: impl Fn(f64, f64) -> Option<f64>,
+    root: &PhaseBox,
+    nx: usize,
+    ny: usize,
+    levels: usize,
+) -> Vec<Vec<Polyline>> {
     let xs: Vec<f64> = (0..nx)
         .map(|i| root.theta[0] + (root.theta[1] - root.theta[0]) * (i as f64 + 0.5) / nx as f64)
         .collect();
@@ -59,7 +73,7 @@ pub fn level_lines(
             continue;
         }
         last = level;
-        out.extend(contour(&z, &xs, &ys, level));
+        out.push(contour(&z, &xs, &ys, level));
     }
     out
 }
@@ -375,4 +389,292 @@ fn arrowhead(at: (f64, f64), dir: (f64, f64), w: f64, h: f64) -> Option<Polyline
         (at.0 + len * bu * w, at.1 + len * bv * h)
     };
     Some(vec![wing(1.0), at, wing(-1.0)])
+}
+
+/// Phase curves in picture pixels (`(0, 0)` the top left of the plot area,
+/// `px` its size), thinned where they crowd: no two drawn curves come closer
+/// than about `spacing` pixels (marching squares levels near a singularity,
+/// spirals, trajectories merging onto one separatrix). Energy levels are
+/// considered coarse-to-fine, so the kept ones stay roughly evenly spaced.
+pub fn phase_portrait_px(
+    scene: &Scene,
+    variant: Variant,
+    root: &PhaseBox,
+    px: (u32, u32),
+    spacing: f64,
+) -> Vec<Vec<(f64, f64)>> {
+    let (w, h) = (
+        root.theta[1] - root.theta[0],
+        root.theta_dot[1] - root.theta_dot[0],
+    );
+    let (pw, ph) = (f64::from(px.0), f64::from(px.1));
+    let to_px = |(t, v): (f64, f64)| {
+        (
+            (t - root.theta[0]) / w * pw,
+            (root.theta_dot[1] - v) / h * ph,
+        )
+    };
+    let map = |l: &Polyline| -> Vec<(f64, f64)> { l.iter().copied().map(to_px).collect() };
+    let probe = Angle::new(0.5 * (root.theta[0] + root.theta[1]));
+    let min_len = 3.0 * spacing;
+    if scene.energy(&probe, 0.0_f64).is_some() {
+        let levels = level_lines_by_level(
+            |t, v| scene.energy(&Angle::new(t), v),
+            root,
+            (px.0 as usize / 2).clamp(64, 640),
+            (px.1 as usize / 2).clamp(48, 480),
+            25,
+        );
+        let curves: Vec<Vec<(f64, f64)>> = coarse_to_fine(levels.len())
+            .into_iter()
+            .flat_map(|k| levels[k].iter().map(map).collect::<Vec<_>>())
+            .collect();
+        thin(&curves, spacing, min_len)
+            .into_iter()
+            .map(|(_, piece)| simplify(&piece, 0.1))
+            .collect()
+    } else {
+        let traj =
+            trajectories_with_heads(|t, v| scene.acceleration(variant, &Angle::new(t), v), root);
+        let curves: Vec<Vec<(f64, f64)>> = traj.iter().map(|(l, _)| map(l)).collect();
+        let pieces = thin(&curves, spacing, min_len);
+        let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
+        for (k, (_, head)) in traj.iter().enumerate() {
+            // An arrowhead only where its curve is still drawn at the seed.
+            if let Some(head) = head {
+                let tip = to_px(head[1]);
+                let kept = pieces
+                    .iter()
+                    .filter(|(c, _)| *c == k)
+                    .any(|(_, p)| p.iter().any(|q| (q.0 - tip.0).hypot(q.1 - tip.1) <= 1.5));
+                if kept {
+                    out.push(map(head));
+                }
+            }
+        }
+        out.extend(pieces.into_iter().map(|(_, p)| simplify(&p, 0.1)));
+        out
+    }
+}
+
+/// `0..n` with the middle first, then quarters, … (bit-reversal-like), so a
+/// prefix is spread over the whole range.
+fn coarse_to_fine(n: usize) -> Vec<usize> {
+    let mut order = Vec::with_capacity(n);
+    let mut seen = vec![false; n];
+    let mut step = n.next_power_of_two();
+    while step >= 1 {
+        let mut k = step / 2;
+        while k < n {
+            if !seen[k] {
+                seen[k] = true;
+                order.push(k);
+            }
+            k += step.max(1);
+        }
+        if step == 1 {
+            break;
+        }
+        step /= 2;
+    }
+    for (k, s) in seen.iter().enumerate() {
+        if !s {
+            order.push(k);
+        }
+    }
+    order
+}
+
+/// Splits each curve (in order of priority) into the pieces that stay at
+/// least `spacing` pixels from every piece kept before, and from its own
+/// points more than `4 × spacing` back along it (a tight spiral). Pieces
+/// shorter than `min_len` are dropped. Returns `(curve index, piece)`.
+pub fn thin(
+    curves: &[Vec<(f64, f64)>],
+    spacing: f64,
+    min_len: f64,
+) -> Vec<(usize, Vec<(f64, f64)>)> {
+    type Grid = HashMap<(i64, i64), Vec<(usize, f64, (f64, f64))>>;
+    let cell = |p: (f64, f64)| {
+        (
+            (p.0 / spacing).floor() as i64,
+            (p.1 / spacing).floor() as i64,
+        )
+    };
+    let near = |grid: &Grid, id: usize, arc: f64, p: (f64, f64)| {
+        let (cx, cy) = cell(p);
+        (cx - 1..=cx + 1).any(|x| {
+            (cy - 1..=cy + 1).any(|y| {
+                grid.get(&(x, y)).is_some_and(|v| {
+                    v.iter().any(|&(o, a, q)| {
+                        (o != id || (arc - a).abs() > 4.0 * spacing)
+                            && (p.0 - q.0).hypot(p.1 - q.1) < spacing
+                    })
+                })
+            })
+        })
+    };
+    let mut grid: Grid = HashMap::new();
+    let mut out = Vec::new();
+    for (id, curve) in curves.iter().enumerate() {
+        // Resampled at most one pixel apart, with arc length.
+        let mut pts: Vec<((f64, f64), f64)> = Vec::new();
+        let mut arc = 0.0;
+        for (k, &p) in curve.iter().enumerate() {
+            if !(p.0.is_finite() && p.1.is_finite()) {
+                continue;
+            }
+            if k > 0 {
+                let q = curve[k - 1];
+                let d = (p.0 - q.0).hypot(p.1 - q.1);
+                let n = d.ceil().max(1.0) as usize;
+                for i in 1..n {
+                    let t = i as f64 / n as f64;
+                    pts.push(((q.0 + t * (p.0 - q.0), q.1 + t * (p.1 - q.1)), arc + t * d));
+                }
+                arc += d;
+            }
+            pts.push((p, arc));
+        }
+        let mut piece: Vec<((f64, f64), f64)> = Vec::new();
+        let mut pending: Grid = HashMap::new();
+        let mut flush =
+            |piece: &mut Vec<((f64, f64), f64)>, pending: &mut Grid, grid: &mut Grid| {
+                let len = match (piece.first(), piece.last()) {
+                    (Some(a), Some(b)) => b.1 - a.1,
+                    _ => 0.0,
+                };
+                if len >= min_len {
+                    for (k, v) in pending.drain() {
+                        grid.entry(k).or_default().extend(v);
+                    }
+                    out.push((id, piece.iter().map(|(p, _)| *p).collect()));
+                }
+                pending.clear();
+                piece.clear();
+            };
+        for &(p, a) in &pts {
+            if near(&grid, id, a, p) || near(&pending, id, a, p) {
+                flush(&mut piece, &mut pending, &mut grid);
+            } else {
+                piece.push((p, a));
+                pending.entry(cell(p)).or_default().push((id, a, p));
+            }
+        }
+        flush(&mut piece, &mut pending, &mut grid);
+    }
+    out
+}
+
+/// Douglas–Peucker: drops points within `tol` of the chord of their
+/// neighbours (pixel units), so vector output stays small.
+pub fn simplify(pts: &[(f64, f64)], tol: f64) -> Vec<(f64, f64)> {
+    if pts.len() < 3 {
+        return pts.to_vec();
+    }
+    let mut keep = vec![false; pts.len()];
+    keep[0] = true;
+    keep[pts.len() - 1] = true;
+    let mut stack = vec![(0, pts.len() - 1)];
+    while let Some((a, b)) = stack.pop() {
+        let (p, q) = (pts[a], pts[b]);
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        let len = dx.hypot(dy);
+        let mut worst = (0.0, a);
+        for (i, r) in pts.iter().enumerate().take(b).skip(a + 1) {
+            let d = if len > 0.0 {
+                ((r.0 - p.0) * dy - (r.1 - p.1) * dx).abs() / len
+            } else {
+                (r.0 - p.0).hypot(r.1 - p.1)
+            };
+            if d > worst.0 {
+                worst = (d, i);
+            }
+        }
+        if worst.0 > tol {
+            keep[worst.1] = true;
+            stack.push((a, worst.1));
+            stack.push((worst.1, b));
+        }
+    }
+    pts.iter()
+        .zip(keep)
+        .filter_map(|(p, k)| k.then_some(*p))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn trajectories_are_accurate_and_clipped_at_the_edge() {
+        // θ̈ = −θ: circles θ² + θ̇² = const; the box cuts most of them.
+        let root = PhaseBox {
+            theta: [-1.0, 1.0],
+            theta_dot: [-0.7, 0.7],
+        };
+        let traj = trajectories_with_heads(|t, _| -t, &root);
+        assert!(!traj.is_empty());
+        let on_edge = |p: (f64, f64)| {
+            p.0 == root.theta[0]
+                || p.0 == root.theta[1]
+                || p.1 == root.theta_dot[0]
+                || p.1 == root.theta_dot[1]
+        };
+        let mut clipped = 0;
+        for (line, _) in &traj {
+            let e0 = line[0].0.powi(2) + line[0].1.powi(2);
+            for p in line {
+                assert!(root.contains(p.0, p.1), "{p:?} outside");
+                let e = p.0.powi(2) + p.1.powi(2);
+                assert!(
+                    (e - e0).abs() < 1e-5 * (1.0 + e0),
+                    "energy drift {e} vs {e0}"
+                );
+            }
+            for end in [line[0], line[line.len() - 1]] {
+                if on_edge(end) {
+                    clipped += 1;
+                }
+            }
+        }
+        assert!(clipped > 10, "curves leaving the box end on its edge");
+    }
+
+    #[test]
+    fn crowded_lines_are_thinned_to_the_spacing() {
+        // 60 vertical lines one pixel apart, 100 pixels long.
+        let curves: Vec<Vec<(f64, f64)>> = (0..60)
+            .map(|i| vec![(f64::from(i), 0.0), (f64::from(i), 100.0)])
+            .collect();
+        let kept = thin(&curves, 6.0, 18.0);
+        let xs: Vec<f64> = kept.iter().map(|(_, p)| p[0].0).collect();
+        assert!(xs.len() >= 8 && xs.len() <= 12, "{xs:?}");
+        for (i, a) in xs.iter().enumerate() {
+            for b in &xs[i + 1..] {
+                assert!((a - b).abs() >= 6.0, "{a} and {b} too close");
+            }
+        }
+        // A line far from the others is kept whole.
+        let lone = vec![
+            vec![(0.0, 0.0), (100.0, 0.0)],
+            vec![(0.0, 50.0), (100.0, 50.0)],
+        ];
+        assert_eq!(thin(&lone, 6.0, 18.0).len(), 2);
+    }
+
+    #[test]
+    fn simplify_keeps_shape() {
+        let pts: Vec<(f64, f64)> = (0..=100).map(|i| (f64::from(i), 0.0)).collect();
+        assert_eq!(simplify(&pts, 0.1), vec![(0.0, 0.0), (100.0, 0.0)]);
+        let arc: Vec<(f64, f64)> = (0..=90)
+            .map(|i| {
+                let t = f64::from(i).to_radians();
+                (100.0 * t.cos(), 100.0 * t.sin())
+            })
+            .collect();
+        let s = simplify(&arc, 0.1);
+        assert!(s.len() < arc.len() && s.len() > 10);
+    }
 }
