@@ -358,8 +358,8 @@ impl SvgDoc {
         if self.hatch {
             // Hatching for undefined leaves: dark diagonals on transparency.
             doc.push_str(
-                "<defs><pattern id=\"hatch\" patternUnits=\"userSpaceOnUse\" width=\"6\" height=\"6\">\
-                 <path d=\"M-1,1 l2,-2 M0,6 l6,-6 M5,7 l2,-2\" stroke=\"#222222\" stroke-width=\"1.2\"/>\
+                "<defs><pattern id=\"hatch\" patternUnits=\"userSpaceOnUse\" width=\"5\" height=\"5\">\
+                 <path d=\"M-1,1 l2,-2 M0,5 l5,-5 M4,6 l2,-2\" stroke=\"#222222\" stroke-width=\"1.1\"/>\
                  </pattern></defs>\n",
             );
         }
@@ -515,8 +515,8 @@ impl<'a> Figure<'a> {
                 for &(x0, y0, x1, y1) in rects {
                     for y in y0..y1 {
                         for x in x0..x1 {
-                            // Diagonals x + y ≡ 0 (mod 6), one pixel wide.
-                            if (x + y).rem_euclid(6) == 0 {
+                            // Diagonals x + y ≡ 0 (mod 5), one pixel wide.
+                            if (x + y).rem_euclid(5) == 0 {
                                 bm.draw_pixel(
                                     (x, y),
                                     BackendColor {

@@ -13,6 +13,7 @@
 mod canvas;
 mod portrait;
 mod raster;
+mod regions;
 mod ticks;
 
 pub use canvas::{
@@ -20,6 +21,7 @@ pub use canvas::{
 };
 pub use portrait::{level_lines, phase_portrait, phase_portrait_px, thin, trajectories, Polyline};
 pub use raster::{merge_rects, rasterize, Class, PixelRect, Raster};
+pub use regions::{even_odd_area, inside_even_odd, vector_regions, Region, Tracing};
 pub use ticks::{nice_ticks, tick_label};
 
 use crate::pave::Paving;
@@ -128,6 +130,10 @@ pub fn register_fonts() -> Result<(), AtlasError> {
 struct Prepared {
     raster: Raster,
     rects: Vec<PixelRect>,
+    /// Vector regions in plot-area pixels (SVG).
+    regions: Vec<(Class, Vec<Vec<(f64, f64)>>)>,
+    /// Undefined pixels widened to be visible, as pixel rectangles.
+    hatch: Vec<(i32, i32, i32, i32)>,
     /// Phase curves in plot-area pixel coordinates.
     lines: Vec<Vec<(f64, f64)>>,
     /// Share of the root box's area in each class, in [`Class::ALL`] order.
@@ -195,11 +201,33 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
     let (pw, ph) = plot_area_pixels(style);
     let raster = rasterize(paving, pw, ph);
     let rects = merge_rects(&raster);
+    let (regions, _) = vector_regions(paving, &raster);
+    let hatch = undefined_hatch(&raster, HATCH_WIDEN);
     let root = paving.root;
     let (w, h) = (
         root.theta[1] - root.theta[0],
         root.theta_dot[1] - root.theta_dot[0],
     );
+    let regions = regions
+        .into_iter()
+        .map(|r| {
+            let rings = r
+                .rings
+                .iter()
+                .map(|ring| {
+                    ring.iter()
+                        .map(|&(t, v)| {
+                            (
+                                (t - root.theta[0]) / w * f64::from(pw),
+                                (root.theta_dot[1] - v) / h * f64::from(ph),
+                            )
+                        })
+                        .collect()
+                })
+                .collect();
+            (r.class, rings)
+        })
+        .collect();
     let lines = phase_portrait_px(info.scene, info.variant, &root, (pw, ph), LINE_SPACING);
     let mut shares = [0.0; 6];
     for leaf in &paving.leaves {
@@ -233,6 +261,8 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
     Prepared {
         raster,
         rects,
+        regions,
+        hatch,
         lines,
         shares,
         title,
@@ -361,14 +391,49 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
         "plot_area_pixels out of step with the layout"
     );
 
-    // Cells, undecided and undefined pixels.
-    for pr in &prep.rects {
-        plot.draw(&Rectangle::new(
-            [(pr.x0 as i32, pr.y0 as i32), (pr.x1 as i32, pr.y1 as i32)],
-            rgb(pr.class).filled(),
-        ))
-        .map_err(draw_err)?;
+    // Undecided is the background (so anti-aliasing seams between regions
+    // read as undecided); then the cells and undefined leaves: exact vector
+    // regions in SVG, the conservative raster in PNG.
+    plot.fill(&rgb(Class::Undecided)).map_err(draw_err)?;
+    native(&plot, |fig, o| {
+        if fig.is_vector() {
+            for (class, rings) in &prep.regions {
+                if *class == Class::Undecided {
+                    continue;
+                }
+                let shifted: Vec<Vec<(f64, f64)>> = rings
+                    .iter()
+                    .map(|r| r.iter().map(|p| (o.0 + p.0, o.1 + p.1)).collect())
+                    .collect();
+                fig.fill_rings(&shifted, class.rgb());
+            }
+        }
+        Ok(())
+    })
+    .map_err(AtlasError::Draw)?;
+    if !plot_is_vector(&plot) {
+        for pr in prep.rects.iter().filter(|r| r.class != Class::Undecided) {
+            plot.draw(&Rectangle::new(
+                [(pr.x0 as i32, pr.y0 as i32), (pr.x1 as i32, pr.y1 as i32)],
+                rgb(pr.class).filled(),
+            ))
+            .map_err(draw_err)?;
+        }
     }
+    // Undefined leaves hatched, widened to at least 2·HATCH_WIDEN pixels:
+    // the strips at sin θ = 0 are thinner than a pixel.
+    native(&plot, |fig, o| {
+        let shifted: Vec<(i32, i32, i32, i32)> = prep
+            .hatch
+            .iter()
+            .map(|&(x0, y0, x1, y1)| {
+                let (dx, dy) = (o.0 as i32, o.1 as i32);
+                (x0 + dx, y0 + dy, x1 + dx, y1 + dy)
+            })
+            .collect();
+        fig.hatch(&shifted, (0x22, 0x22, 0x22))
+    })
+    .map_err(AtlasError::Draw)?;
 
     // Phase portrait.
     native(&plot, |fig, o| {
@@ -434,6 +499,79 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
     Ok(())
 }
 
+/// Whether the area draws to an SVG (vector regions) or a PNG (raster).
+fn plot_is_vector(area: &Area) -> bool {
+    let flag = std::cell::Cell::new(false);
+    let _ = native(area, |fig, _| {
+        flag.set(fig.is_vector());
+        Ok(())
+    });
+    flag.get()
+}
+
+/// Undefined pixels of `raster`, widened by `r` pixels on every side and
+/// clipped to the raster, as merged pixel rectangles `[x0, x1) × [y0, y1)`.
+pub fn undefined_hatch(raster: &Raster, r: u32) -> Vec<(i32, i32, i32, i32)> {
+    let (w, h) = (raster.width as usize, raster.height as usize);
+    let r = r as usize;
+    // Widen along rows, then along columns.
+    let mut rows = vec![false; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            if raster.get(x as u32, y as u32) == Some(Class::Undefined) {
+                for xx in x.saturating_sub(r)..(x + r + 1).min(w) {
+                    rows[y * w + xx] = true;
+                }
+            }
+        }
+    }
+    let mut mask = vec![false; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            if rows[y * w + x] {
+                for yy in y.saturating_sub(r)..(y + r + 1).min(h) {
+                    mask[yy * w + x] = true;
+                }
+            }
+        }
+    }
+    // Runs per row, merged downwards while identical.
+    let mut out: Vec<(i32, i32, i32, i32)> = Vec::new();
+    let mut open: Vec<(i32, i32, i32, i32)> = Vec::new();
+    for y in 0..h {
+        let mut runs = Vec::new();
+        let mut x = 0;
+        while x < w {
+            if mask[y * w + x] {
+                let s = x;
+                while x < w && mask[y * w + x] {
+                    x += 1;
+                }
+                runs.push((s as i32, x as i32));
+            } else {
+                x += 1;
+            }
+        }
+        let mut next = Vec::new();
+        for (x0, x1) in runs {
+            if let Some(k) = open.iter().position(|o| o.0 == x0 && o.2 == x1) {
+                let mut o = open.swap_remove(k);
+                o.3 = y as i32 + 1;
+                next.push(o);
+            } else {
+                next.push((x0, y as i32, x1, y as i32 + 1));
+            }
+        }
+        out.append(&mut open);
+        open = next;
+    }
+    out.extend(open);
+    out
+}
+
+/// Pixels added on each side of undefined pixels for their hatching.
+const HATCH_WIDEN: u32 = 6;
+
 /// θ̇ as θ followed by a combining dot above (placed by the text layout).
 pub const THETA_DOT: &str = "θ\u{307}";
 
@@ -481,6 +619,16 @@ fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), AtlasError> {
             rgb(class).filled(),
         ))
         .map_err(draw_err)?;
+        if class == Class::Undefined {
+            native(area, |fig, o| {
+                let (dx, dy) = (o.0 as i32, o.1 as i32);
+                fig.hatch(
+                    &[(x0 + dx, y + dy, x0 + sw + dx, y + sh + dy)],
+                    (0x22, 0x22, 0x22),
+                )
+            })
+            .map_err(AtlasError::Draw)?;
+        }
         area.draw(&Rectangle::new(
             [(x0, y), (x0 + sw, y + sh)],
             INK.stroke_width(1),
@@ -492,7 +640,12 @@ fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), AtlasError> {
             .map_err(draw_err)?;
         area.draw_text(&share, &body.color(&INK), (tx + 110, y))
             .map_err(draw_err)?;
-        area.draw_text(class.meaning(), &body.color(&INK), (tx, y + 15))
+        let meaning = if class == Class::Undefined {
+            "formula singular (sin θ = 0); hatched"
+        } else {
+            class.meaning()
+        };
+        area.draw_text(meaning, &body.color(&INK), (tx, y + 15))
             .map_err(draw_err)?;
         y += sh + 22;
     }
