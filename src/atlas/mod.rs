@@ -126,12 +126,15 @@ pub fn register_fonts() -> Result<(), AtlasError> {
     }
 }
 
+/// Closed rings in pixels.
+type Rings = Vec<Vec<(f64, f64)>>;
+
 /// Everything drawn, computed once for both files.
 struct Prepared {
     raster: Raster,
     rects: Vec<PixelRect>,
     /// Vector regions in plot-area pixels (SVG).
-    regions: Vec<(Class, Vec<Vec<(f64, f64)>>)>,
+    regions: Vec<(Class, Rings)>,
     /// Undefined pixels widened to be visible, as pixel rectangles.
     hatch: Vec<(i32, i32, i32, i32)>,
     /// Phase curves in plot-area pixel coordinates.
