@@ -11,6 +11,7 @@
 //! rectangles, so its size depends on the picture, not on the leaf count.
 
 mod canvas;
+mod palette;
 mod portrait;
 mod raster;
 mod regions;
@@ -19,6 +20,7 @@ mod ticks;
 pub use canvas::{
     layout, native, parse_size, plain, text_width, Figure, FigureError, Formats, MAX_SIDE,
 };
+pub use palette::{delta_e, min_delta_e};
 pub use portrait::{level_lines, phase_portrait, phase_portrait_px, thin, trajectories, Polyline};
 pub use raster::{merge_rects, rasterize, Class, PixelRect, Raster};
 pub use regions::{even_odd_area, inside_even_odd, vector_regions, Region, Tracing};
