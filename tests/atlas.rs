@@ -377,3 +377,84 @@ fn thin_undefined_strips_are_widened_for_hatching() {
     let hatch = undefined_hatch(&raster, 6);
     assert_eq!(hatch, vec![(0, 0, 7, 100)]);
 }
+
+/// `atlas --size --format --theta --theta-dot`: the size, the files and the
+/// window are honoured; bad values exit 2.
+#[test]
+fn atlas_command_honours_size_format_and_window() {
+    let dir = temp_dir("cli");
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_detach"))
+            .arg("atlas")
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let out = dir.join("w");
+    let o = run(&[
+        "--scene",
+        "ice-disc",
+        "--theta",
+        "pi/4:pi/2",
+        "--theta-dot",
+        "-2:3",
+        "--size",
+        "700x450",
+        "--format",
+        "svg",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let svg = std::fs::read_to_string(out.join("ice-disc.svg")).unwrap();
+    assert!(svg.contains("width=\"700\" height=\"450\""));
+    assert!(!out.join("ice-disc.png").exists(), "svg only");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let d = &summary["scenes"][0]["domain"];
+    let (t0, t1) = (
+        d["theta"][0].as_f64().unwrap(),
+        d["theta"][1].as_f64().unwrap(),
+    );
+    assert!(
+        (t0 - std::f64::consts::FRAC_PI_4).abs() < 1e-12
+            && (t1 - std::f64::consts::FRAC_PI_2).abs() < 1e-12
+    );
+    assert_eq!(d["theta_dot"][0].as_f64(), Some(-2.0));
+    assert_eq!(d["theta_dot"][1].as_f64(), Some(3.0));
+
+    let o = run(&[
+        "--size",
+        "900x600",
+        "--format",
+        "png",
+        "--scene",
+        "smooth-disc",
+        "--eps",
+        "0.01",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let png = std::fs::read(out.join("smooth-disc.png")).unwrap();
+    assert_eq!(png_size(&png), (900, 600));
+
+    for bad in [
+        &["--size", "100x100"][..],
+        &["--size", "9000x800"],
+        &["--size", "wide"],
+        &["--format", "pdf"],
+        &["--format", "gif"],
+        &["--theta", "0:5", "--scene", "ice-disc"],
+        &["--theta-dot", "3:2"],
+    ] {
+        let o = run(&[bad, &["--out", out.to_str().unwrap()]].concat());
+        assert_eq!(
+            o.status.code(),
+            Some(2),
+            "{bad:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -257,11 +257,12 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         info.variant,
         params.join("  ")
     );
+    let n = paving.leaves.len();
     let subtitle = format!(
-        "{}  ·  eps = {}  ·  {} leaves",
+        "{}  ·  eps = {}  ·  {n} {}",
         info.scene.id().title(),
         eps_text(paving.eps),
-        paving.leaves.len()
+        if n == 1 { "leaf" } else { "leaves" }
     );
     Prepared {
         raster,
@@ -369,18 +370,29 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
         .clone()
         .shrink((0, TITLE_H), (width - LEGEND_W, height - TITLE_H));
     let r = paving.root;
-    let key_points: Vec<f64> = {
+    // θ ticks at multiples of π/4, or plain numbers in a narrow window.
+    let key_points: Vec<(f64, String)> = {
         let (lo, hi) = (
             (r.theta[0] / (PI / 4.0)).ceil(),
             (r.theta[1] / (PI / 4.0)).floor(),
         );
         let tol = 1e-9;
-        (lo as i64 - 1..=hi as i64 + 1)
+        let pis: Vec<(f64, String)> = (lo as i64 - 1..=hi as i64 + 1)
             .map(|k| k as f64 * PI / 4.0)
             .filter(|&t| t >= r.theta[0] - tol && t <= r.theta[1] + tol)
-            .map(|t| t.clamp(r.theta[0], r.theta[1]))
-            .collect()
+            .map(|t| (t.clamp(r.theta[0], r.theta[1]), pi_label(t)))
+            .collect();
+        if pis.len() >= 3 {
+            pis
+        } else {
+            let (ticks, step) = nice_ticks(r.theta[0], r.theta[1], 8);
+            ticks
+                .into_iter()
+                .map(|t| (t, tick_label(t, step)))
+                .collect()
+        }
     };
+    let (_, y_step) = nice_ticks(r.theta_dot[0], r.theta_dot[1], 11);
     let mut chart = ChartBuilder::on(&chart_area)
         .margin_top(MARGIN_TOP)
         .margin_right(MARGIN_RIGHT)
@@ -457,7 +469,7 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
         .disable_mesh()
         .label_style(label_font.color(&INK))
         .x_labels(0)
-        .y_label_formatter(&|v| tick_text(*v))
+        .y_label_formatter(&|v| tick_label(*v, y_step))
         .y_labels(11)
         .axis_style(INK)
         .draw()
@@ -469,14 +481,14 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
     let tick_font = label_font
         .color(&INK)
         .pos(Pos::new(HPos::Center, VPos::Top));
-    for t in key_points {
+    for (t, label) in key_points {
         let x = ((t - r.theta[0]) / (r.theta[1] - r.theta[0]) * f64::from(pw)).round() as i32;
         let x = x.min(pw as i32 - 1);
         below
             .draw(&PathElement::new(vec![(x, 0), (x, 5)], INK.stroke_width(1)))
             .map_err(draw_err)?;
         below
-            .draw_text(&pi_label(t), &tick_font, (x, 8))
+            .draw_text(&label, &tick_font, (x, 8))
             .map_err(draw_err)?;
     }
     // Axis names, upright: θ below, θ̇ (θ with a dot) left of the plot.
@@ -579,17 +591,6 @@ const HATCH_WIDEN: u32 = 6;
 
 /// θ̇ as θ followed by a combining dot above (placed by the text layout).
 pub const THETA_DOT: &str = "θ\u{307}";
-
-/// A tick label: at most 3 significant digits, a true minus sign.
-fn tick_text(v: f64) -> String {
-    let s = format!("{v:.2}");
-    let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.replace('-', "−")
-    }
-}
 
 /// The symbol of a class as markup: complements carry a combining overbar.
 fn symbol_markup(class: Class) -> &'static str {
