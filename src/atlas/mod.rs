@@ -1,14 +1,14 @@
 //! Drawing pavings and phase portraits (SVG and PNG).
 //!
 //! [`draw_atlas`] draws one paving of Ω and Ω₀ as a map of the four partition
-//! cells of the paper, with the undecided and undefined leaves, axes, a
-//! legend and a phase portrait on top. The cells are rasterised
-//! conservatively ([`rasterize`]): a pixel is drawn in a cell colour only when
-//! it is wholly covered by leaves proved in that cell. The phase portrait is
+//! cells of the paper, with the undecided and (hatched) undefined leaves,
+//! axes, a legend and a phase portrait on top. In the PNG the cells are
+//! rasterised conservatively ([`rasterize`]): a pixel is drawn in a cell
+//! colour only when it is wholly covered by leaves proved in that cell. The
+//! SVG draws, for each class, exactly the union of its leaves as vector
+//! regions ([`vector_regions`]), so it zooms cleanly and its size depends on
+//! the regions' boundaries, not on the leaf count. The phase portrait is
 //! computed in plain `f64` and labelled as not certified.
-//!
-//! Both files have the same content; the SVG merges equal pixels into
-//! rectangles, so its size depends on the picture, not on the leaf count.
 
 mod canvas;
 mod palette;
@@ -669,9 +669,10 @@ fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), AtlasError> {
         .map_err(draw_err)?;
     y += sh + 26;
     let notes = [
-        "A pixel has a cell colour only if",
-        "leaves proved in that cell cover it;",
-        "shares are leaf areas (f64 sums).",
+        "Cell colours only where leaves proved",
+        "in that cell cover the pixel (PNG) or",
+        "exactly on them (SVG); shares are",
+        "leaf areas (f64 sums).",
     ];
     for n in notes {
         area.draw_text(n, &body.color(&INK), (x0, y))
