@@ -1,7 +1,8 @@
 //! Atlas pictures: files written, and the rasteriser never overclaims.
 
 use detach::atlas::{
-    draw_atlas, merge_rects, plot_area_pixels, rasterize, AtlasStyle, Class, PictureInfo, Raster,
+    draw_atlas, even_odd_area, inside_even_odd, merge_rects, plot_area_pixels, rasterize,
+    undefined_hatch, vector_regions, AtlasStyle, Class, PictureInfo, Raster, Tracing,
 };
 use detach::pave::{
     pave_scene, Label, Leaf, PaveOptions, PaveStats, Paving, PhaseBox, StopReason, MAX_CONSTRAINTS,
@@ -276,4 +277,184 @@ fn synthetic_raster_classes() {
     }
     let r = rasterize(&synthetic(many), 1, 1);
     assert_eq!(r.get(0, 0), Some(Class::NonUniqueness));
+}
+
+/// The SVG's regions are exactly the union of the leaves of each class:
+/// equal area, and every leaf's centre inside its own class's rings and no
+/// other's. The conservative raster lies inside them.
+#[test]
+fn vector_regions_are_exactly_the_leaves() {
+    for (id, variant) in [
+        (SceneId::ViscousDisc, Variant::Derived),
+        (SceneId::SmoothDisc, Variant::Printed),
+        (SceneId::IceDisc, Variant::Derived),
+    ] {
+        let (_, _, paving) = paving_of(id, variant, 1.0 / 64.0);
+        let raster = rasterize(&paving, 150, 110);
+        let (regions, tracing) = vector_regions(&paving, &raster);
+        assert_eq!(tracing, Tracing::ExactLeaves);
+        for region in &regions {
+            let leaves: f64 = paving
+                .leaves
+                .iter()
+                .filter(|l| Class::of_leaf(l) == region.class)
+                .map(|l| (l.bx.theta[1] - l.bx.theta[0]) * (l.bx.theta_dot[1] - l.bx.theta_dot[0]))
+                .sum();
+            let area = even_odd_area(&region.rings);
+            assert!(
+                (area - leaves).abs() <= 1e-9 * paving.root.area().sup(),
+                "{id:?} {:?}: rings {area} vs leaves {leaves}",
+                region.class
+            );
+        }
+        for leaf in paving.leaves.iter().step_by(7) {
+            let c = (
+                0.5 * (leaf.bx.theta[0] + leaf.bx.theta[1]),
+                0.5 * (leaf.bx.theta_dot[0] + leaf.bx.theta_dot[1]),
+            );
+            for region in &regions {
+                assert_eq!(
+                    inside_even_odd(&region.rings, c),
+                    region.class == Class::of_leaf(leaf),
+                    "{id:?}: leaf centre {c:?} vs {:?}",
+                    region.class
+                );
+            }
+        }
+        for row in 0..raster.height {
+            for col in 0..raster.width {
+                let Some(class) = raster.get(col, row).filter(|c| c.is_cell()) else {
+                    continue;
+                };
+                let p = raster.pixel_box(col, row);
+                let c = (
+                    0.5 * (p.theta[0] + p.theta[1]),
+                    0.5 * (p.theta_dot[0] + p.theta_dot[1]),
+                );
+                let region = regions.iter().find(|r| r.class == class).unwrap();
+                assert!(inside_even_odd(&region.rings, c), "pixel ({col}, {row})");
+            }
+        }
+    }
+}
+
+#[test]
+fn svg_is_vector_and_small() {
+    let dir = temp_dir("vector");
+    let (scene, params, paving) = paving_of(SceneId::IceDisc, Variant::Derived, 1.0 / 512.0);
+    let info = PictureInfo {
+        scene: &scene,
+        variant: Variant::Derived,
+        params,
+        complete: paving.complete,
+    };
+    let (svg, png) = (dir.join("a.svg"), dir.join("a.png"));
+    draw_atlas(&paving, &info, &AtlasStyle::default(), &svg, &png).unwrap();
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let elements = text.matches('<').count();
+    let rects = text.matches("<rect").count();
+    // Before: one rectangle per run of equal pixels (about 3000 elements).
+    assert!(elements < 400, "{elements} elements");
+    assert!(rects < 30, "{rects} rectangles");
+    assert!(text.len() < 250_000, "{} bytes", text.len());
+    // Undefined leaves (θ = 0) are hatched, in the legend too.
+    assert!(text.matches("url(#hatch)").count() >= 2);
+    assert!(text.contains("<pattern id=\"hatch\""));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn thin_undefined_strips_are_widened_for_hatching() {
+    use Label::{ProvedIn as In, Undefined as X};
+    // An undefined strip 1/1000 of the width at the left edge.
+    let paving = synthetic(vec![
+        leaf([0.0, 0.001], [0.0, 1.0], X, In),
+        leaf([0.001, 1.0], [0.0, 1.0], In, In),
+    ]);
+    let raster = rasterize(&paving, 200, 100);
+    assert_eq!(raster.get(0, 50), Some(Class::Undefined));
+    assert_eq!(raster.get(1, 50), Some(Class::Persists));
+    let hatch = undefined_hatch(&raster, 6);
+    assert_eq!(hatch, vec![(0, 0, 7, 100)]);
+}
+
+/// `atlas --size --format --theta --theta-dot`: the size, the files and the
+/// window are honoured; bad values exit 2.
+#[test]
+fn atlas_command_honours_size_format_and_window() {
+    let dir = temp_dir("cli");
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_detach"))
+            .arg("atlas")
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let out = dir.join("w");
+    let o = run(&[
+        "--scene",
+        "ice-disc",
+        "--theta",
+        "pi/4:pi/2",
+        "--theta-dot",
+        "-2:3",
+        "--size",
+        "700x450",
+        "--format",
+        "svg",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let svg = std::fs::read_to_string(out.join("ice-disc.svg")).unwrap();
+    assert!(svg.contains("width=\"700\" height=\"450\""));
+    assert!(!out.join("ice-disc.png").exists(), "svg only");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let d = &summary["scenes"][0]["domain"];
+    let (t0, t1) = (
+        d["theta"][0].as_f64().unwrap(),
+        d["theta"][1].as_f64().unwrap(),
+    );
+    assert!(
+        (t0 - std::f64::consts::FRAC_PI_4).abs() < 1e-12
+            && (t1 - std::f64::consts::FRAC_PI_2).abs() < 1e-12
+    );
+    assert_eq!(d["theta_dot"][0].as_f64(), Some(-2.0));
+    assert_eq!(d["theta_dot"][1].as_f64(), Some(3.0));
+
+    let o = run(&[
+        "--size",
+        "900x600",
+        "--format",
+        "png",
+        "--scene",
+        "smooth-disc",
+        "--eps",
+        "0.01",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let png = std::fs::read(out.join("smooth-disc.png")).unwrap();
+    assert_eq!(png_size(&png), (900, 600));
+
+    for bad in [
+        &["--size", "100x100"][..],
+        &["--size", "9000x800"],
+        &["--size", "wide"],
+        &["--format", "pdf"],
+        &["--format", "gif"],
+        &["--theta", "0:5", "--scene", "ice-disc"],
+        &["--theta-dot", "3:2"],
+    ] {
+        let o = run(&[bad, &["--out", out.to_str().unwrap()]].concat());
+        assert_eq!(
+            o.status.code(),
+            Some(2),
+            "{bad:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -1,21 +1,31 @@
 //! Drawing pavings and phase portraits (SVG and PNG).
 //!
 //! [`draw_atlas`] draws one paving of Ω and Ω₀ as a map of the four partition
-//! cells of the paper, with the undecided and undefined leaves, axes, a
-//! legend and a phase portrait on top. The cells are rasterised
-//! conservatively ([`rasterize`]): a pixel is drawn in a cell colour only when
-//! it is wholly covered by leaves proved in that cell. The phase portrait is
+//! cells of the paper, with the undecided and (hatched) undefined leaves,
+//! axes, a legend and a phase portrait on top. In the PNG the cells are
+//! rasterised conservatively ([`rasterize`]): a pixel is drawn in a cell
+//! colour only when it is wholly covered by leaves proved in that cell. The
+//! SVG draws, for each class, exactly the union of its leaves as vector
+//! regions ([`vector_regions`]), so it zooms cleanly and its size depends on
+//! the regions' boundaries, not on the leaf count. The phase portrait is
 //! computed in plain `f64` and labelled as not certified.
-//!
-//! Both files have the same content; the SVG merges equal pixels into
-//! rectangles, so its size depends on the picture, not on the leaf count.
 
+mod canvas;
 pub mod chart;
+mod palette;
 mod portrait;
 mod raster;
+mod regions;
+mod ticks;
 
-pub use portrait::{level_lines, phase_portrait, trajectories, Polyline};
+pub use canvas::{
+    layout, native, parse_size, plain, text_width, Figure, FigureError, Formats, MAX_SIDE,
+};
+pub use palette::{delta_e, min_delta_e};
+pub use portrait::{level_lines, phase_portrait, phase_portrait_px, thin, trajectories, Polyline};
 pub use raster::{merge_rects, rasterize, Class, PixelRect, Raster};
+pub use regions::{even_odd_area, inside_even_odd, vector_regions, Region, Tracing};
+pub use ticks::{nice_ticks, tick_label};
 
 use crate::pave::Paving;
 use crate::scene::{Scene, Variant};
@@ -64,6 +74,8 @@ pub enum AtlasError {
         path: PathBuf,
         source: std::io::Error,
     },
+    #[error("picture size {0}×{1} is too large (at most {MAX_SIDE} pixels a side)")]
+    TooLarge(u32, u32),
     #[error("drawing failed: {0}")]
     Draw(String),
     #[error("the embedded font could not be registered")]
@@ -73,6 +85,9 @@ pub enum AtlasError {
 /// Smallest accepted picture.
 pub const MIN_WIDTH: u32 = 640;
 pub const MIN_HEIGHT: u32 = 400;
+
+/// Least distance in pixels between two drawn phase curves.
+const LINE_SPACING: f64 = 6.0;
 
 // Layout in pixels, independent of the picture size.
 const TITLE_H: u32 = 62;
@@ -114,12 +129,19 @@ pub fn register_fonts() -> Result<(), AtlasError> {
     }
 }
 
+/// Closed rings in pixels.
+type Rings = Vec<Vec<(f64, f64)>>;
+
 /// Everything drawn, computed once for both files.
 struct Prepared {
     raster: Raster,
     rects: Vec<PixelRect>,
+    /// Vector regions in plot-area pixels (SVG).
+    regions: Vec<(Class, Rings)>,
+    /// Undefined pixels widened to be visible, as pixel rectangles.
+    hatch: Vec<(i32, i32, i32, i32)>,
     /// Phase curves in plot-area pixel coordinates.
-    lines: Vec<Vec<(i32, i32)>>,
+    lines: Vec<Vec<(f64, f64)>>,
     /// Share of the root box's area in each class, in [`Class::ALL`] order.
     shares: [f64; 6],
     title: String,
@@ -136,11 +158,25 @@ pub fn draw_atlas(
     svg_path: &Path,
     png_path: &Path,
 ) -> Result<(), AtlasError> {
+    draw_atlas_files(paving, info, style, Some(svg_path), Some(png_path))
+}
+
+/// [`draw_atlas`] writing only the files given.
+pub fn draw_atlas_files(
+    paving: &Paving,
+    info: &PictureInfo,
+    style: &AtlasStyle,
+    svg_path: Option<&Path>,
+    png_path: Option<&Path>,
+) -> Result<(), AtlasError> {
     if style.width < MIN_WIDTH || style.height < MIN_HEIGHT {
         return Err(AtlasError::TooSmall(style.width, style.height));
     }
+    if style.width > MAX_SIDE || style.height > MAX_SIDE {
+        return Err(AtlasError::TooLarge(style.width, style.height));
+    }
     register_fonts()?;
-    for p in [svg_path, png_path] {
+    for p in [svg_path, png_path].into_iter().flatten() {
         if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).map_err(|source| AtlasError::Io {
                 path: dir.to_path_buf(),
@@ -150,13 +186,13 @@ pub fn draw_atlas(
     }
     let prep = prepare(paving, info, style);
     let size = (style.width, style.height);
-    {
-        let root = SVGBackend::new(svg_path, size).into_drawing_area();
+    if let Some(p) = svg_path {
+        let root = Figure::svg(p, size).into_drawing_area();
         render(&root, paving, &prep)?;
         root.present().map_err(draw_err)?;
     }
-    {
-        let root = BitMapBackend::new(png_path, size).into_drawing_area();
+    if let Some(p) = png_path {
+        let root = Figure::png(p, size).into_drawing_area();
         render(&root, paving, &prep)?;
         root.present().map_err(draw_err)?;
     }
@@ -171,26 +207,34 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
     let (pw, ph) = plot_area_pixels(style);
     let raster = rasterize(paving, pw, ph);
     let rects = merge_rects(&raster);
+    let (regions, _) = vector_regions(paving, &raster);
+    let hatch = undefined_hatch(&raster, HATCH_WIDEN);
     let root = paving.root;
     let (w, h) = (
         root.theta[1] - root.theta[0],
         root.theta_dot[1] - root.theta_dot[0],
     );
-    let to_px = |(t, v): (f64, f64)| {
-        (
-            ((t - root.theta[0]) / w * f64::from(pw)).round() as i32,
-            ((root.theta_dot[1] - v) / h * f64::from(ph)).round() as i32,
-        )
-    };
-    let lines = phase_portrait(info.scene, info.variant, &root)
+    let regions = regions
         .into_iter()
-        .map(|l| {
-            let mut px: Vec<(i32, i32)> = l.into_iter().map(to_px).collect();
-            px.dedup();
-            px
+        .map(|r| {
+            let rings = r
+                .rings
+                .iter()
+                .map(|ring| {
+                    ring.iter()
+                        .map(|&(t, v)| {
+                            (
+                                (t - root.theta[0]) / w * f64::from(pw),
+                                (root.theta_dot[1] - v) / h * f64::from(ph),
+                            )
+                        })
+                        .collect()
+                })
+                .collect();
+            (r.class, rings)
         })
-        .filter(|l| l.len() > 1)
         .collect();
+    let lines = phase_portrait_px(info.scene, info.variant, &root, (pw, ph), LINE_SPACING);
     let mut shares = [0.0; 6];
     for leaf in &paving.leaves {
         let i = Class::ALL
@@ -206,7 +250,7 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
     let params: Vec<String> = info
         .params
         .iter()
-        .map(|(n, v)| format!("{n}={v}"))
+        .map(|(n, v)| format!("{} = {v}", param_markup(n)))
         .collect();
     let title = format!(
         "{} ({})   {}",
@@ -214,20 +258,53 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         info.variant,
         params.join("  ")
     );
+    let n = paving.leaves.len();
     let subtitle = format!(
-        "{}  ·  eps = {}  ·  {} leaves",
+        "{}  ·  eps = {}  ·  {n} {}",
         info.scene.id().title(),
         eps_text(paving.eps),
-        paving.leaves.len()
+        if n == 1 { "leaf" } else { "leaves" }
     );
     Prepared {
         raster,
         rects,
+        regions,
+        hatch,
         lines,
         shares,
         title,
         subtitle,
         incomplete: !(info.complete && paving.complete),
+    }
+}
+
+/// A parameter's name as typeset markup (`p_phi` → p with subscript φ).
+pub fn param_markup(name: &str) -> String {
+    let greek = |s: &str| -> String {
+        match s {
+            "mu" => "μ".into(),
+            "phi" => "φ".into(),
+            "psi" => "ψ".into(),
+            "alpha" => "α".into(),
+            "kappa" => "κ".into(),
+            "theta" => "θ".into(),
+            other => other.into(),
+        }
+    };
+    match name.split_once('_') {
+        Some((base, sub)) => format!("{}_{{{}}}", greek(base), greek(sub)),
+        None => {
+            // `c0` → c with subscript 0.
+            let digits = name.trim_start_matches(|c: char| !c.is_ascii_digit());
+            if !digits.is_empty()
+                && digits.len() < name.len()
+                && digits.chars().all(|c| c.is_ascii_digit())
+            {
+                format!("{}_{{{digits}}}", greek(&name[..name.len() - digits.len()]))
+            } else {
+                greek(name)
+            }
+        }
     }
 }
 
@@ -275,19 +352,17 @@ const INK: RGBColor = RGBColor(0x22, 0x22, 0x22);
 const LINE: RGBColor = RGBColor(0x10, 0x10, 0x30);
 const WARN: RGBColor = RGBColor(0xB0, 0x20, 0x20);
 
-fn render<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    paving: &Paving,
-    prep: &Prepared,
-) -> Result<(), AtlasError> {
+type Area<'a> = DrawingArea<Figure<'a>, Shift>;
+
+fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasError> {
     let (width, height) = root.dim_in_pixel();
     root.fill(&WHITE).map_err(draw_err)?;
 
     // Title and subtitle.
-    let title_font = ("sans-serif", 21).into_font().style(FontStyle::Bold);
+    let title_font = ("sans-serif", 22).into_font().style(FontStyle::Bold);
     root.draw_text(&prep.title, &title_font.color(&INK), (16, 10))
         .map_err(draw_err)?;
-    let sub_font = ("sans-serif", 15).into_font();
+    let sub_font = ("sans-serif", 16).into_font();
     root.draw_text(&prep.subtitle, &sub_font.color(&INK), (16, 38))
         .map_err(draw_err)?;
 
@@ -296,18 +371,29 @@ fn render<DB: DrawingBackend>(
         .clone()
         .shrink((0, TITLE_H), (width - LEGEND_W, height - TITLE_H));
     let r = paving.root;
-    let key_points: Vec<f64> = {
+    // θ ticks at multiples of π/4, or plain numbers in a narrow window.
+    let key_points: Vec<(f64, String)> = {
         let (lo, hi) = (
             (r.theta[0] / (PI / 4.0)).ceil(),
             (r.theta[1] / (PI / 4.0)).floor(),
         );
         let tol = 1e-9;
-        (lo as i64 - 1..=hi as i64 + 1)
+        let pis: Vec<(f64, String)> = (lo as i64 - 1..=hi as i64 + 1)
             .map(|k| k as f64 * PI / 4.0)
             .filter(|&t| t >= r.theta[0] - tol && t <= r.theta[1] + tol)
-            .map(|t| t.clamp(r.theta[0], r.theta[1]))
-            .collect()
+            .map(|t| (t.clamp(r.theta[0], r.theta[1]), pi_label(t)))
+            .collect();
+        if pis.len() >= 3 {
+            pis
+        } else {
+            let (ticks, step) = nice_ticks(r.theta[0], r.theta[1], 8);
+            ticks
+                .into_iter()
+                .map(|t| (t, tick_label(t, step)))
+                .collect()
+        }
     };
+    let (_, y_step) = nice_ticks(r.theta_dot[0], r.theta_dot[1], 11);
     let mut chart = ChartBuilder::on(&chart_area)
         .margin_top(MARGIN_TOP)
         .margin_right(MARGIN_RIGHT)
@@ -323,63 +409,100 @@ fn render<DB: DrawingBackend>(
         "plot_area_pixels out of step with the layout"
     );
 
-    // Cells, undecided and undefined pixels.
-    for pr in &prep.rects {
-        plot.draw(&Rectangle::new(
-            [(pr.x0 as i32, pr.y0 as i32), (pr.x1 as i32, pr.y1 as i32)],
-            rgb(pr.class).filled(),
-        ))
-        .map_err(draw_err)?;
+    // Undecided is the background (so anti-aliasing seams between regions
+    // read as undecided); then the cells and undefined leaves: exact vector
+    // regions in SVG, the conservative raster in PNG.
+    plot.fill(&rgb(Class::Undecided)).map_err(draw_err)?;
+    native(&plot, |fig, o| {
+        if fig.is_vector() {
+            for (class, rings) in &prep.regions {
+                if *class == Class::Undecided {
+                    continue;
+                }
+                let shifted: Vec<Vec<(f64, f64)>> = rings
+                    .iter()
+                    .map(|r| r.iter().map(|p| (o.0 + p.0, o.1 + p.1)).collect())
+                    .collect();
+                fig.fill_rings(&shifted, class.rgb());
+            }
+        }
+        Ok(())
+    })
+    .map_err(AtlasError::Draw)?;
+    if !plot_is_vector(&plot) {
+        for pr in prep.rects.iter().filter(|r| r.class != Class::Undecided) {
+            plot.draw(&Rectangle::new(
+                [(pr.x0 as i32, pr.y0 as i32), (pr.x1 as i32, pr.y1 as i32)],
+                rgb(pr.class).filled(),
+            ))
+            .map_err(draw_err)?;
+        }
     }
+    // Undefined leaves hatched, widened to at least 2·HATCH_WIDEN pixels:
+    // the strips at sin θ = 0 are thinner than a pixel.
+    native(&plot, |fig, o| {
+        let shifted: Vec<(i32, i32, i32, i32)> = prep
+            .hatch
+            .iter()
+            .map(|&(x0, y0, x1, y1)| {
+                let (dx, dy) = (o.0 as i32, o.1 as i32);
+                (x0 + dx, y0 + dy, x1 + dx, y1 + dy)
+            })
+            .collect();
+        fig.hatch(&shifted, (0x22, 0x22, 0x22))
+    })
+    .map_err(AtlasError::Draw)?;
 
     // Phase portrait.
-    for l in &prep.lines {
-        plot.draw(&PathElement::new(l.clone(), LINE.mix(0.75).stroke_width(1)))
-            .map_err(draw_err)?;
-    }
-
-    // Axes.
-    let label_font = ("sans-serif", 15).into_font();
-    let num_fmt = |v: &f64| {
-        let s = format!("{v:.2}");
-        let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
-        if s == "-0" {
-            "0".into()
-        } else {
-            s.replace('-', "−")
+    native(&plot, |fig, o| {
+        for l in &prep.lines {
+            let pts: Vec<(f64, f64)> = l.iter().map(|p| (o.0 + p.0, o.1 + p.1)).collect();
+            fig.stroke(&pts, LINE.mix(0.8).to_backend_color(), 1.1)?;
         }
-    };
+        Ok(())
+    })
+    .map_err(AtlasError::Draw)?;
+
+    // Axes: θ̇ ticks by plotters, θ ticks at multiples of π/4 by hand.
+    let label_font = ("sans-serif", 16).into_font();
     chart
         .configure_mesh()
         .disable_mesh()
-        .x_desc("θ")
-        .y_desc("dθ/dt")
-        .axis_desc_style(("sans-serif", 18))
         .label_style(label_font.color(&INK))
         .x_labels(0)
-        .y_label_formatter(&num_fmt)
+        .y_label_formatter(&|v| tick_label(*v, y_step))
         .y_labels(11)
         .axis_style(INK)
         .draw()
         .map_err(draw_err)?;
     let (pw, ph) = plot.dim_in_pixel();
-    // θ ticks at multiples of π/4, drawn by hand below the plot area.
     let below = chart_area
         .clone()
         .shrink((Y_LABELS_W, MARGIN_TOP + ph), (pw, X_LABELS_H));
     let tick_font = label_font
         .color(&INK)
         .pos(Pos::new(HPos::Center, VPos::Top));
-    for t in key_points {
+    for (t, label) in key_points {
         let x = ((t - r.theta[0]) / (r.theta[1] - r.theta[0]) * f64::from(pw)).round() as i32;
         let x = x.min(pw as i32 - 1);
         below
             .draw(&PathElement::new(vec![(x, 0), (x, 5)], INK.stroke_width(1)))
             .map_err(draw_err)?;
         below
-            .draw_text(&pi_label(t), &tick_font, (x, 8))
+            .draw_text(&label, &tick_font, (x, 8))
             .map_err(draw_err)?;
     }
+    // Axis names, upright: θ below, θ̇ (θ with a dot) left of the plot.
+    let desc = ("sans-serif", 20)
+        .into_font()
+        .color(&INK)
+        .pos(Pos::new(HPos::Center, VPos::Center));
+    below
+        .draw_text("θ", &desc, (pw as i32 / 2, 34))
+        .map_err(draw_err)?;
+    let left = chart_area.clone().shrink((0, MARGIN_TOP), (Y_LABELS_W, ph));
+    left.draw_text(THETA_DOT, &desc, (12, ph as i32 / 2))
+        .map_err(draw_err)?;
     plot.draw(&Rectangle::new(
         [(0, 0), (pw as i32 - 1, ph as i32 - 1)],
         INK.stroke_width(1),
@@ -394,55 +517,98 @@ fn render<DB: DrawingBackend>(
     Ok(())
 }
 
-/// Draws the symbol of a class at `pos` (top left), complements with an
-/// overbar drawn as a line (combining marks do not render reliably in PNG
-/// text). Returns the x coordinate where the symbol ends.
-fn draw_symbol<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    class: Class,
-    pos: (i32, i32),
-    font: &FontDesc,
-) -> Result<i32, AtlasError> {
-    let (not_omega, not_omega0) = match class {
-        Class::Persists => (false, false),
-        Class::Released => (true, true),
-        Class::NonUniqueness => (true, false),
-        Class::NonExistence => (false, true),
-        Class::Undecided | Class::Undefined => {
-            area.draw_text(class.symbol(), &font.color(&INK), pos)
-                .map_err(draw_err)?;
-            let (w, _) = area
-                .estimate_text_size(class.symbol(), &font.color(&INK))
-                .map_err(draw_err)?;
-            return Ok(pos.0 + w as i32);
-        }
-    };
-    let mut x = pos.0;
-    for (token, bar) in [("Ω", not_omega), (" ∩ ", false), ("Ω₀", not_omega0)] {
-        area.draw_text(token, &font.color(&INK), (x, pos.1))
-            .map_err(draw_err)?;
-        let (w, _) = area
-            .estimate_text_size(token, &font.color(&INK))
-            .map_err(draw_err)?;
-        if bar {
-            area.draw(&PathElement::new(
-                vec![(x + 1, pos.1 - 4), (x + w as i32 - 1, pos.1 - 4)],
-                INK.stroke_width(1),
-            ))
-            .map_err(draw_err)?;
-        }
-        x += w as i32;
-    }
-    Ok(x)
+/// Whether the area draws to an SVG (vector regions) or a PNG (raster).
+fn plot_is_vector(area: &Area) -> bool {
+    let flag = std::cell::Cell::new(false);
+    let _ = native(area, |fig, _| {
+        flag.set(fig.is_vector());
+        Ok(())
+    });
+    flag.get()
 }
 
-fn draw_legend<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    prep: &Prepared,
-) -> Result<(), AtlasError> {
-    let head = ("sans-serif", 16).into_font().style(FontStyle::Bold);
-    let name = ("sans-serif", 15).into_font().style(FontStyle::Bold);
-    let body = ("sans-serif", 13).into_font();
+/// Undefined pixels of `raster`, widened by `r` pixels on every side and
+/// clipped to the raster, as merged pixel rectangles `[x0, x1) × [y0, y1)`.
+pub fn undefined_hatch(raster: &Raster, r: u32) -> Vec<(i32, i32, i32, i32)> {
+    let (w, h) = (raster.width as usize, raster.height as usize);
+    let r = r as usize;
+    // Widen along rows, then along columns.
+    let mut rows = vec![false; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            if raster.get(x as u32, y as u32) == Some(Class::Undefined) {
+                for xx in x.saturating_sub(r)..(x + r + 1).min(w) {
+                    rows[y * w + xx] = true;
+                }
+            }
+        }
+    }
+    let mut mask = vec![false; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            if rows[y * w + x] {
+                for yy in y.saturating_sub(r)..(y + r + 1).min(h) {
+                    mask[yy * w + x] = true;
+                }
+            }
+        }
+    }
+    // Runs per row, merged downwards while identical.
+    let mut out: Vec<(i32, i32, i32, i32)> = Vec::new();
+    let mut open: Vec<(i32, i32, i32, i32)> = Vec::new();
+    for y in 0..h {
+        let mut runs = Vec::new();
+        let mut x = 0;
+        while x < w {
+            if mask[y * w + x] {
+                let s = x;
+                while x < w && mask[y * w + x] {
+                    x += 1;
+                }
+                runs.push((s as i32, x as i32));
+            } else {
+                x += 1;
+            }
+        }
+        let mut next = Vec::new();
+        for (x0, x1) in runs {
+            if let Some(k) = open.iter().position(|o| o.0 == x0 && o.2 == x1) {
+                let mut o = open.swap_remove(k);
+                o.3 = y as i32 + 1;
+                next.push(o);
+            } else {
+                next.push((x0, y as i32, x1, y as i32 + 1));
+            }
+        }
+        out.append(&mut open);
+        open = next;
+    }
+    out.extend(open);
+    out
+}
+
+/// Pixels added on each side of undefined pixels for their hatching.
+const HATCH_WIDEN: u32 = 6;
+
+/// θ̇ as θ followed by a combining dot above (placed by the text layout).
+pub const THETA_DOT: &str = "θ\u{307}";
+
+/// The symbol of a class as markup: complements carry a combining overbar.
+fn symbol_markup(class: Class) -> &'static str {
+    match class {
+        Class::Persists => "Ω ∩ Ω_{0}",
+        Class::Released => "Ω\u{304} ∩ Ω\u{304}_{0}",
+        Class::NonUniqueness => "Ω\u{304} ∩ Ω_{0}",
+        Class::NonExistence => "Ω ∩ Ω\u{304}_{0}",
+        Class::Undecided => "undecided",
+        Class::Undefined => "undefined",
+    }
+}
+
+fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), AtlasError> {
+    let head = ("sans-serif", 17).into_font().style(FontStyle::Bold);
+    let name = ("sans-serif", 17).into_font();
+    let body = ("sans-serif", 14).into_font();
     let (x0, sw, sh) = (12, 34, 24);
     let mut y = MARGIN_TOP as i32 + 2;
     area.draw_text("Certified cells", &head.color(&INK), (x0, y))
@@ -460,6 +626,16 @@ fn draw_legend<DB: DrawingBackend>(
             rgb(class).filled(),
         ))
         .map_err(draw_err)?;
+        if class == Class::Undefined {
+            native(area, |fig, o| {
+                let (dx, dy) = (o.0 as i32, o.1 as i32);
+                fig.hatch(
+                    &[(x0 + dx, y + dy, x0 + sw + dx, y + sh + dy)],
+                    (0x22, 0x22, 0x22),
+                )
+            })
+            .map_err(AtlasError::Draw)?;
+        }
         area.draw(&Rectangle::new(
             [(x0, y), (x0 + sw, y + sh)],
             INK.stroke_width(1),
@@ -467,10 +643,16 @@ fn draw_legend<DB: DrawingBackend>(
         .map_err(draw_err)?;
         let tx = x0 + sw + 10;
         let share = format!("{:.1} % of box", 100.0 * prep.shares[i]);
-        let end = draw_symbol(area, class, (tx, y - 2), &name)?;
-        area.draw_text(&share, &body.color(&INK), (end.max(tx + 70) + 12, y))
+        area.draw_text(symbol_markup(class), &name.color(&INK), (tx, y - 3))
             .map_err(draw_err)?;
-        area.draw_text(class.meaning(), &body.color(&INK), (tx, y + 15))
+        area.draw_text(&share, &body.color(&INK), (tx + 110, y))
+            .map_err(draw_err)?;
+        let meaning = if class == Class::Undefined {
+            "formula singular (sin θ = 0); hatched"
+        } else {
+            class.meaning()
+        };
+        area.draw_text(meaning, &body.color(&INK), (tx, y + 15))
             .map_err(draw_err)?;
         y += sh + 22;
     }
@@ -482,15 +664,16 @@ fn draw_legend<DB: DrawingBackend>(
     ))
     .map_err(draw_err)?;
     let tx = x0 + sw + 10;
-    area.draw_text("phase portrait", &name.color(&INK), (tx, y - 2))
+    area.draw_text("phase portrait", &name.color(&INK), (tx, y - 3))
         .map_err(draw_err)?;
     area.draw_text("f64, not certified", &body.color(&INK), (tx, y + 15))
         .map_err(draw_err)?;
     y += sh + 26;
     let notes = [
-        "A pixel has a cell colour only if",
-        "leaves proved in that cell cover it;",
-        "shares are leaf areas (f64 sums).",
+        "Cell colours only where leaves proved",
+        "in that cell cover the pixel (PNG) or",
+        "exactly on them (SVG); shares are",
+        "leaf areas (f64 sums).",
     ];
     for n in notes {
         area.draw_text(n, &body.color(&INK), (x0, y))
@@ -499,7 +682,7 @@ fn draw_legend<DB: DrawingBackend>(
     }
     if prep.incomplete {
         y += 10;
-        let warn = ("sans-serif", 14).into_font().style(FontStyle::Bold);
+        let warn = ("sans-serif", 15).into_font().style(FontStyle::Bold);
         for n in [
             "INCOMPLETE: box budget reached,",
             "refinement stopped early",

@@ -1,7 +1,8 @@
 //! Phase portraits in plain `f64` (for drawing only, not certified).
 //!
 //! Scenes with a conserved energy get level lines of it (marching squares);
-//! the others get trajectories of θ̈ integrated by RK4.
+//! the others get trajectories of θ̈ integrated by Dormand–Prince 5(4) with
+//! error control.
 
 use crate::pave::PhaseBox;
 use crate::scene::{Angle, Scene, Variant};
@@ -30,6 +31,20 @@ pub fn level_lines(
     ny: usize,
     levels: usize,
 ) -> Vec<Polyline> {
+    level_lines_by_level(f, root, nx, ny, levels)
+        .into_iter()
+        .flatten()
+        .collect()
+}
+
+/// [`level_lines`] grouped by level, in increasing order of level.
+pub fn level_lines_by_level(
+    f: impl Fn(f64, f64) -> Option<f64>,
+    root: &PhaseBox,
+    nx: usize,
+    ny: usize,
+    levels: usize,
+) -> Vec<Vec<Polyline>> {
     let xs: Vec<f64> = (0..nx)
         .map(|i| root.theta[0] + (root.theta[1] - root.theta[0]) * (i as f64 + 0.5) / nx as f64)
         .collect();
@@ -58,7 +73,7 @@ pub fn level_lines(
             continue;
         }
         last = level;
-        out.extend(contour(&z, &xs, &ys, level));
+        out.push(contour(&z, &xs, &ys, level));
     }
     out
 }
@@ -163,28 +178,128 @@ fn chain(segs: &[(Edge, Edge)]) -> Vec<Vec<Edge>> {
 
 /// Trajectories of `θ̈ = acc(θ, θ̇)` through a grid of seeds, forwards and
 /// backwards in time, each way for at most a fixed arc length (measured in
-/// units of the box), stopped when leaving `root` or on non-finite values.
-/// Each trajectory is followed by a small arrowhead at its seed, pointing
-/// forwards in time.
+/// units of the box), clipped where they leave `root` (the last point is on
+/// its edge) or stopped on non-finite values or at rest. Each trajectory is
+/// followed by a small arrowhead at its seed, pointing forwards in time.
 pub fn trajectories(acc: impl Fn(f64, f64) -> f64, root: &PhaseBox) -> Vec<Polyline> {
+    trajectories_with_heads(acc, root)
+        .into_iter()
+        .flat_map(|(line, head)| std::iter::once(line).chain(head))
+        .collect()
+}
+
+/// Dormand–Prince 5(4) coefficients (the field is autonomous: no nodes).
+const DP_A: [[f64; 6]; 7] = [
+    [0.0; 6],
+    [0.2, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+    [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+        0.0,
+        0.0,
+    ],
+    [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+        0.0,
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+];
+/// Fifth-order weights minus the embedded fourth-order ones.
+const DP_E: [f64; 7] = [
+    35.0 / 384.0 - 5179.0 / 57600.0,
+    0.0,
+    500.0 / 1113.0 - 7571.0 / 16695.0,
+    125.0 / 192.0 - 393.0 / 640.0,
+    -2187.0 / 6784.0 + 92097.0 / 339200.0,
+    11.0 / 84.0 - 187.0 / 2100.0,
+    -1.0 / 40.0,
+];
+
+/// One Dormand–Prince step of size `dt` from `s`: the fifth-order result and
+/// the error estimate (both as phase-plane vectors).
+fn dp_step(
+    f: &impl Fn((f64, f64)) -> (f64, f64),
+    s: (f64, f64),
+    dt: f64,
+) -> ((f64, f64), (f64, f64)) {
+    let mut k = [(0.0, 0.0); 7];
+    for i in 0..7 {
+        let (mut x, mut y) = s;
+        for (j, kj) in k.iter().enumerate().take(i) {
+            x += dt * DP_A[i][j] * kj.0;
+            y += dt * DP_A[i][j] * kj.1;
+        }
+        k[i] = f((x, y));
+    }
+    // The seventh stage is evaluated at the fifth-order result (FSAL).
+    let mut n = s;
+    let mut e = (0.0, 0.0);
+    for i in 0..7 {
+        if i < 6 {
+            n.0 += dt * DP_A[6][i] * k[i].0;
+            n.1 += dt * DP_A[6][i] * k[i].1;
+        }
+        e.0 += dt * DP_E[i] * k[i].0;
+        e.1 += dt * DP_E[i] * k[i].1;
+    }
+    (n, e)
+}
+
+/// Where the segment from `a` (inside) to `b` (outside) crosses the edge of
+/// `root`.
+fn exit_point(root: &PhaseBox, a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    let mut t: f64 = 1.0;
+    let mut cut = |lo: f64, hi: f64, p: f64, q: f64| {
+        if q > hi && q != p {
+            t = t.min((hi - p) / (q - p));
+        }
+        if q < lo && q != p {
+            t = t.min((lo - p) / (q - p));
+        }
+    };
+    cut(root.theta[0], root.theta[1], a.0, b.0);
+    cut(root.theta_dot[0], root.theta_dot[1], a.1, b.1);
+    let t = t.clamp(0.0, 1.0);
+    (
+        (a.0 + t * (b.0 - a.0)).clamp(root.theta[0], root.theta[1]),
+        (a.1 + t * (b.1 - a.1)).clamp(root.theta_dot[0], root.theta_dot[1]),
+    )
+}
+
+/// [`trajectories`], each curve with its arrowhead (if the field is nonzero
+/// at the seed).
+pub fn trajectories_with_heads(
+    acc: impl Fn(f64, f64) -> f64,
+    root: &PhaseBox,
+) -> Vec<(Polyline, Option<Polyline>)> {
     let (w, h) = (
         root.theta[1] - root.theta[0],
         root.theta_dot[1] - root.theta_dot[0],
     );
     let (seeds_x, seeds_y) = (8usize, 6usize);
     let max_arc = 0.9;
+    // Local error per step, relative to the box; steps also move at most
+    // 1/600 of the box, so the polyline is smooth at pixel scale.
+    let tol = 1e-7;
+    let max_move = 1.0 / 600.0;
     let f = |s: (f64, f64)| (s.1, acc(s.0, s.1));
-    let inside = |s: (f64, f64)| s.0.is_finite() && s.1.is_finite() && root.contains(s.0, s.1);
-    // Step so that one step moves about 1/500 of the box.
-    let step = |s: (f64, f64)| {
-        let (a, b) = f(s);
-        let speed = (a / w).hypot(b / h);
-        if speed > 0.0 {
-            (1.0 / (500.0 * speed)).min(0.05)
-        } else {
-            0.05
-        }
-    };
+    let norm = |v: (f64, f64)| (v.0 / w).hypot(v.1 / h);
+    let finite = |s: (f64, f64)| s.0.is_finite() && s.1.is_finite();
     let mut out = Vec::new();
     for i in 0..seeds_x {
         for j in 0..seeds_y {
@@ -199,26 +314,51 @@ pub fn trajectories(acc: impl Fn(f64, f64) -> f64, root: &PhaseBox) -> Vec<Polyl
                 let mut s = seed;
                 let mut line = vec![s];
                 let mut arc = 0.0;
-                while arc < max_arc && line.len() < 20_000 {
-                    let dt = dir * step(s);
-                    let k1 = f(s);
-                    let k2 = f((s.0 + 0.5 * dt * k1.0, s.1 + 0.5 * dt * k1.1));
-                    let k3 = f((s.0 + 0.5 * dt * k2.0, s.1 + 0.5 * dt * k2.1));
-                    let k4 = f((s.0 + dt * k3.0, s.1 + dt * k3.1));
-                    let n = (
-                        s.0 + dt / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0),
-                        s.1 + dt / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1),
-                    );
-                    if !inside(n) {
+                let mut dt = {
+                    let v = norm(f(s));
+                    if v > 0.0 && v.is_finite() {
+                        max_move / v
+                    } else {
+                        0.0
+                    }
+                };
+                let mut steps = 0;
+                while dt > 0.0 && arc < max_arc && steps < 200_000 {
+                    steps += 1;
+                    let speed = norm(f(s));
+                    if !(speed.is_finite() && speed > 1e-12) {
+                        break; // at rest (an equilibrium) or singular
+                    }
+                    dt = dt.min(max_move / speed);
+                    let (n, e) = dp_step(&f, s, dir * dt);
+                    let err = norm(e);
+                    if !(finite(n) && err.is_finite()) {
+                        dt *= 0.25;
+                        if dt * speed < 1e-12 {
+                            break;
+                        }
+                        continue;
+                    }
+                    if err > tol {
+                        dt *= (0.9 * (tol / err).powf(0.2)).clamp(0.1, 0.9);
+                        if dt * speed < 1e-12 {
+                            break;
+                        }
+                        continue;
+                    }
+                    if !root.contains(n.0, n.1) {
+                        line.push(exit_point(root, s, n));
                         break;
                     }
-                    let moved = ((n.0 - s.0) / w).hypot((n.1 - s.1) / h);
-                    arc += moved;
+                    arc += norm((n.0 - s.0, n.1 - s.1));
                     s = n;
                     line.push(s);
-                    if moved < 1e-9 {
-                        break; // at rest (an equilibrium)
-                    }
+                    let grow = if err > 0.0 {
+                        (0.9 * (tol / err).powf(0.2)).clamp(1.0, 5.0)
+                    } else {
+                        5.0
+                    };
+                    dt *= grow;
                 }
                 both.push(line);
             }
@@ -227,10 +367,7 @@ pub fn trajectories(acc: impl Fn(f64, f64) -> f64, root: &PhaseBox) -> Vec<Polyl
             bwd.reverse();
             bwd.extend(fwd.iter().skip(1));
             if bwd.len() > 1 {
-                out.push(bwd);
-            }
-            if let Some(head) = arrowhead(seed, f(seed), w, h) {
-                out.push(head);
+                out.push((bwd, arrowhead(seed, f(seed), w, h)));
             }
         }
     }
@@ -252,4 +389,292 @@ fn arrowhead(at: (f64, f64), dir: (f64, f64), w: f64, h: f64) -> Option<Polyline
         (at.0 + len * bu * w, at.1 + len * bv * h)
     };
     Some(vec![wing(1.0), at, wing(-1.0)])
+}
+
+/// Phase curves in picture pixels (`(0, 0)` the top left of the plot area,
+/// `px` its size), thinned where they crowd: no two drawn curves come closer
+/// than about `spacing` pixels (marching squares levels near a singularity,
+/// spirals, trajectories merging onto one separatrix). Energy levels are
+/// considered coarse-to-fine, so the kept ones stay roughly evenly spaced.
+pub fn phase_portrait_px(
+    scene: &Scene,
+    variant: Variant,
+    root: &PhaseBox,
+    px: (u32, u32),
+    spacing: f64,
+) -> Vec<Vec<(f64, f64)>> {
+    let (w, h) = (
+        root.theta[1] - root.theta[0],
+        root.theta_dot[1] - root.theta_dot[0],
+    );
+    let (pw, ph) = (f64::from(px.0), f64::from(px.1));
+    let to_px = |(t, v): (f64, f64)| {
+        (
+            (t - root.theta[0]) / w * pw,
+            (root.theta_dot[1] - v) / h * ph,
+        )
+    };
+    let map = |l: &Polyline| -> Vec<(f64, f64)> { l.iter().copied().map(to_px).collect() };
+    let probe = Angle::new(0.5 * (root.theta[0] + root.theta[1]));
+    let min_len = 3.0 * spacing;
+    if scene.energy(&probe, 0.0_f64).is_some() {
+        let levels = level_lines_by_level(
+            |t, v| scene.energy(&Angle::new(t), v),
+            root,
+            (px.0 as usize / 2).clamp(64, 640),
+            (px.1 as usize / 2).clamp(48, 480),
+            25,
+        );
+        let curves: Vec<Vec<(f64, f64)>> = coarse_to_fine(levels.len())
+            .into_iter()
+            .flat_map(|k| levels[k].iter().map(map).collect::<Vec<_>>())
+            .collect();
+        thin(&curves, spacing, min_len)
+            .into_iter()
+            .map(|(_, piece)| simplify(&piece, 0.1))
+            .collect()
+    } else {
+        let traj =
+            trajectories_with_heads(|t, v| scene.acceleration(variant, &Angle::new(t), v), root);
+        let curves: Vec<Vec<(f64, f64)>> = traj.iter().map(|(l, _)| map(l)).collect();
+        let pieces = thin(&curves, spacing, min_len);
+        let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
+        for (k, (_, head)) in traj.iter().enumerate() {
+            // An arrowhead only where its curve is still drawn at the seed.
+            if let Some(head) = head {
+                let tip = to_px(head[1]);
+                let kept = pieces
+                    .iter()
+                    .filter(|(c, _)| *c == k)
+                    .any(|(_, p)| p.iter().any(|q| (q.0 - tip.0).hypot(q.1 - tip.1) <= 1.5));
+                if kept {
+                    out.push(map(head));
+                }
+            }
+        }
+        out.extend(pieces.into_iter().map(|(_, p)| simplify(&p, 0.1)));
+        out
+    }
+}
+
+/// `0..n` with the middle first, then quarters, … (bit-reversal-like), so a
+/// prefix is spread over the whole range.
+fn coarse_to_fine(n: usize) -> Vec<usize> {
+    let mut order = Vec::with_capacity(n);
+    let mut seen = vec![false; n];
+    let mut step = n.next_power_of_two();
+    while step >= 1 {
+        let mut k = step / 2;
+        while k < n {
+            if !seen[k] {
+                seen[k] = true;
+                order.push(k);
+            }
+            k += step.max(1);
+        }
+        if step == 1 {
+            break;
+        }
+        step /= 2;
+    }
+    for (k, s) in seen.iter().enumerate() {
+        if !s {
+            order.push(k);
+        }
+    }
+    order
+}
+
+/// Splits each curve (in order of priority) into the pieces that stay at
+/// least `spacing` pixels from every piece kept before, and from its own
+/// points more than `4 × spacing` back along it (a tight spiral). Pieces
+/// shorter than `min_len` are dropped. Returns `(curve index, piece)`.
+pub fn thin(
+    curves: &[Vec<(f64, f64)>],
+    spacing: f64,
+    min_len: f64,
+) -> Vec<(usize, Vec<(f64, f64)>)> {
+    type Grid = HashMap<(i64, i64), Vec<(usize, f64, (f64, f64))>>;
+    let cell = |p: (f64, f64)| {
+        (
+            (p.0 / spacing).floor() as i64,
+            (p.1 / spacing).floor() as i64,
+        )
+    };
+    let near = |grid: &Grid, id: usize, arc: f64, p: (f64, f64)| {
+        let (cx, cy) = cell(p);
+        (cx - 1..=cx + 1).any(|x| {
+            (cy - 1..=cy + 1).any(|y| {
+                grid.get(&(x, y)).is_some_and(|v| {
+                    v.iter().any(|&(o, a, q)| {
+                        (o != id || (arc - a).abs() > 4.0 * spacing)
+                            && (p.0 - q.0).hypot(p.1 - q.1) < spacing
+                    })
+                })
+            })
+        })
+    };
+    let mut grid: Grid = HashMap::new();
+    let mut out = Vec::new();
+    for (id, curve) in curves.iter().enumerate() {
+        // Resampled at most one pixel apart, with arc length.
+        let mut pts: Vec<((f64, f64), f64)> = Vec::new();
+        let mut arc = 0.0;
+        for (k, &p) in curve.iter().enumerate() {
+            if !(p.0.is_finite() && p.1.is_finite()) {
+                continue;
+            }
+            if k > 0 {
+                let q = curve[k - 1];
+                let d = (p.0 - q.0).hypot(p.1 - q.1);
+                let n = d.ceil().max(1.0) as usize;
+                for i in 1..n {
+                    let t = i as f64 / n as f64;
+                    pts.push(((q.0 + t * (p.0 - q.0), q.1 + t * (p.1 - q.1)), arc + t * d));
+                }
+                arc += d;
+            }
+            pts.push((p, arc));
+        }
+        let mut piece: Vec<((f64, f64), f64)> = Vec::new();
+        let mut pending: Grid = HashMap::new();
+        let mut flush =
+            |piece: &mut Vec<((f64, f64), f64)>, pending: &mut Grid, grid: &mut Grid| {
+                let len = match (piece.first(), piece.last()) {
+                    (Some(a), Some(b)) => b.1 - a.1,
+                    _ => 0.0,
+                };
+                if len >= min_len {
+                    for (k, v) in pending.drain() {
+                        grid.entry(k).or_default().extend(v);
+                    }
+                    out.push((id, piece.iter().map(|(p, _)| *p).collect()));
+                }
+                pending.clear();
+                piece.clear();
+            };
+        for &(p, a) in &pts {
+            if near(&grid, id, a, p) || near(&pending, id, a, p) {
+                flush(&mut piece, &mut pending, &mut grid);
+            } else {
+                piece.push((p, a));
+                pending.entry(cell(p)).or_default().push((id, a, p));
+            }
+        }
+        flush(&mut piece, &mut pending, &mut grid);
+    }
+    out
+}
+
+/// Douglas–Peucker: drops points within `tol` of the chord of their
+/// neighbours (pixel units), so vector output stays small.
+pub fn simplify(pts: &[(f64, f64)], tol: f64) -> Vec<(f64, f64)> {
+    if pts.len() < 3 {
+        return pts.to_vec();
+    }
+    let mut keep = vec![false; pts.len()];
+    keep[0] = true;
+    keep[pts.len() - 1] = true;
+    let mut stack = vec![(0, pts.len() - 1)];
+    while let Some((a, b)) = stack.pop() {
+        let (p, q) = (pts[a], pts[b]);
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        let len = dx.hypot(dy);
+        let mut worst = (0.0, a);
+        for (i, r) in pts.iter().enumerate().take(b).skip(a + 1) {
+            let d = if len > 0.0 {
+                ((r.0 - p.0) * dy - (r.1 - p.1) * dx).abs() / len
+            } else {
+                (r.0 - p.0).hypot(r.1 - p.1)
+            };
+            if d > worst.0 {
+                worst = (d, i);
+            }
+        }
+        if worst.0 > tol {
+            keep[worst.1] = true;
+            stack.push((a, worst.1));
+            stack.push((worst.1, b));
+        }
+    }
+    pts.iter()
+        .zip(keep)
+        .filter_map(|(p, k)| k.then_some(*p))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn trajectories_are_accurate_and_clipped_at_the_edge() {
+        // θ̈ = −θ: circles θ² + θ̇² = const; the box cuts most of them.
+        let root = PhaseBox {
+            theta: [-1.0, 1.0],
+            theta_dot: [-0.7, 0.7],
+        };
+        let traj = trajectories_with_heads(|t, _| -t, &root);
+        assert!(!traj.is_empty());
+        let on_edge = |p: (f64, f64)| {
+            p.0 == root.theta[0]
+                || p.0 == root.theta[1]
+                || p.1 == root.theta_dot[0]
+                || p.1 == root.theta_dot[1]
+        };
+        let mut clipped = 0;
+        for (line, _) in &traj {
+            let e0 = line[0].0.powi(2) + line[0].1.powi(2);
+            for p in line {
+                assert!(root.contains(p.0, p.1), "{p:?} outside");
+                let e = p.0.powi(2) + p.1.powi(2);
+                assert!(
+                    (e - e0).abs() < 1e-5 * (1.0 + e0),
+                    "energy drift {e} vs {e0}"
+                );
+            }
+            for end in [line[0], line[line.len() - 1]] {
+                if on_edge(end) {
+                    clipped += 1;
+                }
+            }
+        }
+        assert!(clipped > 10, "curves leaving the box end on its edge");
+    }
+
+    #[test]
+    fn crowded_lines_are_thinned_to_the_spacing() {
+        // 60 vertical lines one pixel apart, 100 pixels long.
+        let curves: Vec<Vec<(f64, f64)>> = (0..60)
+            .map(|i| vec![(f64::from(i), 0.0), (f64::from(i), 100.0)])
+            .collect();
+        let kept = thin(&curves, 6.0, 18.0);
+        let xs: Vec<f64> = kept.iter().map(|(_, p)| p[0].0).collect();
+        assert!(xs.len() >= 8 && xs.len() <= 12, "{xs:?}");
+        for (i, a) in xs.iter().enumerate() {
+            for b in &xs[i + 1..] {
+                assert!((a - b).abs() >= 6.0, "{a} and {b} too close");
+            }
+        }
+        // A line far from the others is kept whole.
+        let lone = vec![
+            vec![(0.0, 0.0), (100.0, 0.0)],
+            vec![(0.0, 50.0), (100.0, 50.0)],
+        ];
+        assert_eq!(thin(&lone, 6.0, 18.0).len(), 2);
+    }
+
+    #[test]
+    fn simplify_keeps_shape() {
+        let pts: Vec<(f64, f64)> = (0..=100).map(|i| (f64::from(i), 0.0)).collect();
+        assert_eq!(simplify(&pts, 0.1), vec![(0.0, 0.0), (100.0, 0.0)]);
+        let arc: Vec<(f64, f64)> = (0..=90)
+            .map(|i| {
+                let t = f64::from(i).to_radians();
+                (100.0 * t.cos(), 100.0 * t.sin())
+            })
+            .collect();
+        let s = simplify(&arc, 0.1);
+        assert!(s.len() < arc.len() && s.len() > 10);
+    }
 }

@@ -95,7 +95,9 @@ impl Class {
         }
     }
 
-    /// Fill colour (Paul Tol's colour-blind-safe "light" and "muted" schemes).
+    /// Fill colour: Paul Tol's colour-blind-safe "light" and "muted" schemes
+    /// for the cells, light grey for undecided, near-white (drawn hatched)
+    /// for undefined.
     pub fn rgb(self) -> (u8, u8, u8) {
         match self {
             Class::Persists => (0x77, 0xAA, 0xDD),
@@ -103,7 +105,7 @@ impl Class {
             Class::NonUniqueness => (0xEE, 0x88, 0x66),
             Class::NonExistence => (0xAA, 0x44, 0x99),
             Class::Undecided => (0xC8, 0xC8, 0xC8),
-            Class::Undefined => (0x55, 0x55, 0x55),
+            Class::Undefined => (0xF7, 0xF7, 0xF7),
         }
     }
 }

@@ -1,7 +1,10 @@
 //! `detach atlas`, `detach pave`, `detach scenes`.
 
 use super::{CliError, CliResult};
-use detach::atlas::{draw_atlas, plot_area_pixels, AtlasStyle, PictureInfo};
+use detach::atlas::{
+    draw_atlas_files, parse_size, plot_area_pixels, AtlasStyle, Formats, PictureInfo, MIN_HEIGHT,
+    MIN_WIDTH,
+};
 use detach::param::{parse_assignment, ParamSet};
 use detach::pave::{pave_scene_in, standard_cells, AreaBounds, PaveOptions, Paving};
 use detach::scene::{Domain, Scene, SceneId, Variant, REGION_LABELS, REGION_NAMES};
@@ -40,6 +43,20 @@ pub struct AtlasArgs {
     pub scene: Vec<String>,
     #[command(flatten)]
     pub flags: PaveFlags,
+    /// Restrict θ to a window `LO:HI` (decimal text or `pi`) inside each
+    /// scene's domain.
+    #[arg(long, value_name = "LO:HI", allow_hyphen_values = true)]
+    pub theta: Option<String>,
+    /// Restrict θ̇ to a window `LO:HI` inside each scene's domain.
+    #[arg(long = "theta-dot", value_name = "LO:HI", allow_hyphen_values = true)]
+    pub theta_dot: Option<String>,
+    /// Picture size in pixels, `WxH` (default 1200x800, at least 640x400).
+    #[arg(long, value_name = "WxH")]
+    pub size: Option<String>,
+    /// Which picture files: `svg` (vector only), `png` or `all`. PDF is not
+    /// supported: convert the SVG (e.g. `rsvg-convert -f pdf`).
+    #[arg(long, default_value = "all", value_name = "FORMAT")]
+    pub format: String,
 }
 
 #[derive(clap::Args, Debug)]
@@ -500,22 +517,52 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
             )));
         }
     }
-    let style = AtlasStyle::default();
+    let style = match &args.size {
+        None => AtlasStyle::default(),
+        Some(t) => {
+            let (width, height) = parse_size(t, (MIN_WIDTH, MIN_HEIGHT))
+                .map_err(|e| CliError::usage(format!("--size: {e}")))?;
+            AtlasStyle { width, height }
+        }
+    };
+    let formats =
+        Formats::parse(&args.format).map_err(|e| CliError::usage(format!("--format: {e}")))?;
+    let (th, thd) = (
+        split_window("theta", &args.theta)?,
+        split_window("theta-dot", &args.theta_dot)?,
+    );
     let (w, h) = plot_area_pixels(&style);
     // About one pixel: the largest power of two not above 1/max(w, h).
     let pixel_eps = (1.0 / w.max(h) as f64).log2().floor().exp2();
     let opts = options(&args.flags, pixel_eps)?;
-    // Validate every scene before the long work starts.
+    // Validate every scene and window before the long work starts.
     let scenes = ids
         .iter()
-        .map(|&id| Scene::build(id, &overrides_for(id, &overrides)).map_err(CliError::usage))
-        .collect::<Result<Vec<_>, _>>()?;
+        .map(|&id| {
+            let (scene, params) =
+                Scene::build(id, &overrides_for(id, &overrides)).map_err(CliError::usage)?;
+            fn refs(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
+                w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()])
+            }
+            let (domain, clipped) = scene
+                .domain()
+                .window_clipped(refs(&th), refs(&thd))
+                .map_err(|e| CliError::usage(format!("{}: {e}", id.name())))?;
+            for c in clipped {
+                eprintln!(
+                    "detach: note: {}: window end {c} is within rounding of the domain's end; \
+                     clipped to the domain",
+                    id.name()
+                );
+            }
+            Ok((scene, params, domain))
+        })
+        .collect::<Result<Vec<_>, CliError>>()?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", args.out.display())))?;
     let mut reports = Vec::new();
-    for (scene, params) in &scenes {
-        let (paving, report) =
-            pave_and_report(scene, &scene.domain(), params, args.flags.variant, opts)?;
+    for (scene, params, domain) in &scenes {
+        let (paving, report) = pave_and_report(scene, domain, params, args.flags.variant, opts)?;
         let info = PictureInfo {
             scene,
             variant: args.flags.variant,
@@ -524,9 +571,13 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
         };
         let stem = args.out.join(scene.id().name());
         // Files first, then the table: a closed stdout never costs a file.
-        draw(&paving, &info, &style, &stem)?;
+        draw(&paving, &info, &style, formats, &stem)?;
         print_table(&report);
-        outln!("  wrote {}.svg and .png", stem.display());
+        outln!(
+            "  wrote {}.{}",
+            stem.display(),
+            formats.extensions().join(" and .")
+        );
         reports.push(report);
     }
     let summary = args.out.join("summary.json");
@@ -540,13 +591,20 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
     Ok(())
 }
 
-fn draw(paving: &Paving, info: &PictureInfo, style: &AtlasStyle, stem: &Path) -> CliResult {
-    draw_atlas(
+fn draw(
+    paving: &Paving,
+    info: &PictureInfo,
+    style: &AtlasStyle,
+    formats: Formats,
+    stem: &Path,
+) -> CliResult {
+    let (svg, png) = (stem.with_extension("svg"), stem.with_extension("png"));
+    draw_atlas_files(
         paving,
         info,
         style,
-        &stem.with_extension("svg"),
-        &stem.with_extension("png"),
+        formats.svg.then_some(svg.as_path()),
+        formats.png.then_some(png.as_path()),
     )
     .map_err(|e| CliError::runtime(format!("drawing {}: {e}", stem.display())))
 }

@@ -5,7 +5,7 @@ use detach::param::{enclose_decimal, parse_assignment, ParamSet};
 use detach::roots::critical::critical_curve;
 use detach::roots::equations::kappa_alpha;
 use detach::roots::kappa0::{Bound, Verdict};
-use detach::roots::plot::{plot_critical, plot_tangency};
+use detach::roots::plot::{plot_critical_with, plot_tangency_with};
 use detach::roots::tangency::{tangency_scan, Outcome};
 use detach::roots::{
     prove_kappa0, solve_2_10, solve_2_12, solve_2_9, solve_3_3, Budget, EquationId, EquationRoots,
@@ -71,6 +71,37 @@ pub struct CriticalCurveArgs {
     pub kappa_max: String,
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub figure: FigureFlags,
+}
+
+/// Figure size and formats of `tangency` and `critical-curve`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct FigureFlags {
+    /// Figure size in pixels, `WxH` (default 900x600 for tangency, 900x700
+    /// for critical-curve; at least 400x300).
+    #[arg(long, value_name = "WxH")]
+    pub size: Option<String>,
+    /// Which figure files: `svg` (vector only), `png` or `all`. PDF is not
+    /// supported: convert the SVG (e.g. `rsvg-convert -f pdf`).
+    #[arg(long, default_value = "all", value_name = "FORMAT")]
+    pub format: String,
+}
+
+impl FigureFlags {
+    fn options(&self) -> Result<detach::roots::plot::FigureOptions, CliError> {
+        let size = self
+            .size
+            .as_deref()
+            .map(|s| {
+                detach::atlas::parse_size(s, detach::roots::plot::MIN_SIZE)
+                    .map_err(|e| CliError::usage(format!("--size: {e}")))
+            })
+            .transpose()?;
+        let formats = detach::atlas::Formats::parse(&self.format)
+            .map_err(|e| CliError::usage(format!("--format: {e}")))?;
+        Ok(detach::roots::plot::FigureOptions { size, formats })
+    }
 }
 
 /// (2.10) at κ = κ₀ and at κ = κ₀(1 ± 10⁻ᵏ): what the isolator certifies.
@@ -84,6 +115,8 @@ pub struct TangencyArgs {
     pub k_max: i32,
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub figure: FigureFlags,
 }
 
 #[derive(Serialize)]
@@ -474,6 +507,7 @@ pub const MAX_CRITICAL_CELLS: usize = 1 << 18;
 
 /// `detach critical-curve`.
 pub fn run_critical_curve(args: &CriticalCurveArgs) -> CliResult {
+    let figure = args.figure.options()?;
     power_of_two("alpha-boxes", args.alpha_boxes)?;
     power_of_two("kappa-boxes", args.kappa_boxes)?;
     let cells = args.alpha_boxes * args.kappa_boxes;
@@ -502,7 +536,7 @@ pub fn run_critical_curve(args: &CriticalCurveArgs) -> CliResult {
         &cc,
         arguments.clone(),
     )?];
-    files.extend(plot_critical(&cc, &args.out).map_err(CliError::runtime)?);
+    files.extend(plot_critical_with(&cc, &args.out, &figure).map_err(CliError::runtime)?);
     if args.json {
         outln!("{}", to_json(&cc, arguments)?);
     } else {
@@ -548,6 +582,7 @@ pub fn run_tangency(args: &TangencyArgs) -> CliResult {
             args.k_max
         )));
     }
+    let figure = args.figure.options()?;
     let rep = tangency_scan(args.k_max, &Budget::default());
     let arguments = serde_json::json!({ "k_max": args.k_max });
     let mut files = vec![write_json(
@@ -556,7 +591,7 @@ pub fn run_tangency(args: &TangencyArgs) -> CliResult {
         &rep,
         arguments.clone(),
     )?];
-    files.extend(plot_tangency(&rep, &args.out).map_err(CliError::runtime)?);
+    files.extend(plot_tangency_with(&rep, &args.out, &figure).map_err(CliError::runtime)?);
     if args.json {
         outln!("{}", to_json(&rep, arguments)?);
         return Ok(());
@@ -719,12 +754,20 @@ mod tests {
             kappa_boxes: 8,
             kappa_max: "0.25".into(),
             json: false,
+            figure: FigureFlags {
+                size: None,
+                format: "all".into(),
+            },
         };
         run_critical_curve(&cc).unwrap();
         let t = TangencyArgs {
             out: dir.join("t"),
             k_max: 2,
             json: false,
+            figure: FigureFlags {
+                size: Some("640x480".into()),
+                format: "all".into(),
+            },
         };
         run_tangency(&t).unwrap();
         for f in [
@@ -743,6 +786,16 @@ mod tests {
             ..cc
         };
         assert_eq!(run_critical_curve(&bad).unwrap_err().code, 2);
+        for (size, format) in [(Some("10x10"), "all"), (None, "pdf"), (None, "gif")] {
+            let bad = TangencyArgs {
+                figure: FigureFlags {
+                    size: size.map(String::from),
+                    format: format.into(),
+                },
+                ..t.clone()
+            };
+            assert_eq!(run_tangency(&bad).unwrap_err().code, 2, "{size:?} {format}");
+        }
         let _ = std::fs::remove_dir_all(&dir);
     }
 }
