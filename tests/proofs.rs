@@ -159,8 +159,13 @@ fn paper_checks_cite_existing_proof_files() {
     for id in detach::claims::ids() {
         if let Some(files) = detach::claims::proof_file(id) {
             for f in files.split(", ") {
-                let bytes = std::fs::read(root.join(f)).unwrap_or_else(|e| panic!("{id}: {f}: {e}"));
-                assert_eq!(check_bytes(&bytes).unwrap().verdict, Verdict::Valid, "{id}: {f}");
+                let bytes =
+                    std::fs::read(root.join(f)).unwrap_or_else(|e| panic!("{id}: {f}: {e}"));
+                assert_eq!(
+                    check_bytes(&bytes).unwrap().verdict,
+                    Verdict::Valid,
+                    "{id}: {f}"
+                );
                 cited += 1;
             }
         }

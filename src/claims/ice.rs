@@ -15,7 +15,9 @@
 //! and `u = sin θ`. An identity that holds for independent symbols holds for
 //! the true values.
 
-use super::exact::{angle_d, identity_test, sin_cos_of_tan_half, solve, Identity, Rng, Sample, Q};
+use super::exact::{
+    angle_d, identity_test, sin_cos_of_tan_half, solve, verdict_of, Identity, Rng, Sample, Q,
+};
 use super::smooth::{
     dt_dtheta, free_lambda_ddot, spin_rates, t_rot_printed, tau_printed, u_printed, P2,
 };
@@ -126,32 +128,6 @@ fn rp(r: &mut Rng) -> Pt {
             ("tan(theta/2)".into(), t.get().to_f64()),
             ("theta_dot".into(), wf),
         ],
-    }
-}
-
-fn verdict_of(ids: &[(&str, &Identity)], what: &str, right: &str) -> Outcome {
-    let w: serde_json::Map<String, serde_json::Value> =
-        ids.iter().map(|(k, i)| (k.to_string(), i.json())).collect();
-    if ids.iter().all(|(_, i)| i.agrees()) {
-        Outcome::new(
-            Verdict::Confirmed,
-            Strength::IdentityTest,
-            format!("{what}: exact agreement at random rational points"),
-            w.into(),
-        )
-    } else {
-        let bad: Vec<&str> = ids
-            .iter()
-            .filter(|(_, i)| !i.agrees())
-            .map(|(k, _)| *k)
-            .collect();
-        Outcome::new(
-            Verdict::Error,
-            Strength::Exact,
-            format!("{what}: exact difference ({})", bad.join(", ")),
-            w.into(),
-        )
-        .correct(right.to_string())
     }
 }
 

@@ -209,9 +209,9 @@ pub fn proof_file(id: &str) -> Option<&'static str> {
         // The band: two roots below, none above, on 31 α-boxes.
         "S2.case3" => Some("proofs/critical-band.json"),
         // Disjoint certified area bounds of the printed and derived sets.
-        "F1.10" | "F1.11" => Some(
-            "proofs/atlas-viscous-disc-printed.json, proofs/atlas-viscous-disc-derived.json",
-        ),
+        "F1.10" | "F1.11" => {
+            Some("proofs/atlas-viscous-disc-printed.json, proofs/atlas-viscous-disc-derived.json")
+        }
         _ => None,
     }
 }

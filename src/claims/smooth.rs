@@ -8,7 +8,7 @@
 //! `A θ̈ = ∂T/∂θ − a cos θ N` with `Λ̈ = 0`, solved exactly for `(z̈, θ̈, N)`.
 
 use super::exact::{
-    angle_d, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, Identity, Rng, Sample, Q,
+    angle_d, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, verdict_of, Rng, Sample, Q,
 };
 use super::{enc, Claim, Outcome, Strength, Verdict};
 use crate::roots::critical::{band_cell, g as g_crit};
@@ -199,32 +199,6 @@ fn rp(r: &mut Rng) -> (P2<Q>, Q, Q, Q, Vec<(String, f64)>) {
             ("theta_dot".into(), wf),
         ],
     )
-}
-
-fn verdict_of(ids: &[(&str, &Identity)], what: &str, right: &str) -> Outcome {
-    let w: serde_json::Map<String, serde_json::Value> =
-        ids.iter().map(|(k, i)| (k.to_string(), i.json())).collect();
-    if ids.iter().all(|(_, i)| i.agrees()) {
-        Outcome::new(
-            Verdict::Confirmed,
-            Strength::IdentityTest,
-            format!("{what}: exact agreement at random rational points"),
-            w.into(),
-        )
-    } else {
-        let bad: Vec<&str> = ids
-            .iter()
-            .filter(|(_, i)| !i.agrees())
-            .map(|(k, _)| *k)
-            .collect();
-        Outcome::new(
-            Verdict::Error,
-            Strength::Exact,
-            format!("{what}: exact difference ({})", bad.join(", ")),
-            w.into(),
-        )
-        .correct(right.to_string())
-    }
 }
 
 // ---------------------------------------------------------------- formulas

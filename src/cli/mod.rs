@@ -12,8 +12,8 @@ macro_rules! outln {
 pub mod area;
 pub mod atlas;
 pub mod methods;
-pub mod proofs;
 pub mod paper;
+pub mod proofs;
 pub mod roots;
 
 use std::fmt;
