@@ -1,0 +1,1009 @@
+//! Paving methods and the level-synchronous engine they share.
+//!
+//! Every method builds the same kind of tree — midpoint splits, splits at
+//! recorded exact points, labelled leaves — and every label it writes is one
+//! that the natural interval extension confirms on that leaf, which is all the
+//! proof checker recomputes. Stronger enclosures (centred forms, contractors)
+//! therefore only *steer*: they say where to split, or that a box is worth
+//! certifying by a few extra splits, never a label on their own.
+//!
+//! - `natural`: label by the natural extension, bisect undecided boxes.
+//! - `centred`: natural ∩ mean-value form ∩ monotonicity in θ̇; a box these
+//!   decide is certified by a small local subdivision.
+//! - `contract`: on every new θ-slab, the exact θ̇-partition of each quadratic
+//!   constraint into certainly in / certainly out / undecided, recorded as
+//!   splits at the contraction points; removed parts are verified leaves.
+//! - `slices`: the contraction with θ-only refinement: an adaptive 1-D
+//!   subdivision in θ, the budget spent where the undecided area is largest.
+
+use super::{
+    CellSpec, ConstraintSet, Label, Leaf, Node, PaveError, PaveOptions, PaveStats, Paving,
+    PhaseBox, StopReason, MAX_CONSTRAINTS,
+};
+use crate::scalar::{is_defined, Dual};
+use crate::scene::Quadratic;
+use inari::{DecInterval, Interval};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::fmt;
+use std::str::FromStr;
+use std::sync::Arc;
+
+/// A paving method (`--method`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Natural interval extension and bisection.
+    #[default]
+    Natural,
+    /// Mean-value form and monotonicity in θ̇ intersected with the natural
+    /// enclosure, decided boxes certified by local subdivision.
+    Centred,
+    /// Exact contraction of each quadratic in θ̇ on every new θ-slab.
+    Contract,
+    /// Adaptive θ-slabs, each split in θ̇ at its contraction points.
+    Slices,
+}
+
+impl Method {
+    pub const ALL: [Method; 4] = [
+        Method::Natural,
+        Method::Centred,
+        Method::Contract,
+        Method::Slices,
+    ];
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Natural => "natural",
+            Method::Centred => "centred",
+            Method::Contract => "contract",
+            Method::Slices => "slices",
+        }
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| {
+                format!(
+                    "unknown method `{s}` (known: {})",
+                    Method::ALL.map(|m| m.name()).join(", ")
+                )
+            })
+    }
+}
+
+/// How to pave, beyond resolution and budget.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MethodOptions {
+    pub method: Method,
+    /// Constraints whose labels matter (bit `i` = constraint `i`); a box is
+    /// refined only while one of these is undecided. `None`: all of them.
+    pub relevant: Option<u8>,
+}
+
+impl MethodOptions {
+    pub fn new(method: Method) -> Self {
+        MethodOptions {
+            method,
+            relevant: None,
+        }
+    }
+    /// Refines only for the constraints a region or cell uses.
+    pub fn for_cell(method: Method, cell: &CellSpec) -> Self {
+        let mask = cell
+            .0
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| l.is_some())
+            .fold(0u8, |m, (i, _)| m | 1 << i);
+        MethodOptions {
+            method,
+            relevant: Some(mask),
+        }
+    }
+}
+
+type Labels = [Label; MAX_CONSTRAINTS];
+
+/// A small subtree in preorder, produced for one box.
+#[derive(Clone, Copy, Debug)]
+enum Local {
+    Mid(u8),
+    At(u8, f64),
+    Leaf(Labels),
+    /// Stays open: refined at the next level.
+    Open,
+}
+
+/// What processing one open box decided.
+enum Outcome {
+    Leaf,
+    Split(u8),
+    Tree(Vec<Local>),
+}
+
+struct Open<Sl> {
+    node: u32,
+    bx: PhaseBox,
+    slab: Option<Arc<Sl>>,
+    /// The slab was computed for this box's θ-interval at this level: the
+    /// contraction has not seen it yet.
+    fresh: bool,
+}
+
+/// Arena node while building; children of a split are `a` and `a + 1`.
+#[derive(Clone, Copy)]
+enum Building {
+    Open,
+    Leaf(u32),
+    Split(u8, u32),
+    SplitAt(u8, f64, u32),
+}
+
+/// Leaves one certification may add (bounds the work on a hard box).
+const CERTIFY_LEAVES: u32 = 16;
+
+/// Relative inward steps tried to place a contraction point so the removed
+/// part verifies.
+const SHRINK: [f64; 5] = [
+    1.0 / (1u64 << 40) as f64,
+    1.0 / (1u64 << 26) as f64,
+    1.0 / (1u64 << 16) as f64,
+    1.0 / 256.0,
+    1.0 / 16.0,
+];
+
+struct Ctx<'a, S: ConstraintSet> {
+    set: &'a S,
+    root: PhaseBox,
+    method: Method,
+    n: usize,
+    same_as: Vec<Option<usize>>,
+    relevant: u8,
+    min_width: [f64; 2],
+}
+
+/// Per-box work counters.
+#[derive(Default, Clone, Copy)]
+struct Work {
+    evals: u64,
+    slabs: u64,
+}
+
+impl<S: ConstraintSet> Ctx<'_, S> {
+    fn rel(&self, b: &PhaseBox, axis: usize) -> f64 {
+        let (r, d) = if axis == 0 {
+            (b.theta, self.root.theta)
+        } else {
+            (b.theta_dot, self.root.theta_dot)
+        };
+        (r[1] - r[0]) / (d[1] - d[0])
+    }
+
+    fn wide(&self, b: &PhaseBox) -> [bool; 2] {
+        [
+            b.theta[1] - b.theta[0] > self.min_width[0],
+            b.theta_dot[1] - b.theta_dot[0] > self.min_width[1],
+        ]
+    }
+
+    /// The axis to refine an undecided box along, if any. `natural`,
+    /// `centred`, `contract`: the relatively wider axis, θ̇ on ties (slabs
+    /// are then shared as long as possible). `slices`: θ only.
+    fn choose_axis(&self, b: &PhaseBox) -> Option<u8> {
+        let w = self.wide(b);
+        let can = [w[0] && b.can_split(0), w[1] && b.can_split(1)];
+        if self.method == Method::Slices {
+            return can[0].then_some(0);
+        }
+        match can {
+            [false, false] => None,
+            [true, false] => Some(0),
+            [false, true] => Some(1),
+            [true, true] => Some(if self.rel(b, 0) > self.rel(b, 1) {
+                0
+            } else {
+                1
+            }),
+        }
+    }
+
+    /// The box is above the resolution but one ulp wide along such an axis.
+    fn at_ulp_limit(&self, b: &PhaseBox) -> bool {
+        let w = self.wide(b);
+        let axes: &[usize] = if self.method == Method::Slices {
+            &[0]
+        } else {
+            &[0, 1]
+        };
+        axes.iter().any(|&a| w[a] && !b.can_split(a))
+    }
+
+    fn natural(&self, slab: &S::Slab, b: &PhaseBox, work: &mut Work) -> Labels {
+        work.evals += 1;
+        let mut labels = [Label::ProvedOut; MAX_CONSTRAINTS];
+        for (l, g) in labels
+            .iter_mut()
+            .zip(self.set.enclose(slab, b.theta_dot_interval()))
+        {
+            *l = Label::from_enclosure(g);
+        }
+        for (i, s) in self.same_as.iter().enumerate() {
+            if let Some(j) = *s {
+                labels[i] = labels[j];
+            }
+        }
+        labels
+    }
+
+    fn decided_mask(&self, labels: &Labels) -> u8 {
+        (0..self.n)
+            .filter(|&i| labels[i].is_decided())
+            .fold(0, |m, i| m | 1 << i)
+    }
+
+    fn undecided(&self, labels: &Labels) -> bool {
+        self.decided_mask(labels) & self.relevant != self.relevant
+    }
+
+    /// Constraints computed (not copies of another).
+    fn own(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.n).filter(|&i| self.same_as[i].is_none())
+    }
+
+    /// A mask over own constraints extended to their copies.
+    fn with_copies(&self, m: u8) -> u8 {
+        (0..self.n).fold(m, |acc, i| match self.same_as[i] {
+            Some(j) if m >> j & 1 == 1 => acc | 1 << i,
+            _ => acc,
+        })
+    }
+
+    fn process(&self, o: &Open<S::Slab>, labels: &Labels, work: &mut Work) -> Outcome {
+        let slab = o
+            .slab
+            .as_ref()
+            .expect("slabs are assigned before processing");
+        if !self.undecided(labels) {
+            return Outcome::Leaf;
+        }
+        match self.method {
+            Method::Natural => {}
+            Method::Centred => {
+                if let Some(t) = self.centred(slab, &o.bx, labels, work) {
+                    return Outcome::Tree(t);
+                }
+            }
+            Method::Contract | Method::Slices => {
+                if o.fresh {
+                    if let Some(t) = self.contract(slab, &o.bx, work) {
+                        return Outcome::Tree(t);
+                    }
+                }
+            }
+        }
+        match self.choose_axis(&o.bx) {
+            Some(ax) => Outcome::Split(ax),
+            None => Outcome::Leaf,
+        }
+    }
+
+    /// Centred method: when natural ∩ mean-value ∩ monotonicity decides
+    /// every relevant constraint (or, at the resolution, some), certify it.
+    fn centred(
+        &self,
+        slab: &Arc<S::Slab>,
+        b: &PhaseBox,
+        labels: &Labels,
+        work: &mut Work,
+    ) -> Option<Vec<Local>> {
+        let mut decided = self.decided_mask(labels);
+        let mut gained = 0u8;
+        for i in self.own() {
+            if labels[i] != Label::Undecided {
+                continue;
+            }
+            let q = self.set.quadratic(slab, i)?;
+            if centred_label(&q, b.theta_dot_interval()).is_decided() {
+                gained |= 1 << i;
+            }
+        }
+        gained = self.with_copies(gained);
+        if gained == 0 {
+            return None;
+        }
+        decided |= gained;
+        let all = decided & self.relevant == self.relevant;
+        if !all && self.choose_axis(b).is_some() {
+            return None;
+        }
+        let mut budget = CERTIFY_LEAVES;
+        self.certify(b, slab, gained & self.relevant, &mut budget, work)
+    }
+
+    /// A subtree whose leaves all carry natural labels deciding every
+    /// constraint in `wanted`, by bisection within `budget` leaves.
+    fn certify(
+        &self,
+        b: &PhaseBox,
+        slab: &Arc<S::Slab>,
+        wanted: u8,
+        budget: &mut u32,
+        work: &mut Work,
+    ) -> Option<Vec<Local>> {
+        let labels = self.natural(slab, b, work);
+        if self.decided_mask(&labels) & wanted == wanted {
+            return Some(vec![Local::Leaf(labels)]);
+        }
+        if *budget < 2 {
+            return None;
+        }
+        *budget -= 1;
+        let axis = self.certify_axis(b, slab, wanted)?;
+        let (lo, hi) = b.split(axis);
+        let (slo, shi) = if axis == 0 {
+            work.slabs += 2;
+            (
+                Arc::new(self.set.slab(lo.theta_interval())),
+                Arc::new(self.set.slab(hi.theta_interval())),
+            )
+        } else {
+            (slab.clone(), slab.clone())
+        };
+        let mut out = vec![Local::Mid(axis as u8)];
+        out.extend(self.certify(&lo, &slo, wanted, budget, work)?);
+        out.extend(self.certify(&hi, &shi, wanted, budget, work)?);
+        Some(out)
+    }
+
+    /// Split θ̇ when its dependency (c₂θ̇² + c₁θ̇) costs more width than the
+    /// θ-enclosure of the coefficients, θ otherwise.
+    fn certify_axis(&self, b: &PhaseBox, slab: &S::Slab, wanted: u8) -> Option<usize> {
+        let can = [b.can_split(0), b.can_split(1)];
+        let mut prefer_w = self.rel(b, 1) >= self.rel(b, 0);
+        let w = b.theta_dot_interval();
+        let mid = DecInterval::new(point(b.midpoint(1)));
+        let (mut dep, mut coef) = (0.0f64, 0.0f64);
+        let mut any = false;
+        for i in self.own().filter(|&i| wanted >> i & 1 == 1) {
+            if let Some(q) = self.set.quadratic(slab, i) {
+                let (Some(whole), Some(at_mid)) = (
+                    q.eval(DecInterval::new(w)).interval(),
+                    q.eval(mid).interval(),
+                ) else {
+                    continue;
+                };
+                any = true;
+                coef = coef.max(at_mid.wid());
+                dep = dep.max(whole.wid() - at_mid.wid());
+            }
+        }
+        if any {
+            prefer_w = dep >= coef;
+        }
+        match (prefer_w, can) {
+            (true, [_, true]) | (false, [false, true]) => Some(1),
+            (_, [true, _]) => Some(0),
+            _ => None,
+        }
+    }
+
+    /// Contraction of a box on a new θ-slab: the θ̇-partition into parts
+    /// decided for every relevant constraint (verified leaves) and the rest
+    /// (open, or undecided leaves at the resolution). `None` when it
+    /// removes nothing.
+    fn contract(&self, slab: &Arc<S::Slab>, b: &PhaseBox, work: &mut Work) -> Option<Vec<Local>> {
+        let rel_own: Vec<usize> = self
+            .own()
+            .filter(|&i| self.with_copies(1 << i) & self.relevant != 0)
+            .collect();
+        let mut qs = Vec::with_capacity(rel_own.len());
+        for &i in &rel_own {
+            let q = self.set.quadratic(slab, i)?;
+            qs.push(Steer::new(&q)?);
+        }
+        let [w0, w1] = b.theta_dot;
+        let mut pts: Vec<f64> = Vec::new();
+        for s in &qs {
+            s.breakpoints(&mut pts);
+        }
+        pts.push(0.0);
+        pts.retain(|p| w0 < *p && *p < w1);
+        pts.sort_by(f64::total_cmp);
+        pts.dedup();
+        // Segments with a tentative label per relevant constraint.
+        let mut segs: Vec<Seg> = Vec::new();
+        let mut lo = w0;
+        for &hi in pts.iter().chain(std::iter::once(&w1)) {
+            let m = 0.5 * lo + 0.5 * hi;
+            let mut t = [None; MAX_CONSTRAINTS];
+            for (k, s) in qs.iter().enumerate() {
+                t[k] = s.tentative(m);
+            }
+            match segs.last_mut() {
+                Some(last) if last.tentative == t => last.hi = hi,
+                _ => segs.push(Seg {
+                    lo,
+                    hi,
+                    tentative: t,
+                    tree: None,
+                }),
+            }
+            lo = hi;
+        }
+        let k = qs.len();
+        let decided = |s: &Seg| s.tentative[..k].iter().all(|t| t.is_some());
+        // Neighbouring decided parts with different labels cannot both be
+        // right: the later one is left undecided.
+        for j in 1..segs.len() {
+            if decided(&segs[j - 1]) && decided(&segs[j]) {
+                segs[j].tentative[0] = None;
+            }
+        }
+        if segs.len() == 1 && !decided(&segs[0]) {
+            return None;
+        }
+        // Verify each decided part, stepping its ends inward as needed.
+        for j in 0..segs.len() {
+            if !decided(&segs[j]) {
+                continue;
+            }
+            let (lo_free, hi_free) = (j > 0, j + 1 < segs.len());
+            let (a, z) = (segs[j].lo, segs[j].hi);
+            let mut done = None;
+            for f in std::iter::once(0.0).chain(SHRINK) {
+                let d = f * (z - a);
+                let na = if lo_free && f > 0.0 { a + d } else { a };
+                let nz = if hi_free && f > 0.0 { z - d } else { z };
+                if !(a <= na && na < nz && nz <= z) || (lo_free && na == a && f > 0.0) {
+                    continue;
+                }
+                let bx = with_w(b, na, nz);
+                let labels = self.natural(slab, &bx, work);
+                if self.decided_mask(&labels) & self.relevant == self.relevant {
+                    done = Some((na, nz, vec![Local::Leaf(labels)]));
+                    break;
+                }
+            }
+            if done.is_none() {
+                // The natural enclosure overestimates (θ̇ dependency, θ-width
+                // of the coefficients): bisect the slightly shrunk part.
+                let d = SHRINK[3] * (z - a);
+                let na = if lo_free { a + d } else { a };
+                let nz = if hi_free { z - d } else { z };
+                if na < nz {
+                    let mut budget = CERTIFY_LEAVES;
+                    let bx = with_w(b, na, nz);
+                    if let Some(t) = self.certify(&bx, slab, self.relevant, &mut budget, work) {
+                        done = Some((na, nz, t));
+                    }
+                }
+            }
+            match done {
+                Some((na, nz, t)) => {
+                    if na > a {
+                        segs[j - 1].hi = na;
+                    }
+                    if nz < z {
+                        segs[j + 1].lo = nz;
+                    }
+                    segs[j].lo = na;
+                    segs[j].hi = nz;
+                    segs[j].tree = Some(t);
+                }
+                None => segs[j].tentative[0] = None,
+            }
+        }
+        // Merge neighbouring undecided parts (slivers left by the steps).
+        let mut merged: Vec<Seg> = Vec::with_capacity(segs.len());
+        for s in segs {
+            match merged.last_mut() {
+                Some(last) if last.tree.is_none() && s.tree.is_none() => last.hi = s.hi,
+                _ => merged.push(s),
+            }
+        }
+        if merged.len() == 1 && merged[0].tree.is_none() {
+            return None;
+        }
+        let mut out = Vec::new();
+        let last = merged.len() - 1;
+        for (j, s) in merged.into_iter().enumerate() {
+            if j < last {
+                out.push(Local::At(1, s.hi));
+            }
+            match s.tree {
+                Some(t) => out.extend(t),
+                None => {
+                    let bx = with_w(b, s.lo, s.hi);
+                    if self.choose_axis(&bx).is_some() {
+                        out.push(Local::Open);
+                    } else {
+                        out.push(Local::Leaf(self.natural(slab, &bx, work)));
+                    }
+                }
+            }
+        }
+        Some(out)
+    }
+}
+
+struct Seg {
+    lo: f64,
+    hi: f64,
+    tentative: [Option<bool>; MAX_CONSTRAINTS],
+    tree: Option<Vec<Local>>,
+}
+
+fn with_w(b: &PhaseBox, lo: f64, hi: f64) -> PhaseBox {
+    PhaseBox {
+        theta: b.theta,
+        theta_dot: [lo, hi],
+    }
+}
+
+fn point(x: f64) -> Interval {
+    Interval::try_from((x, x)).unwrap_or(Interval::ENTIRE)
+}
+
+/// Natural ∩ mean-value form ∩ monotonicity range of a quadratic in θ̇ with
+/// coefficient enclosures, over `w`; the label it supports.
+pub fn centred_label(q: &Quadratic<DecInterval>, w: Interval) -> Label {
+    let wd = DecInterval::new(w);
+    let nat = q.eval(wd);
+    let Some(mut e) = nat.interval().filter(|_| is_defined(nat)) else {
+        return Label::from_enclosure(nat);
+    };
+    let dq = Quadratic {
+        c2: Dual::constant(q.c2),
+        c1: Dual::constant(q.c1),
+        c0: Dual::constant(q.c0),
+    }
+    .eval(Dual::variable(wd, 1));
+    let slope = dq.grad[1];
+    if is_defined(slope) {
+        let s = slope.interval().expect("defined");
+        let m = point(0.5 * w.inf() + 0.5 * w.sup());
+        let qm = q.eval(DecInterval::new(m));
+        // q(w) = q(m) + q'(ξ)(w − m) for each choice of coefficients.
+        let mv = qm + slope * DecInterval::new(w - m);
+        if is_defined(mv) {
+            e = e.intersection(mv.interval().expect("defined"));
+        }
+        // Monotone in θ̇ for every choice of coefficients: the range lies
+        // between the values at the two ends.
+        if s.inf() >= 0.0 || s.sup() <= 0.0 {
+            let (a, z) = (
+                q.eval(DecInterval::new(point(w.inf()))),
+                q.eval(DecInterval::new(point(w.sup()))),
+            );
+            if let (true, true, Some(a), Some(z)) =
+                (is_defined(a), is_defined(z), a.interval(), z.interval())
+            {
+                e = e.intersection(a.convex_hull(z));
+            }
+        }
+    }
+    if e.is_empty() {
+        // Cannot happen for sound enclosures of a defined function; claim nothing.
+        return Label::Undecided;
+    }
+    if e.sup() < 0.0 {
+        Label::ProvedIn
+    } else if e.inf() > 0.0 {
+        Label::ProvedOut
+    } else {
+        Label::Undecided
+    }
+}
+
+/// Steering data of one quadratic: f64 bounds of the coefficients. Over the
+/// coefficient box, `sup q(w) = c₂⁺w² + c₁^± w + c₀⁺` (the sign of w picks
+/// the end of c₁), likewise `inf q`; their sign sets are the tentative
+/// certainly-in and certainly-out θ̇-sets. Only used to choose points.
+struct Steer {
+    c2: [f64; 2],
+    c1: [f64; 2],
+    c0: [f64; 2],
+}
+
+impl Steer {
+    fn new(q: &Quadratic<DecInterval>) -> Option<Steer> {
+        let b = |x: DecInterval| -> Option<[f64; 2]> {
+            let i = x.interval().filter(|_| is_defined(x))?;
+            (i.inf().is_finite() && i.sup().is_finite()).then_some([i.inf(), i.sup()])
+        };
+        Some(Steer {
+            c2: b(q.c2)?,
+            c1: b(q.c1)?,
+            c0: b(q.c0)?,
+        })
+    }
+    fn sup_q(&self, w: f64) -> f64 {
+        let c1 = if w >= 0.0 { self.c1[1] } else { self.c1[0] };
+        self.c2[1] * w * w + c1 * w + self.c0[1]
+    }
+    fn inf_q(&self, w: f64) -> f64 {
+        let c1 = if w >= 0.0 { self.c1[0] } else { self.c1[1] };
+        self.c2[0] * w * w + c1 * w + self.c0[0]
+    }
+    /// Some(true): tentatively in, Some(false): out, None: undecided.
+    fn tentative(&self, w: f64) -> Option<bool> {
+        if self.sup_q(w) < 0.0 {
+            Some(true)
+        } else if self.inf_q(w) > 0.0 {
+            Some(false)
+        } else {
+            None
+        }
+    }
+    fn breakpoints(&self, out: &mut Vec<f64>) {
+        for (a, c) in [(self.c2[1], self.c0[1]), (self.c2[0], self.c0[0])] {
+            for b in self.c1 {
+                roots(a, b, c, out);
+            }
+        }
+    }
+}
+
+/// Real roots of `a x² + b x + c` in f64 (steering only).
+fn roots(a: f64, b: f64, c: f64, out: &mut Vec<f64>) {
+    if a == 0.0 {
+        if b != 0.0 {
+            out.push(-c / b);
+        }
+        return;
+    }
+    let disc = b * b - 4.0 * a * c;
+    if !(disc >= 0.0) {
+        return;
+    }
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    out.push(q / a);
+    if q != 0.0 {
+        out.push(c / q);
+    }
+    out.retain(|x| x.is_finite());
+}
+
+/// Paves `root` with a method. `natural` with every constraint relevant is
+/// [`super::pave`].
+pub fn pave_with<S: ConstraintSet>(
+    set: &S,
+    root: PhaseBox,
+    opts: PaveOptions,
+    mo: &MethodOptions,
+    mut progress: impl FnMut(u32, usize, usize),
+) -> Result<Paving, PaveError> {
+    if !(opts.eps.is_finite() && opts.eps > 0.0 && opts.eps <= 1.0) {
+        return Err(PaveError::BadEps(opts.eps));
+    }
+    if opts.max_boxes == 0 {
+        return Err(PaveError::BadBudget);
+    }
+    if !(root.theta[0] < root.theta[1] && root.theta_dot[0] < root.theta_dot[1]) {
+        return Err(PaveError::EmptyDomain);
+    }
+    let names = set.names();
+    if names.len() > MAX_CONSTRAINTS {
+        return Err(PaveError::TooManyConstraints);
+    }
+    let n = names.len();
+    let mut same_as = set.same_as();
+    same_as.resize(n, None);
+    for (i, s) in same_as.iter_mut().enumerate() {
+        // only earlier constraints that are not aliases themselves
+        if s.is_some_and(|j| j >= i) {
+            *s = None;
+        }
+    }
+    let all = ((1u16 << n) - 1) as u8;
+    let mut relevant = mo.relevant.unwrap_or(all) & all;
+    if relevant == 0 {
+        relevant = all;
+    }
+    // A copy is decided exactly when its original is.
+    for i in 0..n {
+        if let Some(j) = same_as[i] {
+            if relevant >> i & 1 == 1 {
+                relevant |= 1 << j;
+            }
+        }
+    }
+    let ctx = Ctx {
+        set,
+        root,
+        method: mo.method,
+        n,
+        same_as: same_as.clone(),
+        relevant,
+        min_width: [
+            opts.eps * (root.theta[1] - root.theta[0]),
+            opts.eps * (root.theta_dot[1] - root.theta_dot[0]),
+        ],
+    };
+
+    let mut arena: Vec<Building> = vec![Building::Open];
+    let mut leaves: Vec<Leaf> = Vec::new();
+    let mut frontier: Vec<Open<S::Slab>> = vec![Open {
+        node: 0,
+        bx: root,
+        slab: None,
+        fresh: true,
+    }];
+    let mut stats = PaveStats::default();
+    let (mut budget_hit, mut ulp_limit, mut undecided_left) = (false, false, false);
+    let mut level = 0u32;
+
+    while !frontier.is_empty() {
+        progress(level, frontier.len(), leaves.len());
+        // θ-slabs of boxes just split in θ, each computed once per level;
+        // boxes split in θ̇ share their parent's slab.
+        let mut missing: Vec<(u64, u64)> = frontier
+            .iter()
+            .filter(|o| o.slab.is_none())
+            .map(|o| slab_key(&o.bx))
+            .collect();
+        missing.sort_unstable();
+        missing.dedup();
+        stats.slab_evaluations += missing.len() as u64;
+        let fresh: Vec<Arc<S::Slab>> = missing
+            .par_iter()
+            .map(|&(lo, hi)| {
+                let th = Interval::try_from((f64::from_bits(lo), f64::from_bits(hi)))
+                    .expect("ordered endpoints");
+                Arc::new(set.slab(th))
+            })
+            .collect();
+        frontier.par_iter_mut().for_each(|o| {
+            if o.slab.is_none() {
+                let k = missing
+                    .binary_search(&slab_key(&o.bx))
+                    .expect("every missing key was computed");
+                o.slab = Some(fresh[k].clone());
+            }
+        });
+        drop(fresh);
+
+        let done: Vec<(Labels, Outcome, Work)> = frontier
+            .par_iter()
+            .map(|o| {
+                let mut work = Work::default();
+                let slab = o.slab.as_ref().expect("assigned above");
+                let labels = ctx.natural(slab, &o.bx, &mut work);
+                let outcome = ctx.process(o, &labels, &mut work);
+                (labels, outcome, work)
+            })
+            .collect();
+        for (_, _, w) in &done {
+            stats.box_evaluations += w.evals;
+            stats.slab_evaluations += w.slabs;
+        }
+
+        // Refinement in frontier order (`slices`: largest undecided area
+        // first), each split adding leaves while the budget allows.
+        let mut order: Vec<usize> = (0..frontier.len()).collect();
+        if mo.method == Method::Slices {
+            let area = |o: &Open<S::Slab>| {
+                (o.bx.theta[1] - o.bx.theta[0]) * (o.bx.theta_dot[1] - o.bx.theta_dot[0])
+            };
+            order.sort_by(|&a, &b| area(&frontier[b]).total_cmp(&area(&frontier[a])));
+        }
+        let mut next: Vec<Open<S::Slab>> = Vec::with_capacity(2 * frontier.len());
+        arena.reserve(2 * frontier.len());
+        let mut leaves_if_stopped = leaves.len() + frontier.len();
+        let mut done: Vec<Option<(Labels, Outcome, Work)>> = done.into_iter().map(Some).collect();
+        for &k in &order {
+            let (labels, outcome, _) = done[k].take().expect("each box once");
+            let o = &frontier[k];
+            let extra = match &outcome {
+                Outcome::Leaf => 0,
+                Outcome::Split(_) => 1,
+                Outcome::Tree(t) => t
+                    .iter()
+                    .filter(|l| matches!(l, Local::Leaf(_) | Local::Open))
+                    .count()
+                    .saturating_sub(1),
+            };
+            let fits = leaves_if_stopped + extra <= opts.max_boxes
+                && arena.len() + 2 * extra < u32::MAX as usize;
+            match outcome {
+                Outcome::Split(ax) if fits => {
+                    leaves_if_stopped += 1;
+                    let (lo, hi) = o.bx.split(ax as usize);
+                    let a = arena.len() as u32;
+                    arena.push(Building::Open);
+                    arena.push(Building::Open);
+                    arena[o.node as usize] = Building::Split(ax, a);
+                    let inherit = (ax == 1).then(|| o.slab.clone()).flatten();
+                    next.push(Open {
+                        node: a,
+                        bx: lo,
+                        slab: inherit.clone(),
+                        fresh: ax == 0,
+                    });
+                    next.push(Open {
+                        node: a + 1,
+                        bx: hi,
+                        slab: inherit,
+                        fresh: ax == 0,
+                    });
+                }
+                Outcome::Tree(t) if fits => {
+                    leaves_if_stopped += extra;
+                    let mut pos = 0;
+                    expand(
+                        &t,
+                        &mut pos,
+                        o.node,
+                        o.bx,
+                        o.slab.clone(),
+                        &mut arena,
+                        &mut leaves,
+                        &mut next,
+                        &mut |l: &Labels| ctx.undecided(l),
+                        &mut undecided_left,
+                    );
+                }
+                other => {
+                    if !matches!(other, Outcome::Leaf) {
+                        budget_hit = true;
+                    } else if ctx.undecided(&labels) {
+                        undecided_left = true;
+                        if ctx.at_ulp_limit(&o.bx) {
+                            ulp_limit = true;
+                        }
+                    }
+                    arena[o.node as usize] = Building::Leaf(leaves.len() as u32);
+                    leaves.push(Leaf { bx: o.bx, labels });
+                }
+            }
+        }
+        frontier = next;
+        if !frontier.is_empty() {
+            level += 1;
+        }
+    }
+    stats.depth = level;
+    let stop = if budget_hit {
+        StopReason::Budget
+    } else if ulp_limit {
+        StopReason::DoublePrecisionLimit
+    } else if undecided_left {
+        StopReason::Resolution
+    } else {
+        StopReason::AllDecided
+    };
+
+    // Preorder serialisation of the tree; leaves renumbered in that order.
+    let mut nodes = Vec::with_capacity(arena.len());
+    let mut ordered = Vec::with_capacity(leaves.len());
+    let mut stack = vec![0u32];
+    while let Some(i) = stack.pop() {
+        match arena[i as usize] {
+            Building::Split(ax, a) => {
+                nodes.push(Node::Split(ax));
+                stack.push(a + 1);
+                stack.push(a);
+            }
+            Building::SplitAt(ax, p, a) => {
+                nodes.push(Node::SplitAt(ax, p));
+                stack.push(a + 1);
+                stack.push(a);
+            }
+            Building::Leaf(l) => {
+                nodes.push(Node::Leaf(ordered.len() as u32));
+                ordered.push(leaves[l as usize]);
+            }
+            Building::Open => unreachable!("every box ends as a leaf or a split"),
+        }
+    }
+    drop(arena);
+    drop(leaves);
+    let bytes = nodes.capacity() * std::mem::size_of::<Node>()
+        + ordered.capacity() * std::mem::size_of::<Leaf>();
+    stats.bytes_per_leaf = bytes as f64 / ordered.len().max(1) as f64;
+    Ok(Paving {
+        root,
+        names,
+        eps: opts.eps,
+        nodes,
+        leaves: ordered,
+        complete: stop != StopReason::Budget,
+        stop,
+        same_as,
+        stats,
+    })
+}
+
+/// Writes a local subtree into the arena at `node`.
+#[allow(clippy::too_many_arguments)]
+fn expand<Sl>(
+    t: &[Local],
+    pos: &mut usize,
+    node: u32,
+    bx: PhaseBox,
+    slab: Option<Arc<Sl>>,
+    arena: &mut Vec<Building>,
+    leaves: &mut Vec<Leaf>,
+    next: &mut Vec<Open<Sl>>,
+    undecided: &mut impl FnMut(&Labels) -> bool,
+    undecided_left: &mut bool,
+) {
+    let item = t[*pos];
+    *pos += 1;
+    let (ax, halves) = match item {
+        Local::Leaf(labels) => {
+            if undecided(&labels) {
+                *undecided_left = true;
+            }
+            arena[node as usize] = Building::Leaf(leaves.len() as u32);
+            leaves.push(Leaf { bx, labels });
+            return;
+        }
+        Local::Open => {
+            arena[node as usize] = Building::Open;
+            next.push(Open {
+                node,
+                bx,
+                fresh: slab.is_none(),
+                slab,
+            });
+            return;
+        }
+        Local::Mid(ax) => (ax, bx.split(ax as usize)),
+        Local::At(ax, p) => (
+            ax,
+            bx.split_at(ax as usize, p)
+                .expect("contraction points lie strictly inside"),
+        ),
+    };
+    let a = arena.len() as u32;
+    arena.push(Building::Open);
+    arena.push(Building::Open);
+    arena[node as usize] = match item {
+        Local::At(_, p) => Building::SplitAt(ax, p, a),
+        _ => Building::Split(ax, a),
+    };
+    // Below a θ split the parent's slab no longer applies.
+    let child_slab = if ax == 1 { slab } else { None };
+    let (lo, hi) = halves;
+    expand(
+        t,
+        pos,
+        a,
+        lo,
+        child_slab.clone(),
+        arena,
+        leaves,
+        next,
+        undecided,
+        undecided_left,
+    );
+    expand(
+        t,
+        pos,
+        a + 1,
+        hi,
+        child_slab,
+        arena,
+        leaves,
+        next,
+        undecided,
+        undecided_left,
+    );
+}
+
+fn slab_key(b: &PhaseBox) -> (u64, u64) {
+    (b.theta[0].to_bits(), b.theta[1].to_bits())
+}
