@@ -152,7 +152,7 @@ enum Building {
 }
 
 /// Leaves one certification may add (bounds the work on a hard box).
-const CERTIFY_LEAVES: u32 = 16;
+const CERTIFY_LEAVES: u32 = 64;
 
 /// Relative inward steps tried to place a contraction point so the removed
 /// part verifies.
@@ -333,11 +333,15 @@ impl<S: ConstraintSet> Ctx<'_, S> {
     }
 
     /// A subtree whose leaves all carry natural labels deciding every
-    /// constraint in `wanted`, by bisection within `budget` leaves.
+    /// constraint in `wanted`, by bisection in θ̇ within `budget` leaves.
+    /// θ̇ only: both the centred form and the contractor decide from the
+    /// slab's coefficient enclosures, so what they prove is reached by
+    /// narrowing θ̇ alone (the dependency of c₂θ̇² + c₁θ̇ shrinks with the
+    /// width), and the slab is shared instead of recomputed.
     fn certify(
         &self,
         b: &PhaseBox,
-        slab: &Arc<S::Slab>,
+        slab: &S::Slab,
         wanted: u8,
         budget: &mut u32,
         work: &mut Work,
@@ -346,57 +350,15 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         if self.decided_mask(&labels) & wanted == wanted {
             return Some(vec![Local::Leaf(labels)]);
         }
-        if *budget < 2 {
+        if *budget < 2 || !b.can_split(1) {
             return None;
         }
         *budget -= 1;
-        let axis = self.certify_axis(b, slab, wanted)?;
-        let (lo, hi) = b.split(axis);
-        let (slo, shi) = if axis == 0 {
-            work.slabs += 2;
-            (
-                Arc::new(self.set.slab(lo.theta_interval())),
-                Arc::new(self.set.slab(hi.theta_interval())),
-            )
-        } else {
-            (slab.clone(), slab.clone())
-        };
-        let mut out = vec![Local::Mid(axis as u8)];
-        out.extend(self.certify(&lo, &slo, wanted, budget, work)?);
-        out.extend(self.certify(&hi, &shi, wanted, budget, work)?);
+        let (lo, hi) = b.split(1);
+        let mut out = vec![Local::Mid(1)];
+        out.extend(self.certify(&lo, slab, wanted, budget, work)?);
+        out.extend(self.certify(&hi, slab, wanted, budget, work)?);
         Some(out)
-    }
-
-    /// Split θ̇ when its dependency (c₂θ̇² + c₁θ̇) costs more width than the
-    /// θ-enclosure of the coefficients, θ otherwise.
-    fn certify_axis(&self, b: &PhaseBox, slab: &S::Slab, wanted: u8) -> Option<usize> {
-        let can = [b.can_split(0), b.can_split(1)];
-        let mut prefer_w = self.rel(b, 1) >= self.rel(b, 0);
-        let w = b.theta_dot_interval();
-        let mid = DecInterval::new(point(b.midpoint(1)));
-        let (mut dep, mut coef) = (0.0f64, 0.0f64);
-        let mut any = false;
-        for i in self.own().filter(|&i| wanted >> i & 1 == 1) {
-            if let Some(q) = self.set.quadratic(slab, i) {
-                let (Some(whole), Some(at_mid)) = (
-                    q.eval(DecInterval::new(w)).interval(),
-                    q.eval(mid).interval(),
-                ) else {
-                    continue;
-                };
-                any = true;
-                coef = coef.max(at_mid.wid());
-                dep = dep.max(whole.wid() - at_mid.wid());
-            }
-        }
-        if any {
-            prefer_w = dep >= coef;
-        }
-        match (prefer_w, can) {
-            (true, [_, true]) | (false, [false, true]) => Some(1),
-            (_, [true, _]) => Some(0),
-            _ => None,
-        }
     }
 
     /// Contraction of a box on a new θ-slab: the θ̇-partition into parts
@@ -665,7 +627,7 @@ fn roots(a: f64, b: f64, c: f64, out: &mut Vec<f64>) {
         return;
     }
     let disc = b * b - 4.0 * a * c;
-    if !(disc >= 0.0) {
+    if disc.is_nan() || disc < 0.0 {
         return;
     }
     let q = -0.5 * (b + b.signum() * disc.sqrt());
@@ -713,8 +675,8 @@ pub fn pave_with<S: ConstraintSet>(
         relevant = all;
     }
     // A copy is decided exactly when its original is.
-    for i in 0..n {
-        if let Some(j) = same_as[i] {
+    for (i, s) in same_as.iter().enumerate() {
+        if let Some(j) = *s {
             if relevant >> i & 1 == 1 {
                 relevant |= 1 << j;
             }
