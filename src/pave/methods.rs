@@ -752,8 +752,9 @@ pub fn pave_with<S: ConstraintSet>(
             stats.slab_evaluations += w.slabs;
         }
 
-        // Refinement in frontier order (`slices`: largest undecided area
-        // first), each split adding leaves while the budget allows.
+        // Refinement decisions in frontier order (`slices`: largest
+        // undecided area first), each adding leaves while the budget allows.
+        // Only integer bookkeeping here; the tree is written in parallel.
         let mut order: Vec<usize> = (0..frontier.len()).collect();
         if mo.method == Method::Slices {
             let area = |o: &Open<S::Slab>| {
@@ -761,77 +762,115 @@ pub fn pave_with<S: ConstraintSet>(
             };
             order.sort_by(|&a, &b| area(&frontier[b]).total_cmp(&area(&frontier[a])));
         }
-        let mut next: Vec<Open<S::Slab>> = Vec::with_capacity(2 * frontier.len());
-        arena.reserve(2 * frontier.len());
+        let mut plan = vec![Plan::default(); frontier.len()];
         let mut leaves_if_stopped = leaves.len() + frontier.len();
-        let mut done: Vec<Option<(Labels, Outcome, Work)>> = done.into_iter().map(Some).collect();
+        let room = (u32::MAX as usize).saturating_sub(arena.len() + 2 * frontier.len());
+        let mut nodes_planned = 0usize;
         for &k in &order {
-            let (labels, outcome, _) = done[k].take().expect("each box once");
-            let o = &frontier[k];
-            let extra = match &outcome {
-                Outcome::Leaf => 0,
-                Outcome::Split(_) => 1,
-                Outcome::Tree(t) => t
-                    .iter()
-                    .filter(|l| matches!(l, Local::Leaf(_) | Local::Open))
-                    .count()
-                    .saturating_sub(1),
+            let (labels, outcome, _) = &done[k];
+            let count = match outcome {
+                Outcome::Leaf => Plan::LEAF,
+                Outcome::Split(_) => Plan {
+                    nodes: 2,
+                    leaves: 0,
+                    opens: 2,
+                    refine: true,
+                },
+                Outcome::Tree(t) => Plan::of_tree(t),
             };
+            let extra = (count.leaves + count.opens) as usize - 1;
             let fits = leaves_if_stopped + extra <= opts.max_boxes
-                && arena.len() + 2 * extra < u32::MAX as usize;
-            match outcome {
-                Outcome::Split(ax) if fits => {
-                    leaves_if_stopped += 1;
-                    let (lo, hi) = o.bx.split(ax as usize);
-                    let a = arena.len() as u32;
-                    arena.push(Building::Open);
-                    arena.push(Building::Open);
-                    arena[o.node as usize] = Building::Split(ax, a);
-                    let inherit = (ax == 1).then(|| o.slab.clone()).flatten();
-                    next.push(Open {
-                        node: a,
-                        bx: lo,
-                        slab: inherit.clone(),
-                        fresh: ax == 0,
-                    });
-                    next.push(Open {
-                        node: a + 1,
-                        bx: hi,
-                        slab: inherit,
-                        fresh: ax == 0,
-                    });
+                && nodes_planned + count.nodes as usize <= room;
+            if count.refine && fits {
+                leaves_if_stopped += extra;
+                nodes_planned += count.nodes as usize;
+                plan[k] = count;
+                if let Outcome::Tree(t) = outcome {
+                    undecided_left |= t
+                        .iter()
+                        .any(|l| matches!(l, Local::Leaf(x) if ctx.undecided(x)));
                 }
-                Outcome::Tree(t) if fits => {
-                    leaves_if_stopped += extra;
-                    let mut pos = 0;
-                    expand(
-                        &t,
-                        &mut pos,
-                        o.node,
-                        o.bx,
-                        o.slab.clone(),
-                        &mut arena,
-                        &mut leaves,
-                        &mut next,
-                        &mut |l: &Labels| ctx.undecided(l),
-                        &mut undecided_left,
-                    );
-                }
-                other => {
-                    if !matches!(other, Outcome::Leaf) {
-                        budget_hit = true;
-                    } else if ctx.undecided(&labels) {
-                        undecided_left = true;
-                        if ctx.at_ulp_limit(&o.bx) {
-                            ulp_limit = true;
-                        }
+            } else {
+                plan[k] = Plan::LEAF;
+                if count.refine {
+                    budget_hit = true;
+                } else if ctx.undecided(labels) {
+                    undecided_left = true;
+                    if ctx.at_ulp_limit(&frontier[k].bx) {
+                        ulp_limit = true;
                     }
-                    arena[o.node as usize] = Building::Leaf(leaves.len() as u32);
-                    leaves.push(Leaf { bx: o.bx, labels });
                 }
             }
         }
-        frontier = next;
+        let (base_nodes, base_leaves) = (arena.len(), leaves.len());
+        let total = plan.iter().fold([0usize; 3], |t, p| {
+            [
+                t[0] + p.nodes as usize,
+                t[1] + p.leaves as usize,
+                t[2] + p.opens as usize,
+            ]
+        });
+        arena.resize(base_nodes + total[0], Building::Open);
+        leaves.resize(
+            base_leaves + total[1],
+            Leaf {
+                bx: root,
+                labels: [Label::Undecided; MAX_CONSTRAINTS],
+            },
+        );
+        let mut next: Vec<Open<S::Slab>> = Vec::with_capacity(total[2]);
+        next.resize_with(total[2], || Open {
+            node: 0,
+            bx: root,
+            slab: None,
+            fresh: false,
+        });
+        // Each box writes its own disjoint part of the new nodes, leaves and
+        // open boxes; its parent entry is returned and written after.
+        let mut jobs = Vec::with_capacity(frontier.len());
+        {
+            let (mut ar, mut lr, mut or) = (
+                &mut arena[base_nodes..],
+                &mut leaves[base_leaves..],
+                &mut next[..],
+            );
+            let (mut na, mut nl) = (base_nodes, base_leaves);
+            for (k, p) in plan.iter().enumerate() {
+                let (a, r1) = std::mem::take(&mut ar).split_at_mut(p.nodes as usize);
+                let (l, r2) = std::mem::take(&mut lr).split_at_mut(p.leaves as usize);
+                let (o, r3) = std::mem::take(&mut or).split_at_mut(p.opens as usize);
+                (ar, lr, or) = (r1, r2, r3);
+                jobs.push((k, Filler::new(a, na as u32, l, nl as u32, o)));
+                na += p.nodes as usize;
+                nl += p.leaves as usize;
+            }
+            let own: Vec<Building> = jobs
+                .into_par_iter()
+                .zip(done.into_par_iter())
+                .map(|((k, mut f), (labels, outcome, _))| {
+                    let o = &frontier[k];
+                    if plan[k].refine {
+                        match outcome {
+                            Outcome::Split(ax) => {
+                                let t = [Local::Mid(ax), Local::Open, Local::Open];
+                                f.expand(&t, &mut 0, o.node, o.bx, o.slab.clone())
+                            }
+                            Outcome::Tree(t) => f.expand(&t, &mut 0, o.node, o.bx, o.slab.clone()),
+                            Outcome::Leaf => unreachable!("a leaf is not refined"),
+                        }
+                    } else {
+                        f.expand(&[Local::Leaf(labels)], &mut 0, o.node, o.bx, None)
+                    }
+                })
+                .collect();
+            for (o, b) in frontier.iter().zip(own) {
+                arena[o.node as usize] = b;
+            }
+        }
+        // Dropping the old frontier releases slabs; do it off the main thread.
+        std::mem::replace(&mut frontier, next)
+            .into_par_iter()
+            .for_each(drop);
         if !frontier.is_empty() {
             level += 1;
         }
@@ -848,28 +887,7 @@ pub fn pave_with<S: ConstraintSet>(
     };
 
     // Preorder serialisation of the tree; leaves renumbered in that order.
-    let mut nodes = Vec::with_capacity(arena.len());
-    let mut ordered = Vec::with_capacity(leaves.len());
-    let mut stack = vec![0u32];
-    while let Some(i) = stack.pop() {
-        match arena[i as usize] {
-            Building::Split(ax, a) => {
-                nodes.push(Node::Split(ax));
-                stack.push(a + 1);
-                stack.push(a);
-            }
-            Building::SplitAt(ax, p, a) => {
-                nodes.push(Node::SplitAt(ax, p));
-                stack.push(a + 1);
-                stack.push(a);
-            }
-            Building::Leaf(l) => {
-                nodes.push(Node::Leaf(ordered.len() as u32));
-                ordered.push(leaves[l as usize]);
-            }
-            Building::Open => unreachable!("every box ends as a leaf or a split"),
-        }
-    }
+    let (nodes, ordered) = preorder(&arena, &leaves);
     drop(arena);
     drop(leaves);
     let bytes = nodes.capacity() * std::mem::size_of::<Node>()
@@ -888,81 +906,194 @@ pub fn pave_with<S: ConstraintSet>(
     })
 }
 
-/// Writes a local subtree into the arena at `node`.
-#[allow(clippy::too_many_arguments)]
-fn expand<Sl>(
-    t: &[Local],
-    pos: &mut usize,
-    node: u32,
-    bx: PhaseBox,
-    slab: Option<Arc<Sl>>,
-    arena: &mut Vec<Building>,
-    leaves: &mut Vec<Leaf>,
-    next: &mut Vec<Open<Sl>>,
-    undecided: &mut impl FnMut(&Labels) -> bool,
-    undecided_left: &mut bool,
-) {
-    let item = t[*pos];
-    *pos += 1;
-    let (ax, halves) = match item {
-        Local::Leaf(labels) => {
-            if undecided(&labels) {
-                *undecided_left = true;
+/// What one box adds to the tree.
+#[derive(Clone, Copy, Default)]
+struct Plan {
+    nodes: u32,
+    leaves: u32,
+    opens: u32,
+    /// Refined (split or subtree) rather than kept as one leaf.
+    refine: bool,
+}
+
+impl Plan {
+    const LEAF: Plan = Plan {
+        nodes: 0,
+        leaves: 1,
+        opens: 0,
+        refine: false,
+    };
+    fn of_tree(t: &[Local]) -> Plan {
+        let mut p = Plan {
+            refine: true,
+            ..Plan::default()
+        };
+        for l in t {
+            match l {
+                Local::Mid(_) | Local::At(..) => p.nodes += 2,
+                Local::Leaf(_) => p.leaves += 1,
+                Local::Open => p.opens += 1,
             }
-            arena[node as usize] = Building::Leaf(leaves.len() as u32);
-            leaves.push(Leaf { bx, labels });
-            return;
         }
-        Local::Open => {
-            arena[node as usize] = Building::Open;
-            next.push(Open {
-                node,
-                bx,
-                fresh: slab.is_none(),
-                slab,
-            });
-            return;
+        p
+    }
+}
+
+/// One box's share of the new nodes, leaves and open boxes of a level.
+struct Filler<'a, Sl> {
+    arena: &'a mut [Building],
+    arena_base: u32,
+    leaves: &'a mut [Leaf],
+    leaf_base: u32,
+    opens: &'a mut [Open<Sl>],
+    used: [usize; 3],
+}
+
+impl<'a, Sl> Filler<'a, Sl> {
+    fn new(
+        arena: &'a mut [Building],
+        arena_base: u32,
+        leaves: &'a mut [Leaf],
+        leaf_base: u32,
+        opens: &'a mut [Open<Sl>],
+    ) -> Self {
+        Filler {
+            arena,
+            arena_base,
+            leaves,
+            leaf_base,
+            opens,
+            used: [0; 3],
         }
-        Local::Mid(ax) => (ax, bx.split(ax as usize)),
-        Local::At(ax, p) => (
-            ax,
-            bx.split_at(ax as usize, p)
-                .expect("contraction points lie strictly inside"),
-        ),
+    }
+
+    /// Writes the local subtree rooted at node `id` (box `bx`); returns the
+    /// entry of `id` itself.
+    fn expand(
+        &mut self,
+        t: &[Local],
+        pos: &mut usize,
+        id: u32,
+        bx: PhaseBox,
+        slab: Option<Arc<Sl>>,
+    ) -> Building {
+        let item = t[*pos];
+        *pos += 1;
+        let (ax, (lo, hi)) = match item {
+            Local::Leaf(labels) => {
+                let i = self.used[1];
+                self.used[1] += 1;
+                self.leaves[i] = Leaf { bx, labels };
+                return Building::Leaf(self.leaf_base + i as u32);
+            }
+            Local::Open => {
+                let i = self.used[2];
+                self.used[2] += 1;
+                self.opens[i] = Open {
+                    node: id,
+                    bx,
+                    fresh: slab.is_none(),
+                    slab,
+                };
+                return Building::Open;
+            }
+            Local::Mid(ax) => (ax, bx.split(ax as usize)),
+            Local::At(ax, p) => (
+                ax,
+                bx.split_at(ax as usize, p)
+                    .expect("contraction points lie strictly inside"),
+            ),
+        };
+        let i = self.used[0];
+        self.used[0] += 2;
+        let a = self.arena_base + i as u32;
+        // Below a θ split the parent's slab no longer applies.
+        let child_slab = if ax == 1 { slab } else { None };
+        let l = self.expand(t, pos, a, lo, child_slab.clone());
+        let h = self.expand(t, pos, a + 1, hi, child_slab);
+        self.arena[i] = l;
+        self.arena[i + 1] = h;
+        match item {
+            Local::At(_, p) => Building::SplitAt(ax, p, a),
+            _ => Building::Split(ax, a),
+        }
+    }
+}
+
+/// Subtrees of at most this many nodes are written by one thread.
+const SERIAL_SUBTREE: u32 = 1 << 15;
+
+/// The tree in preorder with its leaves renumbered in that order. Subtree
+/// sizes give every subtree its place in the output, so large subtrees are
+/// written in parallel; the result does not depend on the thread count.
+fn preorder(arena: &[Building], leaves: &[Leaf]) -> (Vec<Node>, Vec<Leaf>) {
+    // Children come after their parent in the arena: sizes in one reverse pass.
+    let mut size = vec![(0u32, 0u32); arena.len()];
+    for i in (0..arena.len()).rev() {
+        size[i] = match arena[i] {
+            Building::Split(_, a) | Building::SplitAt(_, _, a) => {
+                let (l, h) = (size[a as usize], size[a as usize + 1]);
+                (1 + l.0 + h.0, l.1 + h.1)
+            }
+            _ => (1, 1),
+        };
+    }
+    let mut nodes = vec![Node::Leaf(0); arena.len()];
+    let mut out = leaves.to_vec();
+    write_preorder(arena, leaves, &size, 0, &mut nodes, &mut out, 0);
+    (nodes, out)
+}
+
+fn write_preorder(
+    arena: &[Building],
+    leaves: &[Leaf],
+    size: &[(u32, u32)],
+    root: u32,
+    nodes: &mut [Node],
+    out: &mut [Leaf],
+    leaf_base: u32,
+) {
+    if size[root as usize].0 <= SERIAL_SUBTREE {
+        let (mut n, mut l) = (0, 0);
+        let mut stack = vec![root];
+        while let Some(i) = stack.pop() {
+            nodes[n] = match arena[i as usize] {
+                Building::Split(ax, a) => {
+                    stack.extend([a + 1, a]);
+                    Node::Split(ax)
+                }
+                Building::SplitAt(ax, p, a) => {
+                    stack.extend([a + 1, a]);
+                    Node::SplitAt(ax, p)
+                }
+                Building::Leaf(k) => {
+                    out[l] = leaves[k as usize];
+                    l += 1;
+                    Node::Leaf(leaf_base + l as u32 - 1)
+                }
+                Building::Open => unreachable!("every box ends as a leaf or a split"),
+            };
+            n += 1;
+        }
+        return;
+    }
+    let a = match arena[root as usize] {
+        Building::Split(ax, a) => {
+            nodes[0] = Node::Split(ax);
+            a
+        }
+        Building::SplitAt(ax, p, a) => {
+            nodes[0] = Node::SplitAt(ax, p);
+            a
+        }
+        _ => unreachable!("a large subtree is a split"),
     };
-    let a = arena.len() as u32;
-    arena.push(Building::Open);
-    arena.push(Building::Open);
-    arena[node as usize] = match item {
-        Local::At(_, p) => Building::SplitAt(ax, p, a),
-        _ => Building::Split(ax, a),
-    };
-    // Below a θ split the parent's slab no longer applies.
-    let child_slab = if ax == 1 { slab } else { None };
-    let (lo, hi) = halves;
-    expand(
-        t,
-        pos,
-        a,
-        lo,
-        child_slab.clone(),
-        arena,
-        leaves,
-        next,
-        undecided,
-        undecided_left,
-    );
-    expand(
-        t,
-        pos,
-        a + 1,
-        hi,
-        child_slab,
-        arena,
-        leaves,
-        next,
-        undecided,
-        undecided_left,
+    let (ln, rn) = nodes[1..].split_at_mut(size[a as usize].0 as usize);
+    let (ll, rl) = out.split_at_mut(size[a as usize].1 as usize);
+    let right_base = leaf_base + size[a as usize].1;
+    rayon::join(
+        || write_preorder(arena, leaves, size, a, ln, ll, leaf_base),
+        || write_preorder(arena, leaves, size, a + 1, rn, rl, right_base),
     );
 }
 
