@@ -26,6 +26,7 @@ use inari::{DecInterval, Interval};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::fmt;
+use std::mem::MaybeUninit;
 use std::str::FromStr;
 use std::sync::Arc;
 
@@ -716,7 +717,7 @@ pub fn pave_with<S: ConstraintSet>(
             .filter(|o| o.slab.is_none())
             .map(|o| slab_key(&o.bx))
             .collect();
-        missing.sort_unstable();
+        missing.par_sort_unstable();
         missing.dedup();
         stats.slab_evaluations += missing.len() as u64;
         let fresh: Vec<Arc<S::Slab>> = missing
@@ -802,54 +803,42 @@ pub fn pave_with<S: ConstraintSet>(
                 }
             }
         }
+        // Offsets of each box's share, then every box writes its share of
+        // the reserved capacity itself (first touch on the workers).
         let (base_nodes, base_leaves) = (arena.len(), leaves.len());
-        let total = plan.iter().fold([0usize; 3], |t, p| {
-            [
-                t[0] + p.nodes as usize,
-                t[1] + p.leaves as usize,
-                t[2] + p.opens as usize,
-            ]
-        });
-        arena.resize(base_nodes + total[0], Building::Open);
-        leaves.resize(
-            base_leaves + total[1],
-            Leaf {
-                bx: root,
-                labels: [Label::Undecided; MAX_CONSTRAINTS],
-            },
-        );
+        let mut offsets = Vec::with_capacity(plan.len());
+        let mut total = [0usize; 3];
+        for p in &plan {
+            offsets.push(total);
+            total[0] += p.nodes as usize;
+            total[1] += p.leaves as usize;
+            total[2] += p.opens as usize;
+        }
+        arena.reserve(total[0]);
+        leaves.reserve(total[1]);
         let mut next: Vec<Open<S::Slab>> = Vec::with_capacity(total[2]);
-        next.resize_with(total[2], || Open {
-            node: 0,
-            bx: root,
-            slab: None,
-            fresh: false,
-        });
-        // Each box writes its own disjoint part of the new nodes, leaves and
-        // open boxes; its parent entry is returned and written after.
-        let mut jobs = Vec::with_capacity(frontier.len());
         {
-            let (mut ar, mut lr, mut or) = (
-                &mut arena[base_nodes..],
-                &mut leaves[base_leaves..],
-                &mut next[..],
+            let (an, ln, on) = (
+                Shared::new(arena.spare_capacity_mut()),
+                Shared::new(leaves.spare_capacity_mut()),
+                Shared::new(next.spare_capacity_mut()),
             );
-            let (mut na, mut nl) = (base_nodes, base_leaves);
-            for (k, p) in plan.iter().enumerate() {
-                let (a, r1) = std::mem::take(&mut ar).split_at_mut(p.nodes as usize);
-                let (l, r2) = std::mem::take(&mut lr).split_at_mut(p.leaves as usize);
-                let (o, r3) = std::mem::take(&mut or).split_at_mut(p.opens as usize);
-                (ar, lr, or) = (r1, r2, r3);
-                jobs.push((k, Filler::new(a, na as u32, l, nl as u32, o)));
-                na += p.nodes as usize;
-                nl += p.leaves as usize;
-            }
-            let own: Vec<Building> = jobs
+            let own: Vec<Building> = done
                 .into_par_iter()
-                .zip(done.into_par_iter())
-                .map(|((k, mut f), (labels, outcome, _))| {
+                .enumerate()
+                .map(|(k, (labels, outcome, _))| {
                     let o = &frontier[k];
-                    if plan[k].refine {
+                    let off = offsets[k];
+                    let p = plan[k];
+                    let mut f = Filler {
+                        arena: an.part(off[0], p.nodes as usize),
+                        arena_base: (base_nodes + off[0]) as u32,
+                        leaves: ln.part(off[1], p.leaves as usize),
+                        leaf_base: (base_leaves + off[1]) as u32,
+                        opens: on.part(off[2], p.opens as usize),
+                        used: [0; 3],
+                    };
+                    let own = if p.refine {
                         match outcome {
                             Outcome::Split(ax) => {
                                 let t = [Local::Mid(ax), Local::Open, Local::Open];
@@ -860,9 +849,22 @@ pub fn pave_with<S: ConstraintSet>(
                         }
                     } else {
                         f.expand(&[Local::Leaf(labels)], &mut 0, o.node, o.bx, None)
-                    }
+                    };
+                    // Every planned slot written: what makes set_len below sound.
+                    assert_eq!(
+                        f.used,
+                        [p.nodes as usize, p.leaves as usize, p.opens as usize]
+                    );
+                    own
                 })
                 .collect();
+            // SAFETY: each box wrote exactly its planned slots (asserted
+            // above), the shares are disjoint and together cover `total`.
+            unsafe {
+                arena.set_len(base_nodes + total[0]);
+                leaves.set_len(base_leaves + total[1]);
+                next.set_len(total[2]);
+            }
             for (o, b) in frontier.iter().zip(own) {
                 arena[o.node as usize] = b;
             }
@@ -939,34 +941,45 @@ impl Plan {
     }
 }
 
+/// Uninitialised capacity that boxes fill in parallel, each through its
+/// own disjoint part.
+struct Shared<T> {
+    ptr: *mut MaybeUninit<T>,
+    len: usize,
+}
+
+// SAFETY: parts handed out are disjoint (offsets from prefix sums), so no
+// two threads write the same slot; `T: Send` moves values across threads.
+unsafe impl<T: Send> Sync for Shared<T> {}
+
+impl<T> Shared<T> {
+    fn new(s: &mut [MaybeUninit<T>]) -> Self {
+        Shared {
+            ptr: s.as_mut_ptr(),
+            len: s.len(),
+        }
+    }
+    /// The part `[start, start + n)`. Callers take disjoint parts.
+    #[allow(clippy::mut_from_ref)]
+    fn part(&self, start: usize, n: usize) -> &mut [MaybeUninit<T>] {
+        assert!(start + n <= self.len, "part within the reserved capacity");
+        // SAFETY: in bounds (asserted); disjoint from every other part taken
+        // (each box's offsets come from one prefix sum).
+        unsafe { std::slice::from_raw_parts_mut(self.ptr.add(start), n) }
+    }
+}
+
 /// One box's share of the new nodes, leaves and open boxes of a level.
 struct Filler<'a, Sl> {
-    arena: &'a mut [Building],
+    arena: &'a mut [MaybeUninit<Building>],
     arena_base: u32,
-    leaves: &'a mut [Leaf],
+    leaves: &'a mut [MaybeUninit<Leaf>],
     leaf_base: u32,
-    opens: &'a mut [Open<Sl>],
+    opens: &'a mut [MaybeUninit<Open<Sl>>],
     used: [usize; 3],
 }
 
-impl<'a, Sl> Filler<'a, Sl> {
-    fn new(
-        arena: &'a mut [Building],
-        arena_base: u32,
-        leaves: &'a mut [Leaf],
-        leaf_base: u32,
-        opens: &'a mut [Open<Sl>],
-    ) -> Self {
-        Filler {
-            arena,
-            arena_base,
-            leaves,
-            leaf_base,
-            opens,
-            used: [0; 3],
-        }
-    }
-
+impl<Sl> Filler<'_, Sl> {
     /// Writes the local subtree rooted at node `id` (box `bx`); returns the
     /// entry of `id` itself.
     fn expand(
@@ -983,18 +996,18 @@ impl<'a, Sl> Filler<'a, Sl> {
             Local::Leaf(labels) => {
                 let i = self.used[1];
                 self.used[1] += 1;
-                self.leaves[i] = Leaf { bx, labels };
+                self.leaves[i].write(Leaf { bx, labels });
                 return Building::Leaf(self.leaf_base + i as u32);
             }
             Local::Open => {
                 let i = self.used[2];
                 self.used[2] += 1;
-                self.opens[i] = Open {
+                self.opens[i].write(Open {
                     node: id,
                     bx,
                     fresh: slab.is_none(),
                     slab,
-                };
+                });
                 return Building::Open;
             }
             Local::Mid(ax) => (ax, bx.split(ax as usize)),
@@ -1011,8 +1024,8 @@ impl<'a, Sl> Filler<'a, Sl> {
         let child_slab = if ax == 1 { slab } else { None };
         let l = self.expand(t, pos, a, lo, child_slab.clone());
         let h = self.expand(t, pos, a + 1, hi, child_slab);
-        self.arena[i] = l;
-        self.arena[i + 1] = h;
+        self.arena[i].write(l);
+        self.arena[i + 1].write(h);
         match item {
             Local::At(_, p) => Building::SplitAt(ax, p, a),
             _ => Building::Split(ax, a),
@@ -1038,9 +1051,25 @@ fn preorder(arena: &[Building], leaves: &[Leaf]) -> (Vec<Node>, Vec<Leaf>) {
             _ => (1, 1),
         };
     }
-    let mut nodes = vec![Node::Leaf(0); arena.len()];
-    let mut out = leaves.to_vec();
-    write_preorder(arena, leaves, &size, 0, &mut nodes, &mut out, 0);
+    // Every node and leaf is reachable from the root exactly once.
+    assert_eq!(size[0], (arena.len() as u32, leaves.len() as u32));
+    let mut nodes = Vec::with_capacity(arena.len());
+    let mut out = Vec::with_capacity(leaves.len());
+    write_preorder(
+        arena,
+        leaves,
+        &size,
+        0,
+        &mut nodes.spare_capacity_mut()[..arena.len()],
+        &mut out.spare_capacity_mut()[..leaves.len()],
+        0,
+    );
+    // SAFETY: the walk wrote one entry per node and per leaf (sizes
+    // asserted above), each at its own preorder position.
+    unsafe {
+        nodes.set_len(arena.len());
+        out.set_len(leaves.len());
+    }
     (nodes, out)
 }
 
@@ -1049,15 +1078,15 @@ fn write_preorder(
     leaves: &[Leaf],
     size: &[(u32, u32)],
     root: u32,
-    nodes: &mut [Node],
-    out: &mut [Leaf],
+    nodes: &mut [MaybeUninit<Node>],
+    out: &mut [MaybeUninit<Leaf>],
     leaf_base: u32,
 ) {
     if size[root as usize].0 <= SERIAL_SUBTREE {
         let (mut n, mut l) = (0, 0);
         let mut stack = vec![root];
         while let Some(i) = stack.pop() {
-            nodes[n] = match arena[i as usize] {
+            nodes[n].write(match arena[i as usize] {
                 Building::Split(ax, a) => {
                     stack.extend([a + 1, a]);
                     Node::Split(ax)
@@ -1067,23 +1096,23 @@ fn write_preorder(
                     Node::SplitAt(ax, p)
                 }
                 Building::Leaf(k) => {
-                    out[l] = leaves[k as usize];
+                    out[l].write(leaves[k as usize]);
                     l += 1;
                     Node::Leaf(leaf_base + l as u32 - 1)
                 }
                 Building::Open => unreachable!("every box ends as a leaf or a split"),
-            };
+            });
             n += 1;
         }
         return;
     }
     let a = match arena[root as usize] {
         Building::Split(ax, a) => {
-            nodes[0] = Node::Split(ax);
+            nodes[0].write(Node::Split(ax));
             a
         }
         Building::SplitAt(ax, p, a) => {
-            nodes[0] = Node::SplitAt(ax, p);
+            nodes[0].write(Node::SplitAt(ax, p));
             a
         }
         _ => unreachable!("a large subtree is a split"),
