@@ -26,7 +26,7 @@ use inari::{DecInterval, Interval};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::fmt;
-use std::mem::MaybeUninit;
+use std::mem::{size_of, MaybeUninit};
 use std::str::FromStr;
 use std::sync::Arc;
 
@@ -479,6 +479,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         if merged.len() == 1 && merged[0].tree.is_none() {
             return None;
         }
+
         let mut out = Vec::new();
         let last = merged.len() - 1;
         for (j, s) in merged.into_iter().enumerate() {
@@ -707,6 +708,7 @@ pub fn pave_with<S: ConstraintSet>(
     let mut stats = PaveStats::default();
     let (mut budget_hit, mut ulp_limit, mut undecided_left) = (false, false, false);
     let mut level = 0u32;
+    let mut peak = 0usize;
 
     while !frontier.is_empty() {
         progress(level, frontier.len(), leaves.len());
@@ -869,6 +871,12 @@ pub fn pave_with<S: ConstraintSet>(
                 arena[o.node as usize] = b;
             }
         }
+        peak = peak.max(
+            arena.capacity() * size_of::<Building>()
+                + leaves.capacity() * size_of::<Leaf>()
+                + next.capacity() * size_of::<Open<S::Slab>>()
+                + missing.len() * size_of::<S::Slab>(),
+        );
         // Dropping the old frontier releases slabs; do it off the main thread.
         std::mem::replace(&mut frontier, next)
             .into_par_iter()
@@ -890,11 +898,18 @@ pub fn pave_with<S: ConstraintSet>(
 
     // Preorder serialisation of the tree; leaves renumbered in that order.
     let (nodes, ordered) = preorder(&arena, &leaves);
+    // Building, leaves in build order, subtree sizes and the output together.
+    peak = peak.max(
+        arena.capacity() * (size_of::<Building>() + 8)
+            + leaves.capacity() * size_of::<Leaf>()
+            + nodes.capacity() * size_of::<Node>()
+            + ordered.capacity() * size_of::<Leaf>(),
+    );
     drop(arena);
     drop(leaves);
-    let bytes = nodes.capacity() * std::mem::size_of::<Node>()
-        + ordered.capacity() * std::mem::size_of::<Leaf>();
+    let bytes = nodes.capacity() * size_of::<Node>() + ordered.capacity() * size_of::<Leaf>();
     stats.bytes_per_leaf = bytes as f64 / ordered.len().max(1) as f64;
+    stats.peak_bytes_per_leaf = peak as f64 / ordered.len().max(1) as f64;
     Ok(Paving {
         root,
         names,

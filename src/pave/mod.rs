@@ -254,6 +254,9 @@ pub struct PaveStats {
     pub depth: u32,
     /// Memory of the finished tree (nodes and leaves) per leaf.
     pub bytes_per_leaf: f64,
+    /// Most memory held while paving (tree under construction, open boxes
+    /// and their slabs, the serialisation), per final leaf.
+    pub peak_bytes_per_leaf: f64,
 }
 
 /// Why refinement stopped.
