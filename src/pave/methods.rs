@@ -316,6 +316,13 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                 continue;
             }
             let q = self.set.quadratic(slab, i)?;
+            // Without a θ̇ term, θ̇ occurs once: natural is already exact in θ̇.
+            if q.c1
+                .interval()
+                .is_some_and(|c| c.inf() == 0.0 && c.sup() == 0.0)
+            {
+                continue;
+            }
             if centred_label(&q, b.theta_dot_interval()).is_decided() {
                 gained |= 1 << i;
             }
@@ -425,7 +432,10 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             let (lo_free, hi_free) = (j > 0, j + 1 < segs.len());
             let (a, z) = (segs[j].lo, segs[j].hi);
             let mut done = None;
-            for f in std::iter::once(0.0).chain(SHRINK) {
+            // With a free side the tentative end is a root of the bound:
+            // the unshrunk part touches zero, so start shrinking at once.
+            let first = if lo_free || hi_free { 1 } else { 0 };
+            for f in std::iter::once(0.0).chain(SHRINK).skip(first) {
                 let d = f * (z - a);
                 let na = if lo_free && f > 0.0 { a + d } else { a };
                 let nz = if hi_free && f > 0.0 { z - d } else { z };
@@ -1143,4 +1153,63 @@ fn write_preorder(
 
 fn slab_key(b: &PhaseBox) -> (u64, u64) {
     (b.theta[0].to_bits(), b.theta[1].to_bits())
+}
+
+/// One timed run of a method on a scene, summarised for charts and tables.
+#[derive(Clone, Debug, Serialize)]
+pub struct MethodRun {
+    pub method: Method,
+    pub eps: f64,
+    pub leaves: usize,
+    /// Outer − inner area of the region asked for (rounded up).
+    pub undecided_area: f64,
+    pub inner_area: f64,
+    pub outer_area: f64,
+    pub box_evaluations: u64,
+    pub slab_evaluations: u64,
+    pub bytes_per_leaf: f64,
+    pub peak_bytes_per_leaf: f64,
+    /// Wall time of the paving alone.
+    pub seconds: f64,
+    pub stop: StopReason,
+}
+
+/// Paves `domain` of a scene with `method` for the region or cell
+/// `region` (an index into [`super::standard_cells`], refining only its
+/// constraints; `None`: all constraints, areas of Ω) and reports the run.
+pub fn run_method(
+    scene: &crate::scene::Scene,
+    variant: crate::scene::Variant,
+    domain: &crate::scene::Domain,
+    region: Option<usize>,
+    method: Method,
+    opts: PaveOptions,
+) -> Result<(MethodRun, Paving), PaveError> {
+    let cells = super::standard_cells();
+    let cell = cells.get(region.unwrap_or(0)).copied().unwrap_or(cells[0]);
+    let mo = match region {
+        Some(_) => MethodOptions::for_cell(method, &cell),
+        None => MethodOptions::new(method),
+    };
+    let start = std::time::Instant::now();
+    let p = super::pave_scene_method(scene, variant, domain, opts, &mo, |_, _, _| {})?;
+    let seconds = start.elapsed().as_secs_f64();
+    let b = p.area_bounds(&cell, domain.uncovered_area_sup());
+    Ok((
+        MethodRun {
+            method,
+            eps: opts.eps,
+            leaves: p.leaves.len(),
+            undecided_area: b.undecided_area(),
+            inner_area: b.inner_area,
+            outer_area: b.outer_area,
+            box_evaluations: p.stats.box_evaluations,
+            slab_evaluations: p.stats.slab_evaluations,
+            bytes_per_leaf: p.stats.bytes_per_leaf,
+            peak_bytes_per_leaf: p.stats.peak_bytes_per_leaf,
+            seconds,
+            stop: p.stop,
+        },
+        p,
+    ))
 }

@@ -19,7 +19,7 @@ use inari::{DecInterval, Interval};
 use serde::Serialize;
 
 pub use area::{standard_cells, AreaBounds, CellSpec};
-pub use methods::{pave_with, Method, MethodOptions};
+pub use methods::{pave_with, run_method, Method, MethodOptions, MethodRun};
 
 /// Most constraints one paving can carry.
 pub const MAX_CONSTRAINTS: usize = 4;
