@@ -309,7 +309,8 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         labels: &Labels,
         work: &mut Work,
     ) -> Option<Vec<Local>> {
-        let mut decided = self.decided_mask(labels);
+        let w = b.theta_dot_interval();
+        let at_resolution = self.choose_axis(b).is_none();
         let mut gained = 0u8;
         for i in self.own() {
             if labels[i] != Label::Undecided {
@@ -317,35 +318,50 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             }
             let q = self.set.quadratic(slab, i)?;
             // Without a θ̇ term, θ̇ occurs once: natural is already exact in θ̇.
-            if q.c1
-                .interval()
-                .is_some_and(|c| c.inf() == 0.0 && c.sup() == 0.0)
-            {
-                continue;
-            }
-            if centred_label(&q, b.theta_dot_interval()).is_decided() {
+            let no_w_term =
+                q.c1.interval()
+                    .is_some_and(|c| c.inf() == 0.0 && c.sup() == 0.0);
+            if !no_w_term && centred_label(&q, w).is_decided() {
                 gained |= 1 << i;
             }
         }
         gained = self.with_copies(gained);
-        if gained == 0 {
+        let all = (self.decided_mask(labels) | gained) & self.relevant == self.relevant;
+        if gained & self.relevant != 0 && (all || at_resolution) {
+            let mut budget = CERTIFY_LEAVES;
+            if let Some(t) = self.certify(b, slab, gained & self.relevant, &mut budget, work, false)
+            {
+                return Some(t);
+            }
+        }
+        if !at_resolution {
             return None;
         }
-        decided |= gained;
-        let all = decided & self.relevant == self.relevant;
-        if !all && self.choose_axis(b).is_some() {
+        // At the resolution, where bisection stops: the coefficients by their
+        // mean-value form in θ (dual-number gradient), then certified by
+        // splitting θ and θ̇ below the resolution.
+        work.slabs += 2;
+        let cc = self.set.centred_coefficients(b.theta_interval())?;
+        let mut gained = 0u8;
+        for i in self.own() {
+            if labels[i] == Label::Undecided && centred_label(cc.get(i)?, w).is_decided() {
+                gained |= 1 << i;
+            }
+        }
+        let wanted = self.with_copies(gained) & self.relevant;
+        if wanted == 0 {
             return None;
         }
         let mut budget = CERTIFY_LEAVES;
-        self.certify(b, slab, gained & self.relevant, &mut budget, work)
+        self.certify(b, slab, wanted, &mut budget, work, true)
     }
 
     /// A subtree whose leaves all carry natural labels deciding every
-    /// constraint in `wanted`, by bisection in θ̇ within `budget` leaves.
-    /// θ̇ only: both the centred form and the contractor decide from the
-    /// slab's coefficient enclosures, so what they prove is reached by
-    /// narrowing θ̇ alone (the dependency of c₂θ̇² + c₁θ̇ shrinks with the
-    /// width), and the slab is shared instead of recomputed.
+    /// constraint in `wanted`, by bisection within `budget` leaves. θ̇ only
+    /// unless `theta`: what the θ̇-centred form and the contractor prove
+    /// from the slab's coefficients is reached by narrowing θ̇ alone (the
+    /// dependency of c₂θ̇² + c₁θ̇ shrinks with the width), sharing the slab;
+    /// the θ-centred form needs narrower θ-slabs too.
     fn certify(
         &self,
         b: &PhaseBox,
@@ -353,20 +369,57 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         wanted: u8,
         budget: &mut u32,
         work: &mut Work,
+        theta: bool,
     ) -> Option<Vec<Local>> {
         let labels = self.natural(slab, b, work);
         if self.decided_mask(&labels) & wanted == wanted {
             return Some(vec![Local::Leaf(labels)]);
         }
-        if *budget < 2 || !b.can_split(1) {
+        if *budget < 2 {
             return None;
         }
+        let axis = if theta && b.can_split(0) && self.theta_dominates(b, slab, wanted) {
+            0
+        } else if b.can_split(1) {
+            1
+        } else {
+            return None;
+        };
         *budget -= 1;
-        let (lo, hi) = b.split(1);
-        let mut out = vec![Local::Mid(1)];
-        out.extend(self.certify(&lo, slab, wanted, budget, work)?);
-        out.extend(self.certify(&hi, slab, wanted, budget, work)?);
+        let (lo, hi) = b.split(axis);
+        let mut out = vec![Local::Mid(axis as u8)];
+        if axis == 0 {
+            work.slabs += 2;
+            for half in [lo, hi] {
+                let sl = self.set.slab(half.theta_interval());
+                out.extend(self.certify(&half, &sl, wanted, budget, work, theta)?);
+            }
+        } else {
+            out.extend(self.certify(&lo, slab, wanted, budget, work, theta)?);
+            out.extend(self.certify(&hi, slab, wanted, budget, work, theta)?);
+        }
         Some(out)
+    }
+
+    /// The θ-width of the coefficients costs more than the θ̇ dependency:
+    /// compare the enclosure at the θ̇ midpoint with the whole one.
+    fn theta_dominates(&self, b: &PhaseBox, slab: &S::Slab, wanted: u8) -> bool {
+        let whole = DecInterval::new(b.theta_dot_interval());
+        let mid = DecInterval::new(point(b.midpoint(1)));
+        let (mut coef, mut dep) = (0.0f64, 0.0f64);
+        for i in self
+            .own()
+            .filter(|&i| self.with_copies(1 << i) & wanted != 0)
+        {
+            let Some(q) = self.set.quadratic(slab, i) else {
+                return true;
+            };
+            if let (Some(x), Some(y)) = (q.eval(whole).interval(), q.eval(mid).interval()) {
+                coef = coef.max(y.wid());
+                dep = dep.max(x.wid() - y.wid());
+            }
+        }
+        coef >= dep
     }
 
     /// Contraction of a box on a new θ-slab: the θ̇-partition into parts
@@ -458,7 +511,9 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                 if na < nz {
                     let mut budget = CERTIFY_LEAVES;
                     let bx = with_w(b, na, nz);
-                    if let Some(t) = self.certify(&bx, slab, self.relevant, &mut budget, work) {
+                    if let Some(t) =
+                        self.certify(&bx, slab, self.relevant, &mut budget, work, false)
+                    {
                         done = Some((na, nz, t));
                     }
                 }

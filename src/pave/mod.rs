@@ -191,6 +191,12 @@ pub trait ConstraintSet: Sync {
     fn quadratic(&self, _slab: &Self::Slab, _i: usize) -> Option<Quadratic<DecInterval>> {
         None
     }
+    /// Every constraint's coefficients over `theta`, each the natural
+    /// enclosure intersected with its mean-value form in θ (tighter on
+    /// narrow slabs); used by the centred method to steer.
+    fn centred_coefficients(&self, _theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {
+        None
+    }
 }
 
 /// Ω and Ω₀ of a scene, in one reading of the paper.
@@ -224,6 +230,37 @@ impl ConstraintSet for SceneConstraints<'_> {
             1 => Some(c.omega0),
             _ => None,
         }
+    }
+    fn centred_coefficients(&self, theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {
+        use crate::scalar::Dual;
+        use crate::scene::Angle;
+        let t = DecInterval::new(theta);
+        let m = Interval::try_from((theta.mid(), theta.mid())).ok()?;
+        let d = self
+            .scene
+            .constraints(self.variant, &Angle::new(Dual::variable(t, 0)));
+        let p = self.scene.constraints_on(self.variant, m);
+        // c(θ) ∈ c(m) + c'(Θ)(Θ − m) for every θ ∈ Θ (mean-value theorem,
+        // c continuously differentiable where the enclosures are ≥ dac).
+        let dm = DecInterval::new(theta - m);
+        let one = |c: Dual<DecInterval>, at_m: DecInterval| -> DecInterval {
+            let mv = at_m + c.grad[0] * dm;
+            let ok = [c.value, c.grad[0], at_m, mv]
+                .iter()
+                .all(|x| x.decoration() >= inari::Decoration::Dac && is_defined(*x));
+            match (ok, c.value.interval(), mv.interval()) {
+                (true, Some(a), Some(b)) if !a.intersection(b).is_empty() => {
+                    DecInterval::set_dec(a.intersection(b), c.value.decoration())
+                }
+                _ => c.value,
+            }
+        };
+        let q = |d: Quadratic<Dual<DecInterval>>, p: Quadratic<DecInterval>| Quadratic {
+            c2: one(d.c2, p.c2),
+            c1: one(d.c1, p.c1),
+            c0: one(d.c0, p.c0),
+        };
+        Some(vec![q(d.omega, p.omega), q(d.omega0, p.omega0)])
     }
 }
 
