@@ -378,3 +378,39 @@ fn budgets_hold_for_every_method() {
         }
     }
 }
+
+#[test]
+fn contraction_points_are_recorded_and_checked() {
+    use detach::pave::Node;
+    let scene = Scene::default_of(SceneId::SmoothDisc);
+    for m in [Method::Contract, Method::Slices] {
+        let p = pave(&scene, Variant::Printed, 1.0 / 64.0, MethodOptions::new(m));
+        let at = p
+            .nodes
+            .iter()
+            .filter(|n| matches!(n, Node::SplitAt(..)))
+            .count();
+        assert!(at > 0, "{m}: no split at a recorded point");
+        // Every recorded point lies strictly inside the box it splits.
+        assert!(p.replay_boxes().is_some());
+    }
+}
+
+#[test]
+fn run_method_reports_what_the_chart_needs() {
+    let scene = Scene::default_of(SceneId::ViscousDisc);
+    let opts = PaveOptions {
+        eps: 1.0 / 128.0,
+        max_boxes: 100_000,
+    };
+    for m in Method::ALL {
+        let (run, p) =
+            detach::pave::run_method(&scene, Variant::Printed, &scene.domain(), Some(1), m, opts)
+                .unwrap();
+        assert_eq!(run.leaves, p.leaves.len());
+        assert!(run.inner_area <= run.outer_area);
+        assert!(run.undecided_area >= run.outer_area - run.inner_area);
+        assert!(run.box_evaluations >= run.leaves as u64);
+        assert!(run.bytes_per_leaf > 0.0 && run.peak_bytes_per_leaf >= run.bytes_per_leaf);
+    }
+}
