@@ -774,6 +774,9 @@ pub fn pave_with<S: ConstraintSet>(
     let (mut budget_hit, mut ulp_limit, mut undecided_left) = (false, false, false);
     let mut level = 0u32;
     let mut peak = 0usize;
+    // Per-level bookkeeping, reused (its pages are touched once).
+    let (mut order, mut plan, mut offsets): (Vec<usize>, Vec<Plan>, Vec<[usize; 3]>) =
+        Default::default();
 
     while !frontier.is_empty() {
         progress(level, frontier.len(), leaves.len());
@@ -823,14 +826,16 @@ pub fn pave_with<S: ConstraintSet>(
         // Refinement decisions in frontier order (`slices`: largest
         // undecided area first), each adding leaves while the budget allows.
         // Only integer bookkeeping here; the tree is written in parallel.
-        let mut order: Vec<usize> = (0..frontier.len()).collect();
+        order.clear();
+        order.extend(0..frontier.len());
         if mo.method == Method::Slices {
             let area = |o: &Open<S::Slab>| {
                 (o.bx.theta[1] - o.bx.theta[0]) * (o.bx.theta_dot[1] - o.bx.theta_dot[0])
             };
             order.sort_by(|&a, &b| area(&frontier[b]).total_cmp(&area(&frontier[a])));
         }
-        let mut plan = vec![Plan::default(); frontier.len()];
+        plan.clear();
+        plan.resize(frontier.len(), Plan::default());
         let mut leaves_if_stopped = leaves.len() + frontier.len();
         let room = (u32::MAX as usize).saturating_sub(arena.len() + 2 * frontier.len());
         let mut nodes_planned = 0usize;
@@ -873,7 +878,7 @@ pub fn pave_with<S: ConstraintSet>(
         // Offsets of each box's share, then every box writes its share of
         // the reserved capacity itself (first touch on the workers).
         let (base_nodes, base_leaves) = (arena.len(), leaves.len());
-        let mut offsets = Vec::with_capacity(plan.len());
+        offsets.clear();
         let mut total = [0usize; 3];
         for p in &plan {
             offsets.push(total);
@@ -885,20 +890,21 @@ pub fn pave_with<S: ConstraintSet>(
         leaves.reserve(total[1]);
         let mut next: Vec<Open<S::Slab>> = Vec::with_capacity(total[2]);
         {
-            let (an, ln, on) = (
-                Shared::new(arena.spare_capacity_mut()),
+            // The whole arena allocation: parents (below `base_nodes`, one
+            // per box) and the new children (above) are written in place.
+            let an = Shared::whole(&mut arena);
+            let (ln, on) = (
                 Shared::new(leaves.spare_capacity_mut()),
                 Shared::new(next.spare_capacity_mut()),
             );
-            let own: Vec<Building> = done
-                .into_par_iter()
+            done.into_par_iter()
                 .enumerate()
-                .map(|(k, (labels, outcome, _))| {
+                .for_each(|(k, (labels, outcome, _))| {
                     let o = &frontier[k];
                     let off = offsets[k];
                     let p = plan[k];
                     let mut f = Filler {
-                        arena: an.part(off[0], p.nodes as usize),
+                        arena: an.part(base_nodes + off[0], p.nodes as usize),
                         arena_base: (base_nodes + off[0]) as u32,
                         leaves: ln.part(off[1], p.leaves as usize),
                         leaf_base: (base_leaves + off[1]) as u32,
@@ -922,18 +928,14 @@ pub fn pave_with<S: ConstraintSet>(
                         f.used,
                         [p.nodes as usize, p.leaves as usize, p.opens as usize]
                     );
-                    own
-                })
-                .collect();
+                    an.part(o.node as usize, 1)[0].write(own);
+                });
             // SAFETY: each box wrote exactly its planned slots (asserted
             // above), the shares are disjoint and together cover `total`.
             unsafe {
                 arena.set_len(base_nodes + total[0]);
                 leaves.set_len(base_leaves + total[1]);
                 next.set_len(total[2]);
-            }
-            for (o, b) in frontier.iter().zip(own) {
-                arena[o.node as usize] = b;
             }
         }
         peak = peak.max(
@@ -1037,6 +1039,13 @@ impl<T> Shared<T> {
         Shared {
             ptr: s.as_mut_ptr(),
             len: s.len(),
+        }
+    }
+    /// The whole allocation of `v`, initialised part and spare capacity.
+    fn whole(v: &mut Vec<T>) -> Self {
+        Shared {
+            ptr: v.as_mut_ptr().cast::<MaybeUninit<T>>(),
+            len: v.capacity(),
         }
     }
     /// The part `[start, start + n)`. Callers take disjoint parts.
