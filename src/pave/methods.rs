@@ -8,8 +8,9 @@
 //! certifying by a few extra splits, never a label on their own.
 //!
 //! - `natural`: label by the natural extension, bisect undecided boxes.
-//! - `centred`: natural ∩ mean-value form ∩ monotonicity in θ̇; a box these
-//!   decide is certified by a small local subdivision.
+//! - `centred`: natural ∩ mean-value form ∩ monotonicity in θ̇ (and, where
+//!   bisection stops at the resolution, the coefficients' mean-value form in
+//!   θ); a box these decide is certified by a small local subdivision.
 //! - `contract`: on every new θ-slab, the exact θ̇-partition of each quadratic
 //!   constraint into certainly in / certainly out / undecided, recorded as
 //!   splits at the contraction points; removed parts are verified leaves.
@@ -37,8 +38,9 @@ pub enum Method {
     /// Natural interval extension and bisection.
     #[default]
     Natural,
-    /// Mean-value form and monotonicity in θ̇ intersected with the natural
-    /// enclosure, decided boxes certified by local subdivision.
+    /// Mean-value form and monotonicity in θ̇ (and in θ at the resolution)
+    /// intersected with the natural enclosure, decided boxes certified by
+    /// local subdivision.
     Centred,
     /// Exact contraction of each quadratic in θ̇ on every new θ-slab.
     Contract,
