@@ -56,13 +56,18 @@ impl BitWriter {
 }
 
 /// The preorder tree in `tree/1` bits: leaf `0` + 2 bits per constraint,
-/// θ-midpoint split `100`, θ̇-midpoint split `101`.
+/// θ-midpoint split `100`, θ̇-midpoint split `101`, split at an explicit
+/// point `11` + axis bit + the point's 64 bits.
 pub fn encode_tree(paving: &Paving) -> Vec<u8> {
     let k = paving.names.len();
     let mut w = BitWriter::default();
     for node in &paving.nodes {
         match *node {
             Node::Split(axis) => w.push(0b100 | u64::from(axis), 3),
+            Node::SplitAt(axis, p) => {
+                w.push(0b110 | u64::from(axis), 3);
+                w.push(p.to_bits(), 64);
+            }
             Node::Leaf(i) => {
                 w.push(0, 1);
                 for &l in &paving.leaves[i as usize].labels[..k] {

@@ -6,7 +6,9 @@ use detach::atlas::{
     MIN_WIDTH,
 };
 use detach::param::{parse_assignment, ParamSet};
-use detach::pave::{pave_scene_in, standard_cells, AreaBounds, PaveOptions, Paving};
+use detach::pave::{
+    pave_scene_method, standard_cells, AreaBounds, Method, MethodOptions, PaveOptions, Paving,
+};
 use detach::scene::{Domain, Scene, SceneId, Variant, REGION_LABELS, REGION_NAMES};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
@@ -31,6 +33,29 @@ pub struct PaveFlags {
     /// the result is coarser but valid.
     #[arg(long, default_value_t = 4_000_000, value_parser = detach::param::parse_count, allow_negative_numbers = true)]
     pub max_boxes: usize,
+    /// Paving method: natural, centred, contract or slices. Every method's
+    /// labels are confirmed by the proof checker's natural evaluation.
+    #[arg(long, value_enum, default_value_t = Method::Natural)]
+    pub method: Method,
+    /// Refine only for this region or cell (omega, omega0, omega_and_omega0,
+    /// …): boxes undecided only for a constraint it does not use stay leaves.
+    #[arg(long, value_name = "NAME")]
+    pub region: Option<String>,
+}
+
+impl PaveFlags {
+    fn method_options(&self) -> Result<MethodOptions, CliError> {
+        let Some(name) = &self.region else {
+            return Ok(MethodOptions::new(self.method));
+        };
+        let i = REGION_NAMES.iter().position(|r| r == name).ok_or_else(|| {
+            CliError::usage(format!(
+                "unknown region `{name}` (known: {})",
+                REGION_NAMES.join(", ")
+            ))
+        })?;
+        Ok(MethodOptions::for_cell(self.method, &standard_cells()[i]))
+    }
 }
 
 #[derive(clap::Args, Debug)]
@@ -144,6 +169,8 @@ pub struct PaveReport {
     variant: Variant,
     params: serde_json::Map<String, serde_json::Value>,
     domain: DomainReport,
+    /// The paving method (`--method`).
+    method: Method,
     eps: f64,
     max_boxes: usize,
     complete: bool,
@@ -186,20 +213,22 @@ fn pave_and_report(
     params: &ParamSet,
     variant: Variant,
     opts: PaveOptions,
+    mo: &MethodOptions,
 ) -> Result<(Paving, PaveReport), CliError> {
     // Two levels per halving of each axis; 1/eps may be +∞ (eps subnormal),
     // and no double interval halves more than about 1100 times.
     let levels = (2.0 * (1.0 / opts.eps).log2().ceil().clamp(0.0, 1100.0)) as u64 + 1;
     let bar = progress_bar(levels, scene.id().name());
     let start = Instant::now();
-    let paving = pave_scene_in(scene, variant, domain, opts, |level, open, leaves| {
+    let paving = pave_scene_method(scene, variant, domain, opts, mo, |level, open, leaves| {
         bar.set_position(level as u64);
         bar.set_message(format!("{open} open, {leaves} leaves"));
     })
     .map_err(CliError::usage)?;
     let elapsed_s = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
-    let report = summarise(scene, domain, params, variant, opts, &paving, elapsed_s);
+    let mut report = summarise(scene, domain, params, variant, opts, &paving, elapsed_s);
+    report.method = mo.method;
     for w in &report.warnings {
         eprintln!("detach: warning: {} ({w})", report.scene);
     }
@@ -216,24 +245,22 @@ fn summarise(
     elapsed_s: f64,
 ) -> PaveReport {
     let uncovered = domain.uncovered_area_sup();
-    let regions = standard_cells()
-        .iter()
+    let regions = paving
+        .area_bounds_all(&standard_cells(), uncovered)
+        .into_iter()
         .enumerate()
-        .map(|(i, cell)| {
-            let b: AreaBounds = paving.area_bounds(cell, uncovered);
-            RegionReport {
-                name: REGION_NAMES[i],
-                label: REGION_LABELS[i],
-                inner_area: b.inner_area,
-                outer_area: b.outer_area,
-                undecided_area: b.undecided_area(),
-                empty: b.proved_empty.then_some("omega0 = omega"),
-                boxes: BoxCounts {
-                    inner: b.inner_boxes,
-                    outer: b.outer_boxes,
-                    undecided: b.undecided_boxes(),
-                },
-            }
+        .map(|(i, b): (usize, AreaBounds)| RegionReport {
+            name: REGION_NAMES[i],
+            label: REGION_LABELS[i],
+            inner_area: b.inner_area,
+            outer_area: b.outer_area,
+            undecided_area: b.undecided_area(),
+            empty: b.proved_empty.then_some("omega0 = omega"),
+            boxes: BoxCounts {
+                inner: b.inner_boxes,
+                outer: b.outer_boxes,
+                undecided: b.undecided_boxes(),
+            },
         })
         .collect();
     let (undefined_area, warnings) = undefined_warnings(paving);
@@ -251,6 +278,7 @@ fn summarise(
             theta_dot: paving.root.theta_dot,
             uncovered_area_sup: uncovered,
         },
+        method: Method::Natural,
         eps: opts.eps,
         max_boxes: opts.max_boxes,
         complete: paving.complete,
@@ -342,10 +370,15 @@ fn print_table(r: &PaveReport) {
         .map(|(k, v)| format!("{k}={}", v.as_str().unwrap_or("")))
         .collect();
     outln!(
-        "{} ({})  {}  eps={:.3e}  {} leaves  {:.2} s  stop: {} ({})",
+        "{} ({})  {}{}  eps={:.3e}  {} leaves  {:.2} s  stop: {} ({})",
         r.scene,
         r.variant,
         params.join(" "),
+        if r.method == Method::Natural {
+            String::new()
+        } else {
+            format!("  method={}", r.method)
+        },
         r.eps,
         r.leaves,
         r.elapsed_s,
@@ -442,7 +475,14 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
              clipped to the domain"
         );
     }
-    let (paving, report) = pave_and_report(&scene, &domain, &params, args.flags.variant, opts)?;
+    let (paving, report) = pave_and_report(
+        &scene,
+        &domain,
+        &params,
+        args.flags.variant,
+        opts,
+        &args.flags.method_options()?,
+    )?;
     if let Some(path) = &args.leaves {
         write_leaves(&paving, path)?;
     }
@@ -535,6 +575,7 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
     // About one pixel: the largest power of two not above 1/max(w, h).
     let pixel_eps = (1.0 / w.max(h) as f64).log2().floor().exp2();
     let opts = options(&args.flags, pixel_eps)?;
+    let mo = args.flags.method_options()?;
     // Validate every scene and window before the long work starts.
     let scenes = ids
         .iter()
@@ -562,7 +603,8 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
         .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", args.out.display())))?;
     let mut reports = Vec::new();
     for (scene, params, domain) in &scenes {
-        let (paving, report) = pave_and_report(scene, domain, params, args.flags.variant, opts)?;
+        let (paving, report) =
+            pave_and_report(scene, domain, params, args.flags.variant, opts, &mo)?;
         let info = PictureInfo {
             scene,
             variant: args.flags.variant,

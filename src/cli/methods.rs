@@ -4,7 +4,7 @@
 use super::{CliError, CliResult};
 use detach::atlas::chart::{draw_speed_accuracy, Curve, Panel};
 use detach::param::enclose_decimal;
-use detach::pave::method::{pave_with, Method};
+use detach::pave::{run_method, Method};
 use detach::pave::{standard_cells, Leaf, Node, PaveOptions};
 use detach::scene::{Domain, Scene, SceneId, Variant, PI};
 use serde::Serialize;
@@ -250,8 +250,10 @@ pub fn run_methods(args: &MethodsArgs) -> CliResult {
                 let mut last = None;
                 for _ in 0..args.repeat {
                     let start = Instant::now();
-                    let paving = pave_with(m, &p.scene, p.variant, &p.domain, opts, |_, _, _| {})
-                        .map_err(CliError::usage)?;
+                    // Only the constraints of the problem's region are refined.
+                    let (_, paving) =
+                        run_method(&p.scene, p.variant, &p.domain, Some(p.cell), m, opts)
+                            .map_err(CliError::usage)?;
                     times.push(start.elapsed().as_secs_f64());
                     last = Some(paving);
                 }

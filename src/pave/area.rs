@@ -92,6 +92,16 @@ impl AreaBounds {
 const ZERO: Interval = const_interval!(0.0, 0.0);
 
 impl Paving {
+    /// [`Paving::area_bounds`] of several sets, one thread per set; each sum
+    /// runs in leaf order, so the result does not depend on the thread count.
+    pub fn area_bounds_all(&self, cells: &[CellSpec], uncovered_sup: f64) -> Vec<AreaBounds> {
+        use rayon::prelude::*;
+        cells
+            .par_iter()
+            .map(|c| self.area_bounds(c, uncovered_sup))
+            .collect()
+    }
+
     /// Area bounds of a set. `uncovered_sup` bounds the area of the true domain
     /// outside the root box (it is added to the outer bound only).
     pub fn area_bounds(&self, cell: &CellSpec, uncovered_sup: f64) -> AreaBounds {

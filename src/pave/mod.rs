@@ -11,16 +11,15 @@
 
 pub mod area;
 pub mod export;
-pub mod method;
+pub mod methods;
 
 use crate::scalar::is_defined;
-use crate::scene::{Constraints, Domain, Scene, Variant};
+use crate::scene::{Constraints, Domain, Quadratic, Scene, Variant};
 use inari::{DecInterval, Interval};
-use rayon::prelude::*;
 use serde::Serialize;
-use std::collections::HashMap;
 
 pub use area::{standard_cells, AreaBounds, CellSpec};
+pub use methods::{pave_with, run_method, Method, MethodOptions, MethodRun};
 
 /// Most constraints one paving can carry.
 pub const MAX_CONSTRAINTS: usize = 4;
@@ -121,6 +120,27 @@ impl PhaseBox {
         }
         (lo, hi)
     }
+    /// Splits at `p` along `axis`; `None` unless `p` lies strictly inside.
+    pub fn split_at(&self, axis: usize, p: f64) -> Option<(PhaseBox, PhaseBox)> {
+        let r = if axis == 0 {
+            self.theta
+        } else {
+            self.theta_dot
+        };
+        if !(r[0] < p && p < r[1]) {
+            return None;
+        }
+        let (mut lo, mut hi) = (*self, *self);
+        if axis == 0 {
+            lo.theta[1] = p;
+            hi.theta[0] = p;
+        } else {
+            lo.theta_dot[1] = p;
+            hi.theta_dot[0] = p;
+        }
+        Some((lo, hi))
+    }
+
     pub fn contains(&self, theta: f64, theta_dot: f64) -> bool {
         self.theta[0] <= theta
             && theta <= self.theta[1]
@@ -138,11 +158,14 @@ pub struct Leaf {
 }
 
 /// A node of the bisection tree in preorder: enough to replay the paving.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Node {
     /// Bisected along axis 0 (θ) or 1 (θ̇); the two subtrees follow.
     Split(u8),
+    /// Split along an axis at a recorded exact double strictly inside the
+    /// box (a contraction point); the two subtrees follow.
+    SplitAt(u8, f64),
     /// A leaf: index into [`Paving::leaves`].
     Leaf(u32),
 }
@@ -160,6 +183,19 @@ pub trait ConstraintSet: Sync {
     /// cells asking opposite signs of the two are reported exactly empty.
     fn same_as(&self) -> Vec<Option<usize>> {
         vec![None; self.names().len()]
+    }
+    /// Constraint `i` as `c₂θ̇² + c₁θ̇ + c₀` with coefficient enclosures over
+    /// the slab, when it is one: evaluating it on a θ̇-interval must give
+    /// exactly [`ConstraintSet::enclose`]'s value. Enables the centred and
+    /// contraction methods (without it they fall back to natural).
+    fn quadratic(&self, _slab: &Self::Slab, _i: usize) -> Option<Quadratic<DecInterval>> {
+        None
+    }
+    /// Every constraint's coefficients over `theta`, each the natural
+    /// enclosure intersected with its mean-value form in θ (tighter on
+    /// narrow slabs); used by the centred method to steer.
+    fn centred_coefficients(&self, _theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {
+        None
     }
 }
 
@@ -188,6 +224,44 @@ impl ConstraintSet for SceneConstraints<'_> {
             vec![None, None]
         }
     }
+    fn quadratic(&self, c: &Self::Slab, i: usize) -> Option<Quadratic<DecInterval>> {
+        match i {
+            0 => Some(c.omega),
+            1 => Some(c.omega0),
+            _ => None,
+        }
+    }
+    fn centred_coefficients(&self, theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {
+        use crate::scalar::Dual;
+        use crate::scene::Angle;
+        let t = DecInterval::new(theta);
+        let m = Interval::try_from((theta.mid(), theta.mid())).ok()?;
+        let d = self
+            .scene
+            .constraints(self.variant, &Angle::new(Dual::variable(t, 0)));
+        let p = self.scene.constraints_on(self.variant, m);
+        // c(θ) ∈ c(m) + c'(Θ)(Θ − m) for every θ ∈ Θ (mean-value theorem,
+        // c continuously differentiable where the enclosures are ≥ dac).
+        let dm = DecInterval::new(theta - m);
+        let one = |c: Dual<DecInterval>, at_m: DecInterval| -> DecInterval {
+            let mv = at_m + c.grad[0] * dm;
+            let ok = [c.value, c.grad[0], at_m, mv]
+                .iter()
+                .all(|x| x.decoration() >= inari::Decoration::Dac && is_defined(*x));
+            match (ok, c.value.interval(), mv.interval()) {
+                (true, Some(a), Some(b)) if !a.intersection(b).is_empty() => {
+                    DecInterval::set_dec(a.intersection(b), c.value.decoration())
+                }
+                _ => c.value,
+            }
+        };
+        let q = |d: Quadratic<Dual<DecInterval>>, p: Quadratic<DecInterval>| Quadratic {
+            c2: one(d.c2, p.c2),
+            c1: one(d.c1, p.c1),
+            c0: one(d.c0, p.c0),
+        };
+        Some(vec![q(d.omega, p.omega), q(d.omega0, p.omega0)])
+    }
 }
 
 /// When to stop bisecting.
@@ -215,6 +289,11 @@ pub struct PaveStats {
     pub box_evaluations: u64,
     pub slab_evaluations: u64,
     pub depth: u32,
+    /// Memory of the finished tree (nodes and leaves) per leaf.
+    pub bytes_per_leaf: f64,
+    /// Most memory held while paving (tree under construction, open boxes
+    /// and their slabs, the serialisation), per final leaf.
+    pub peak_bytes_per_leaf: f64,
 }
 
 /// Why refinement stopped.
@@ -289,215 +368,16 @@ pub enum PaveError {
     TooManyConstraints,
 }
 
-/// Arena node used while building.
-enum Building {
-    Open,
-    Leaf(u32),
-    Split(u8, usize, usize),
-}
-
-/// Paves `root` for every constraint of `set`. `progress` is called once per
-/// level with (level, open boxes, leaves so far).
+/// Paves `root` for every constraint of `set` with the natural method.
+/// `progress` is called once per level with (level, open boxes, leaves so
+/// far).
 pub fn pave<S: ConstraintSet>(
     set: &S,
     root: PhaseBox,
     opts: PaveOptions,
-    mut progress: impl FnMut(u32, usize, usize),
+    progress: impl FnMut(u32, usize, usize),
 ) -> Result<Paving, PaveError> {
-    if !(opts.eps.is_finite() && opts.eps > 0.0 && opts.eps <= 1.0) {
-        return Err(PaveError::BadEps(opts.eps));
-    }
-    if opts.max_boxes == 0 {
-        return Err(PaveError::BadBudget);
-    }
-    if !(root.theta[0] < root.theta[1] && root.theta_dot[0] < root.theta_dot[1]) {
-        return Err(PaveError::EmptyDomain);
-    }
-    let names = set.names();
-    if names.len() > MAX_CONSTRAINTS {
-        return Err(PaveError::TooManyConstraints);
-    }
-    let mut same_as = set.same_as();
-    same_as.resize(names.len(), None);
-    for (i, s) in same_as.iter_mut().enumerate() {
-        // only earlier constraints that are not aliases themselves
-        if s.is_some_and(|j| j >= i) {
-            *s = None;
-        }
-    }
-    let min_width = [
-        opts.eps * (root.theta[1] - root.theta[0]),
-        opts.eps * (root.theta_dot[1] - root.theta_dot[0]),
-    ];
-    let rel = |b: &PhaseBox, axis: usize| {
-        let r = if axis == 0 { b.theta } else { b.theta_dot };
-        (r[1] - r[0])
-            / (if axis == 0 {
-                root.theta[1] - root.theta[0]
-            } else {
-                root.theta_dot[1] - root.theta_dot[0]
-            })
-    };
-    // Above the resolution along each axis.
-    let wide = |b: &PhaseBox| {
-        [
-            b.theta[1] - b.theta[0] > min_width[0],
-            b.theta_dot[1] - b.theta_dot[0] > min_width[1],
-        ]
-    };
-    // Split the relatively wider axis; θ̇ on ties, so slabs (and their cached
-    // trigonometry) are shared as long as possible. An axis where the box is
-    // one ulp wide cannot be split.
-    let choose_axis = |b: &PhaseBox| -> Option<u8> {
-        let w = wide(b);
-        let can = [w[0] && b.can_split(0), w[1] && b.can_split(1)];
-        match can {
-            [false, false] => None,
-            [true, false] => Some(0),
-            [false, true] => Some(1),
-            [true, true] => Some(if rel(b, 0) > rel(b, 1) { 0 } else { 1 }),
-        }
-    };
-
-    let mut arena: Vec<(PhaseBox, Building)> = vec![(root, Building::Open)];
-    let mut leaves: Vec<Leaf> = Vec::new();
-    let mut frontier: Vec<usize> = vec![0];
-    let mut cache: HashMap<(u64, u64), S::Slab> = HashMap::new();
-    let mut stats = PaveStats::default();
-    let (mut budget_hit, mut ulp_limit, mut undecided_left) = (false, false, false);
-    let mut level = 0u32;
-
-    while !frontier.is_empty() {
-        progress(level, frontier.len(), leaves.len());
-        // θ-slabs of this level not yet cached, computed once each.
-        let mut missing: Vec<(u64, u64)> = frontier
-            .iter()
-            .map(|&i| slab_key(&arena[i].0))
-            .filter(|k| !cache.contains_key(k))
-            .collect();
-        missing.sort_unstable();
-        missing.dedup();
-        stats.slab_evaluations += missing.len() as u64;
-        let fresh: Vec<_> = missing
-            .par_iter()
-            .map(|&(lo, hi)| {
-                let th = Interval::try_from((f64::from_bits(lo), f64::from_bits(hi))).unwrap();
-                ((lo, hi), set.slab(th))
-            })
-            .collect();
-        cache.extend(fresh);
-
-        let labelled: Vec<[Label; MAX_CONSTRAINTS]> = frontier
-            .par_iter()
-            .map(|&i| {
-                let b = &arena[i].0;
-                let slab = &cache[&slab_key(b)];
-                let mut labels = [Label::ProvedOut; MAX_CONSTRAINTS];
-                for (l, g) in labels
-                    .iter_mut()
-                    .zip(set.enclose(slab, b.theta_dot_interval()))
-                {
-                    *l = Label::from_enclosure(g);
-                }
-                for (i, s) in same_as.iter().enumerate() {
-                    if let Some(j) = *s {
-                        labels[i] = labels[j];
-                    }
-                }
-                labels
-            })
-            .collect();
-        stats.box_evaluations += frontier.len() as u64;
-
-        // Splits in frontier order, each adding one leaf, while the budget allows.
-        let open_after = frontier.len();
-        let mut next = Vec::new();
-        let mut leaves_if_stopped = leaves.len() + open_after;
-        for (&i, labels) in frontier.iter().zip(&labelled) {
-            let undecided = labels[..names.len()].iter().any(|l| !l.is_decided());
-            let axis = if undecided {
-                choose_axis(&arena[i].0)
-            } else {
-                None
-            };
-            match axis {
-                Some(ax) if leaves_if_stopped < opts.max_boxes => {
-                    leaves_if_stopped += 1;
-                    let (lo, hi) = arena[i].0.split(ax as usize);
-                    let (a, b) = (arena.len(), arena.len() + 1);
-                    arena.push((lo, Building::Open));
-                    arena.push((hi, Building::Open));
-                    arena[i].1 = Building::Split(ax, a, b);
-                    next.extend([a, b]);
-                }
-                other => {
-                    if other.is_some() {
-                        budget_hit = true;
-                    } else if undecided {
-                        undecided_left = true;
-                        let b = &arena[i].0;
-                        let w = wide(b);
-                        if (w[0] && !b.can_split(0)) || (w[1] && !b.can_split(1)) {
-                            ulp_limit = true;
-                        }
-                    }
-                    arena[i].1 = Building::Leaf(leaves.len() as u32);
-                    leaves.push(Leaf {
-                        bx: arena[i].0,
-                        labels: *labels,
-                    });
-                }
-            }
-        }
-        frontier = next;
-        if !frontier.is_empty() {
-            level += 1;
-        }
-    }
-    stats.depth = level;
-    let stop = if budget_hit {
-        StopReason::Budget
-    } else if ulp_limit {
-        StopReason::DoublePrecisionLimit
-    } else if undecided_left {
-        StopReason::Resolution
-    } else {
-        StopReason::AllDecided
-    };
-
-    // Preorder serialisation of the tree; leaves renumbered in that order.
-    let mut nodes = Vec::with_capacity(arena.len());
-    let mut ordered = Vec::with_capacity(leaves.len());
-    let mut stack = vec![0usize];
-    while let Some(i) = stack.pop() {
-        match arena[i].1 {
-            Building::Split(ax, a, b) => {
-                nodes.push(Node::Split(ax));
-                stack.push(b);
-                stack.push(a);
-            }
-            Building::Leaf(l) => {
-                nodes.push(Node::Leaf(ordered.len() as u32));
-                ordered.push(leaves[l as usize]);
-            }
-            Building::Open => unreachable!("every box ends as a leaf or a split"),
-        }
-    }
-    Ok(Paving {
-        root,
-        names,
-        eps: opts.eps,
-        nodes,
-        leaves: ordered,
-        complete: stop != StopReason::Budget,
-        stop,
-        same_as,
-        stats,
-    })
-}
-
-fn slab_key(b: &PhaseBox) -> (u64, u64) {
-    (b.theta[0].to_bits(), b.theta[1].to_bits())
+    methods::pave_with(set, root, opts, &MethodOptions::default(), progress)
 }
 
 impl Paving {
@@ -510,7 +390,15 @@ impl Paving {
             let b = stack.pop()?;
             match *node {
                 Node::Split(ax) => {
+                    if !b.can_split(ax as usize) {
+                        return None;
+                    }
                     let (lo, hi) = b.split(ax as usize);
+                    stack.push(hi);
+                    stack.push(lo);
+                }
+                Node::SplitAt(ax, p) => {
+                    let (lo, hi) = b.split_at(ax as usize, p)?;
                     stack.push(hi);
                     stack.push(lo);
                 }
@@ -551,4 +439,30 @@ pub fn pave_scene_in(
         theta_dot: b[1],
     };
     pave(&SceneConstraints { scene, variant }, root, opts, progress)
+}
+
+/// [`pave_scene_in`] with a method.
+pub fn pave_scene_method(
+    scene: &Scene,
+    variant: Variant,
+    domain: &Domain,
+    opts: PaveOptions,
+    mo: &MethodOptions,
+    progress: impl FnMut(u32, usize, usize),
+) -> Result<Paving, PaveError> {
+    if domain.is_empty() {
+        return Err(PaveError::EmptyDomain);
+    }
+    let b = domain.inner_box();
+    let root = PhaseBox {
+        theta: b[0],
+        theta_dot: b[1],
+    };
+    pave_with(
+        &SceneConstraints { scene, variant },
+        root,
+        opts,
+        mo,
+        progress,
+    )
 }

@@ -1,0 +1,416 @@
+//! Every paving method is sound and checkable: proofs verify, leaves tile the
+//! root, proved leaves hold at sample points, reference areas are bracketed,
+//! methods never contradict each other, and results do not depend on the
+//! thread count. Each non-natural method also decides more than `natural`.
+
+use detach::certificate::{paving_proof, PavingStatement};
+use detach::check::{check_bytes, Verdict};
+use detach::pave::{
+    pave_scene_method, standard_cells, Label, Method, MethodOptions, PaveOptions, Paving,
+};
+use detach::scene::{Angle, Scene, SceneId, Variant};
+use inari::{DecInterval, Interval};
+use rug::Rational;
+
+const VARIANTS: [Variant; 2] = [Variant::Derived, Variant::Printed];
+
+/// Ω of the smooth disc at defaults: mpmath quadrature (see tests/reference.rs).
+const AREA_MPMATH: f64 = 41.334_523_421_053_71;
+
+fn pave(scene: &Scene, v: Variant, eps: f64, mo: MethodOptions) -> Paving {
+    pave_scene_method(
+        scene,
+        v,
+        &scene.domain(),
+        PaveOptions {
+            eps,
+            max_boxes: 2_000_000,
+        },
+        &mo,
+        |_, _, _| {},
+    )
+    .unwrap()
+}
+
+fn undecided(p: &Paving, scene: &Scene, cell: usize) -> f64 {
+    p.area_bounds(&standard_cells()[cell], scene.domain().uncovered_area_sup())
+        .undecided_area()
+}
+
+/// A small deterministic generator (xorshift), enough for sample points.
+struct Rng(u64);
+impl Rng {
+    fn unit(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+#[test]
+fn every_method_writes_a_proof_the_checker_accepts() {
+    for id in SceneId::ALL {
+        let (scene, params) = Scene::build(id, &[]).unwrap();
+        for v in VARIANTS {
+            for m in Method::ALL {
+                for relevant in [None, Some(0b01), Some(0b10)] {
+                    let mo = MethodOptions {
+                        method: m,
+                        relevant,
+                    };
+                    let p = pave(&scene, v, 1.0 / 128.0, mo);
+                    let proof = paving_proof(
+                        &PavingStatement {
+                            scene: id,
+                            variant: v,
+                            params: &params,
+                            domain: &scene.domain(),
+                            domain_text: id.domain_text().map(|s| s.map(String::from)),
+                            title: "test".into(),
+                        },
+                        &p,
+                    );
+                    let bytes = serde_json::to_vec(&proof).unwrap();
+                    let report = check_bytes(&bytes).unwrap();
+                    assert_eq!(report.verdict, Verdict::Valid, "{id} {v} {m} {relevant:?}");
+                    assert_eq!(report.checked, p.leaves.len() as u64);
+                }
+            }
+        }
+    }
+}
+
+fn exact(x: f64) -> Rational {
+    Rational::from_f64(x).unwrap()
+}
+
+#[test]
+fn leaves_tile_the_root_exactly() {
+    for id in SceneId::ALL {
+        let scene = Scene::default_of(id);
+        for v in VARIANTS {
+            for m in Method::ALL {
+                let p = pave(&scene, v, 1.0 / 128.0, MethodOptions::new(m));
+                let boxes = p.replay_boxes().expect("the tree replays");
+                assert_eq!(boxes.len(), p.leaves.len());
+                let mut sum = Rational::new();
+                for (b, l) in boxes.iter().zip(&p.leaves) {
+                    assert_eq!(*b, l.bx, "{id} {v} {m}: replay differs");
+                    assert!(b.theta[0] < b.theta[1] && b.theta_dot[0] < b.theta_dot[1]);
+                    sum += (exact(b.theta[1]) - exact(b.theta[0]))
+                        * (exact(b.theta_dot[1]) - exact(b.theta_dot[0]));
+                }
+                let r = p.root;
+                let whole = (exact(r.theta[1]) - exact(r.theta[0]))
+                    * (exact(r.theta_dot[1]) - exact(r.theta_dot[0]));
+                assert_eq!(sum, whole, "{id} {v} {m}: leaves do not tile the root");
+            }
+        }
+    }
+}
+
+fn point(x: f64) -> Interval {
+    Interval::try_from((x, x)).unwrap()
+}
+
+/// Enclosures of both constraints at one point: thin, so a proved label that
+/// a point contradicts shows up as an enclosure entirely on the wrong side.
+fn at_point(scene: &Scene, v: Variant, t: f64, w: f64) -> [DecInterval; 2] {
+    let c = scene.constraints(v, &Angle::new(DecInterval::new(point(t))));
+    let w = DecInterval::new(point(w));
+    [c.omega.eval(w), c.omega0.eval(w)]
+}
+
+#[test]
+fn proved_leaves_hold_at_sample_points() {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    for id in SceneId::ALL {
+        let scene = Scene::default_of(id);
+        for v in VARIANTS {
+            for m in Method::ALL {
+                let p = pave(&scene, v, 1.0 / 128.0, MethodOptions::new(m));
+                for leaf in &p.leaves {
+                    let b = leaf.bx;
+                    // Corners and one interior point.
+                    let (u, s) = (rng.unit(), rng.unit());
+                    let pts = [
+                        (b.theta[0], b.theta_dot[0]),
+                        (b.theta[1], b.theta_dot[1]),
+                        (b.theta[0], b.theta_dot[1]),
+                        (
+                            b.theta[0] + u * (b.theta[1] - b.theta[0]),
+                            b.theta_dot[0] + s * (b.theta_dot[1] - b.theta_dot[0]),
+                        ),
+                    ];
+                    for (t, w) in pts {
+                        if !b.contains(t, w) {
+                            continue;
+                        }
+                        let g = at_point(&scene, v, t, w);
+                        for (c, gi) in g.iter().enumerate() {
+                            let Some(x) = gi.interval() else { continue };
+                            let wrong = match leaf.labels[c] {
+                                Label::ProvedIn => x.inf() >= 0.0,
+                                Label::ProvedOut => x.sup() <= 0.0,
+                                _ => false,
+                            };
+                            assert!(
+                                !wrong,
+                                "{id} {v} {m}: leaf {b:?} constraint {c} {:?} but g({t}, {w}) = {x:?}",
+                                leaf.labels[c]
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn every_method_brackets_the_reference_area() {
+    let scene = Scene::default_of(SceneId::SmoothDisc);
+    for v in VARIANTS {
+        for m in Method::ALL {
+            for eps in [1.0 / 256.0, 1.0 / 1024.0] {
+                let p = pave(&scene, v, eps, MethodOptions::new(m));
+                let b = p.area_bounds(&standard_cells()[0], scene.domain().uncovered_area_sup());
+                assert!(
+                    b.inner_area <= AREA_MPMATH && AREA_MPMATH <= b.outer_area,
+                    "{v} {m} eps={eps}: {b:?}"
+                );
+            }
+        }
+    }
+}
+
+fn label_at(p: &Paving, t: f64, w: f64) -> Vec<[Label; 4]> {
+    p.leaves
+        .iter()
+        .filter(|l| l.bx.contains(t, w))
+        .map(|l| l.labels)
+        .collect()
+}
+
+#[test]
+fn methods_never_contradict_each_other() {
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    for id in SceneId::ALL {
+        let scene = Scene::default_of(id);
+        for v in VARIANTS {
+            let pavings: Vec<Paving> = Method::ALL
+                .iter()
+                .map(|&m| pave(&scene, v, 1.0 / 128.0, MethodOptions::new(m)))
+                .collect();
+            let r = pavings[0].root;
+            for _ in 0..400 {
+                let t = r.theta[0] + rng.unit() * (r.theta[1] - r.theta[0]);
+                let w = r.theta_dot[0] + rng.unit() * (r.theta_dot[1] - r.theta_dot[0]);
+                let all: Vec<[Label; 4]> = pavings.iter().flat_map(|p| label_at(p, t, w)).collect();
+                for c in 0..2 {
+                    let yes = all.iter().any(|l| l[c] == Label::ProvedIn);
+                    let no = all.iter().any(|l| l[c] == Label::ProvedOut);
+                    assert!(!(yes && no), "{id} {v}: ({t}, {w}) constraint {c}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn results_do_not_depend_on_the_thread_count() {
+    for (id, v) in [
+        (SceneId::ViscousDisc, Variant::Printed),
+        (SceneId::SmoothDisc, Variant::Printed),
+        (SceneId::IceDisc, Variant::Derived),
+    ] {
+        let scene = Scene::default_of(id);
+        for m in Method::ALL {
+            let run = |threads: usize| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap()
+                    .install(|| {
+                        let p = pave(&scene, v, 1.0 / 512.0, MethodOptions::new(m));
+                        let areas = p.area_bounds_all(&standard_cells(), 0.0);
+                        (p, areas)
+                    })
+            };
+            let (one, a1) = run(1);
+            let (two, a2) = run(2);
+            assert_eq!(one.nodes, two.nodes, "{id} {m}");
+            assert_eq!(one.leaves, two.leaves, "{id} {m}");
+            assert_eq!(one.stop, two.stop);
+            assert_eq!(a1, a2);
+            assert_eq!(
+                one.stats.box_evaluations, two.stats.box_evaluations,
+                "{id} {m}"
+            );
+        }
+    }
+}
+
+#[test]
+fn centred_decides_more_than_natural() {
+    // Ω₀ (1.11) of the viscous disc has a θ̇ term: the dependency the
+    // centred form removes.
+    let scene = Scene::default_of(SceneId::ViscousDisc);
+    let eps = 1.0 / 256.0;
+    let nat = pave(
+        &scene,
+        Variant::Printed,
+        eps,
+        MethodOptions::new(Method::Natural),
+    );
+    let cen = pave(
+        &scene,
+        Variant::Printed,
+        eps,
+        MethodOptions::new(Method::Centred),
+    );
+    let (a, b) = (undecided(&nat, &scene, 1), undecided(&cen, &scene, 1));
+    assert!(b < a, "centred {b} vs natural {a}");
+}
+
+#[test]
+fn contract_decides_more_than_natural() {
+    for id in [SceneId::SmoothDisc, SceneId::ViscousDisc] {
+        let scene = Scene::default_of(id);
+        let eps = 1.0 / 256.0;
+        let nat = pave(
+            &scene,
+            Variant::Printed,
+            eps,
+            MethodOptions::new(Method::Natural),
+        );
+        let con = pave(
+            &scene,
+            Variant::Printed,
+            eps,
+            MethodOptions::new(Method::Contract),
+        );
+        let (a, b) = (undecided(&nat, &scene, 0), undecided(&con, &scene, 0));
+        assert!(b < a, "{id}: contract {b} vs natural {a}");
+    }
+}
+
+#[test]
+fn slices_decide_more_than_natural_with_fewer_leaves() {
+    let scene = Scene::default_of(SceneId::SmoothDisc);
+    let eps = 1.0 / 256.0;
+    let nat = pave(
+        &scene,
+        Variant::Printed,
+        eps,
+        MethodOptions::new(Method::Natural),
+    );
+    let sl = pave(
+        &scene,
+        Variant::Printed,
+        eps,
+        MethodOptions::new(Method::Slices),
+    );
+    let (a, b) = (undecided(&nat, &scene, 0), undecided(&sl, &scene, 0));
+    assert!(b < a, "slices {b} vs natural {a}");
+    assert!(sl.leaves.len() < nat.leaves.len());
+}
+
+#[test]
+fn a_region_refines_only_its_own_constraints() {
+    let scene = Scene::default_of(SceneId::ViscousDisc);
+    for m in Method::ALL {
+        let all = pave(&scene, Variant::Printed, 1.0 / 256.0, MethodOptions::new(m));
+        let omega = pave(
+            &scene,
+            Variant::Printed,
+            1.0 / 256.0,
+            MethodOptions::for_cell(m, &standard_cells()[0]),
+        );
+        assert!(omega.leaves.len() < all.leaves.len(), "{m}");
+        if m == Method::Natural {
+            // Inclusion isotonicity: Ω is decided on the same area (the sums
+            // differ only by rounding: other leaves are added).
+            let (a, b) = (undecided(&all, &scene, 0), undecided(&omega, &scene, 0));
+            assert!((a - b).abs() <= 1e-9 * a, "{a} vs {b}");
+        }
+    }
+}
+
+#[test]
+fn natural_is_the_default_paver() {
+    let scene = Scene::default_of(SceneId::IceDisc);
+    let opts = PaveOptions {
+        eps: 1.0 / 256.0,
+        max_boxes: 1_000_000,
+    };
+    let a = detach::pave::pave_scene(&scene, Variant::Derived, opts, |_, _, _| {}).unwrap();
+    let b = pave(
+        &scene,
+        Variant::Derived,
+        1.0 / 256.0,
+        MethodOptions::new(Method::Natural),
+    );
+    assert_eq!(a.nodes, b.nodes);
+    assert_eq!(a.leaves, b.leaves);
+}
+
+#[test]
+fn budgets_hold_for_every_method() {
+    let scene = Scene::default_of(SceneId::ViscousDisc);
+    for m in Method::ALL {
+        for max in [1, 2, 7, 100, 1000] {
+            let p = pave_scene_method(
+                &scene,
+                Variant::Printed,
+                &scene.domain(),
+                PaveOptions {
+                    eps: 1e-4,
+                    max_boxes: max,
+                },
+                &MethodOptions::new(m),
+                |_, _, _| {},
+            )
+            .unwrap();
+            assert!(p.leaves.len() <= max, "{m} {max}: {}", p.leaves.len());
+            assert!(p.replay_boxes().is_some());
+        }
+    }
+}
+
+#[test]
+fn contraction_points_are_recorded_and_checked() {
+    use detach::pave::Node;
+    let scene = Scene::default_of(SceneId::SmoothDisc);
+    for m in [Method::Contract, Method::Slices] {
+        let p = pave(&scene, Variant::Printed, 1.0 / 64.0, MethodOptions::new(m));
+        let at = p
+            .nodes
+            .iter()
+            .filter(|n| matches!(n, Node::SplitAt(..)))
+            .count();
+        assert!(at > 0, "{m}: no split at a recorded point");
+        // Every recorded point lies strictly inside the box it splits.
+        assert!(p.replay_boxes().is_some());
+    }
+}
+
+#[test]
+fn run_method_reports_what_the_chart_needs() {
+    let scene = Scene::default_of(SceneId::ViscousDisc);
+    let opts = PaveOptions {
+        eps: 1.0 / 128.0,
+        max_boxes: 100_000,
+    };
+    for m in Method::ALL {
+        let (run, p) =
+            detach::pave::run_method(&scene, Variant::Printed, &scene.domain(), Some(1), m, opts)
+                .unwrap();
+        assert_eq!(run.leaves, p.leaves.len());
+        assert!(run.inner_area <= run.outer_area);
+        assert!(run.undecided_area >= run.outer_area - run.inner_area);
+        assert!(run.box_evaluations >= run.leaves as u64);
+        assert!(run.bytes_per_leaf > 0.0 && run.peak_bytes_per_leaf >= run.bytes_per_leaf);
+    }
+}
