@@ -210,8 +210,11 @@ impl ConstraintSet for SceneConstraints<'_> {
     fn names(&self) -> Vec<String> {
         vec!["omega".into(), "omega0".into()]
     }
+    /// The θ-slab coefficients with correctly rounded trigonometry widened by
+    /// an ulp ([`crate::elementary`]): enclosures at most a few ulp wider than
+    /// inari's, so a checker evaluating with inari confirms every label.
     fn slab(&self, theta: Interval) -> Self::Slab {
-        self.scene.constraints_on(self.variant, theta)
+        crate::elementary::slab_constraints(self.scene, self.variant, theta)
     }
     fn enclose(&self, c: &Self::Slab, theta_dot: Interval) -> Vec<DecInterval> {
         let w = DecInterval::new(theta_dot);
