@@ -583,6 +583,13 @@ fn leaves_export_round_trips_exactly() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let text = std::fs::read_to_string(&file).unwrap();
     let mut lines = text.lines();
+    let first = lines.next().unwrap();
+    assert!(
+        first.starts_with("# detach ")
+            && first.contains("scene ice-disc")
+            && first.contains("p_phi=2.5"),
+        "{first}"
+    );
     assert_eq!(
         lines.next().unwrap(),
         "theta_lo,theta_hi,theta_dot_lo,theta_dot_hi,theta_lo_hex,theta_hi_hex,\

@@ -1,8 +1,7 @@
 //! `detach methods`: runs every method listed in `Method::ALL`, writes the
 //! table, JSON and chart, and reads the peers' file when there is one.
 
-use detach::pave::method::{pave_with, Method};
-use detach::pave::{pave_scene, PaveOptions};
+use detach::pave::{pave_scene, run_method, Method, PaveOptions};
 use detach::scene::{Scene, SceneId, Variant};
 use std::process::Command;
 
@@ -12,7 +11,7 @@ fn detach() -> Command {
 
 #[test]
 fn every_method_name_round_trips_and_natural_is_the_baseline() {
-    for &m in Method::ALL {
+    for m in Method::ALL {
         assert_eq!(m.name().parse::<Method>().unwrap(), m);
     }
     assert!("nope".parse::<Method>().is_err());
@@ -21,13 +20,13 @@ fn every_method_name_round_trips_and_natural_is_the_baseline() {
         eps: 1.0 / 64.0,
         max_boxes: 100_000,
     };
-    let a = pave_with(
-        Method::Natural,
+    let (_, a) = run_method(
         &s,
         Variant::Derived,
         &s.domain(),
+        None,
+        Method::Natural,
         opts,
-        |_, _, _| {},
     )
     .unwrap();
     let b = pave_scene(&s, Variant::Derived, opts, |_, _, _| {}).unwrap();
@@ -68,7 +67,7 @@ fn methods_writes_table_json_and_chart_with_peers() {
         String::from_utf8_lossy(&out.stderr)
     );
     let table = String::from_utf8(out.stdout).unwrap();
-    for &m in Method::ALL {
+    for m in Method::ALL {
         assert!(table.contains(m.name()), "{table}");
     }
     let json: serde_json::Value =

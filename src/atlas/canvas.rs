@@ -353,7 +353,10 @@ impl SvgDoc {
     fn present(&mut self) -> Result<(), FigureError> {
         let (w, h) = self.size;
         let mut doc = format!(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n"
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n\
+             <desc>detach {}</desc>\n",
+            // The version only: committed figures must not change with each commit.
+            crate::VERSION
         );
         if self.hatch {
             // Hatching for undefined leaves: dark diagonals on transparency.

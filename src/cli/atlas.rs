@@ -484,7 +484,25 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
         &args.flags.method_options()?,
     )?;
     if let Some(path) = &args.leaves {
-        write_leaves(&paving, path)?;
+        let params: Vec<String> = params
+            .texts()
+            .iter()
+            .map(|(n, t)| format!("{n}={t}"))
+            .collect();
+        let provenance = format!(
+            "detach {}; scene {} ({}, method {}); {}; theta in [{:?}, {:?}], theta_dot in [{:?}, {:?}]; eps {}",
+            detach::LONG_VERSION,
+            id.name(),
+            args.flags.variant,
+            args.flags.method,
+            params.join(" "),
+            paving.root.theta[0],
+            paving.root.theta[1],
+            paving.root.theta_dot[0],
+            paving.root.theta_dot[1],
+            paving.eps
+        );
+        write_leaves(&paving, &provenance, path)?;
     }
     if let Some(path) = &args.proof {
         let text = |w: &Option<[String; 2]>, i: usize| {
@@ -513,11 +531,12 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
 }
 
 /// `pave --leaves FILE`: the CSV of [`detach::pave::export`].
-fn write_leaves(paving: &Paving, path: &Path) -> CliResult {
+fn write_leaves(paving: &Paving, provenance: &str, path: &Path) -> CliResult {
     let fail =
         |e: std::io::Error| CliError::runtime(format!("cannot write {}: {e}", path.display()));
     let file = std::fs::File::create(path).map_err(fail)?;
-    detach::pave::export::write_leaves_csv(paving, std::io::BufWriter::new(file)).map_err(fail)
+    detach::pave::export::write_leaves_csv(paving, provenance, std::io::BufWriter::new(file))
+        .map_err(fail)
 }
 
 /// Parameter overrides for one scene of a multi-scene run: only the names it

@@ -51,8 +51,10 @@ pub fn label_word(l: Label) -> &'static str {
 
 /// Writes every leaf (format in the module docs). The constraint columns are
 /// named after [`Paving::names`].
-pub fn write_leaves_csv<W: Write>(paving: &Paving, mut w: W) -> io::Result<()> {
+pub fn write_leaves_csv<W: Write>(paving: &Paving, provenance: &str, mut w: W) -> io::Result<()> {
     let n = paving.names.len();
+    // One comment line first: what wrote the file, and for which problem.
+    writeln!(w, "# {}", provenance.replace('\n', " "))?;
     write!(
         w,
         "theta_lo,theta_hi,theta_dot_lo,theta_dot_hi,\
