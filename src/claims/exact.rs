@@ -388,6 +388,34 @@ pub fn qdec(text: &str) -> Q {
     Q::new(if neg { -r } else { r })
 }
 
+/// The verdict of formula checks by identity tests: confirmed when every
+/// identity agrees, an error (with the right form) when one differs exactly.
+pub(crate) fn verdict_of(ids: &[(&str, &Identity)], what: &str, right: &str) -> super::Outcome {
+    let w: serde_json::Map<String, serde_json::Value> =
+        ids.iter().map(|(k, i)| (k.to_string(), i.json())).collect();
+    if ids.iter().all(|(_, i)| i.agrees()) {
+        super::Outcome::new(
+            super::Verdict::Confirmed,
+            super::Strength::IdentityTest,
+            format!("{what}: exact agreement at random rational points"),
+            w.into(),
+        )
+    } else {
+        let bad: Vec<&str> = ids
+            .iter()
+            .filter(|(_, i)| !i.agrees())
+            .map(|(k, _)| *k)
+            .collect();
+        super::Outcome::new(
+            super::Verdict::Error,
+            super::Strength::Exact,
+            format!("{what}: exact difference ({})", bad.join(", ")),
+            w.into(),
+        )
+        .correct(right.to_string())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -441,33 +469,5 @@ mod tests {
         assert_eq!(v.get(), (s * c).get());
         assert_eq!(d1.get(), (c.sqr() - s.sqr()).get());
         assert_eq!(d2.get(), (Q::int(-4) * s * c).get());
-    }
-}
-
-/// The verdict of formula checks by identity tests: confirmed when every
-/// identity agrees, an error (with the right form) when one differs exactly.
-pub(crate) fn verdict_of(ids: &[(&str, &Identity)], what: &str, right: &str) -> super::Outcome {
-    let w: serde_json::Map<String, serde_json::Value> =
-        ids.iter().map(|(k, i)| (k.to_string(), i.json())).collect();
-    if ids.iter().all(|(_, i)| i.agrees()) {
-        super::Outcome::new(
-            super::Verdict::Confirmed,
-            super::Strength::IdentityTest,
-            format!("{what}: exact agreement at random rational points"),
-            w.into(),
-        )
-    } else {
-        let bad: Vec<&str> = ids
-            .iter()
-            .filter(|(_, i)| !i.agrees())
-            .map(|(k, _)| *k)
-            .collect();
-        super::Outcome::new(
-            super::Verdict::Error,
-            super::Strength::Exact,
-            format!("{what}: exact difference ({})", bad.join(", ")),
-            w.into(),
-        )
-        .correct(right.to_string())
     }
 }
