@@ -17,7 +17,8 @@ use crate::scalar::Scalar;
 use inari::Interval;
 use serde_json::{json, Value};
 
-/// P in the proof language, written with the operations of [`Poly`].
+/// P in the proof language, written with the operations of the prover's own
+/// evaluation (`s^2*s`, `(s^2)^2`), so both sides compute the same enclosures.
 pub const P_TEXT: &str = "8*kappa*s^2*s - (1 - s^2)*((1 + alpha)^2*(s^2)^2 - (1 - alpha)^2)";
 
 /// `P(s)` with α and κ as enclosures (boxes of parameters).

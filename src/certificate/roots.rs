@@ -253,7 +253,7 @@ fn p<T: Scalar>(mu: T) -> T {
     mu * (T::int(1) - mu) * (T::int(1) + mu)
 }
 
-/// The text of [`p`] in the proof language.
+/// `p(μ) = μ(1 − μ)(1 + μ)` in the proof language.
 pub const P_TEXT: &str = "mu*(1 - mu)*(1 + mu)";
 
 /// `p'` by forward-mode differentiation of [`p`]: the form a checker derives

@@ -1,7 +1,7 @@
 //! Exact rational arithmetic behind the [`Scalar`] trait, and identity tests.
 //!
 //! [`Q`] is a `Copy` handle to a GMP rational kept in a per-thread arena, so
-//! the crate's generic formulas (and [`Dual`](crate::scalar::Dual) numbers on
+//! the crate's generic formulas (and [`Dual`] numbers on
 //! top of them) evaluate exactly. Only the field operations exist: `sin`,
 //! `cos`, `sqrt` and `ln` panic, so angles enter through rational
 //! `(sin θ, cos θ) = (2t, 1 − t²)/(1 + t²)`, `t = tan(θ/2)` (see [`angle`]).
