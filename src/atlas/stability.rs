@@ -172,7 +172,7 @@ fn render(
         .map_err(draw_err)?;
     let small = ("sans-serif", 15).into_font();
     root.draw_text(
-        "pale: every leaf there decided   orange → dark red: share of the area undecided (log, 10^{−3} … 1)   blue: undefined",
+        "pale: every leaf there decided for Ω and Ω₀   orange → dark red: share of the area undecided (log, 10^{−3} … 1)   blue: undefined",
         &small.color(&INK),
         (16, 42),
     )
