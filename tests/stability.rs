@@ -63,7 +63,8 @@ fn stability_writes_maps_table_and_shows_where_methods_fail() {
         // feature check says every leaf touching θ = 0 is undefined.
         let s = row("sin0", m);
         assert!(f(s, "undefined_area") > 0.0, "{m}: no undefined leaf");
-        assert!(f(s, "undecided_area") >= f(s, "undefined_area"));
+        // (undecided is rounded up, the undefined sum to nearest)
+        assert!(f(s, "undecided_area") >= f(s, "undefined_area") * (1.0 - 1e-12));
         assert_eq!(s["feature_decided"], true, "{m} at sin θ = 0");
         // The pinch: the neck thins as κ → κ₀, so at a fixed resolution no
         // method closes the undecided area, and none does better at k = 6
