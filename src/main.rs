@@ -8,6 +8,7 @@ use cli::atlas::{AtlasArgs, PaveArgs, ScenesArgs};
 use cli::methods::MethodsArgs;
 use cli::proofs::{ProveArgs, VerifyArgs};
 use cli::roots::{CriticalCurveArgs, Kappa0Args, RootsArgs, TangencyArgs};
+use cli::stability::StabilityArgs;
 use cli::CliResult;
 
 /// Certified detachment regions of systems with a unilateral constraint
@@ -29,6 +30,8 @@ enum Command {
     Area(AreaArgs),
     /// Run every paving method over a range of ε: table, JSON, speed–accuracy chart.
     Methods(MethodsArgs),
+    /// Where each paving method fails: maps per scene and a stress-case table.
+    Stability(StabilityArgs),
     /// List the scenes, their parameters, defaults, domains and variants.
     Scenes(ScenesArgs),
     /// Certified roots of (2.9), (2.10), (2.12) or the equilibria of (3.3).
@@ -53,6 +56,7 @@ fn run(command: Command) -> CliResult {
         Command::Pave(a) => cli::atlas::run_pave(&a),
         Command::Area(a) => cli::area::run_area(&a),
         Command::Methods(a) => cli::methods::run_methods(&a),
+        Command::Stability(a) => cli::stability::run_stability(&a),
         Command::Scenes(a) => cli::atlas::run_scenes(&a),
         Command::Roots(a) => cli::roots::run_roots(&a),
         Command::Kappa0(a) => cli::roots::run_kappa0(&a),

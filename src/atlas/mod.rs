@@ -16,6 +16,7 @@ mod palette;
 mod portrait;
 mod raster;
 mod regions;
+pub mod stability;
 mod ticks;
 
 pub use canvas::{

@@ -116,7 +116,7 @@ struct Ratio {
     speedup: f64,
 }
 
-fn machine() -> serde_json::Value {
+pub(super) fn machine() -> serde_json::Value {
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     let uname = std::process::Command::new("uname")
         .arg("-a")

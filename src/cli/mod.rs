@@ -15,6 +15,7 @@ pub mod methods;
 pub mod paper;
 pub mod proofs;
 pub mod roots;
+pub mod stability;
 
 use std::fmt;
 use std::io::Write;
