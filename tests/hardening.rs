@@ -645,3 +645,55 @@ fn leaves_export_round_trips_exactly() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn ice_omega0_inside_omega_makes_its_paradox_cell_exactly_empty() {
+    // §3 subcase 1 (p_φ = p_ψ = 0): Ω₀ ⊂ Ω, so Ω̄∩Ω₀ is empty; with
+    // p_ψ ≠ 0 nothing is claimed.
+    let cell = |args: &[&str]| {
+        let out = detach(args);
+        assert!(out.status.success());
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        v["regions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["name"] == "not_omega_and_omega0")
+            .cloned()
+            .unwrap()
+    };
+    let zero = cell(&[
+        "pave", "--scene", "ice-disc", "--param", "p_phi=0", "--param", "p_psi=0", "--eps", "0.02",
+        "--json",
+    ]);
+    assert_eq!(zero["empty"], "omega0 inside omega");
+    assert_eq!(zero["outer_area"].as_f64(), Some(0.0));
+    let other = cell(&["pave", "--scene", "ice-disc", "--eps", "0.02", "--json"]);
+    assert!(other.get("empty").is_none());
+    assert!(other["outer_area"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn ice_omega0_is_decided_next_to_theta_pi() {
+    // ln tg(θ/2) through tan(θ/2) stays defined up to θ = π (a form through
+    // ln(1 + cos θ) left the whole last θ-column undefined): next to π every
+    // leaf is decided and none is undefined.
+    let out = detach(&[
+        "pave", "--scene", "ice-disc", "--theta", "3.09:pi", "--eps", "0.01", "--json",
+    ]);
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["undefined_area"].as_f64(), Some(0.0));
+    let omega0 = v["regions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["name"] == "omega0")
+        .cloned()
+        .unwrap();
+    let (inner, outer) = (
+        omega0["inner_area"].as_f64().unwrap(),
+        omega0["outer_area"].as_f64().unwrap(),
+    );
+    assert!(inner > 1.0 && outer - inner < 1e-9, "[{inner}, {outer}]");
+}

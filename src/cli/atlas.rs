@@ -245,22 +245,33 @@ fn summarise(
     elapsed_s: f64,
 ) -> PaveReport {
     let uncovered = domain.uncovered_area_sup();
+    // Ω̄∩Ω₀ (index 4) is empty when the scene proves Ω₀ ⊂ Ω.
+    let inside = scene.omega0_inside_omega(variant);
     let regions = paving
         .area_bounds_all(&standard_cells(), uncovered)
         .into_iter()
         .enumerate()
-        .map(|(i, b): (usize, AreaBounds)| RegionReport {
-            name: REGION_NAMES[i],
-            label: REGION_LABELS[i],
-            inner_area: b.inner_area,
-            outer_area: b.outer_area,
-            undecided_area: b.undecided_area(),
-            empty: b.proved_empty.then_some("omega0 = omega"),
-            boxes: BoxCounts {
-                inner: b.inner_boxes,
-                outer: b.outer_boxes,
-                undecided: b.undecided_boxes(),
-            },
+        .map(|(i, b): (usize, AreaBounds)| {
+            let implied = inside && i == 4;
+            RegionReport {
+                name: REGION_NAMES[i],
+                label: REGION_LABELS[i],
+                inner_area: b.inner_area,
+                outer_area: if implied { 0.0 } else { b.outer_area },
+                undecided_area: if implied { 0.0 } else { b.undecided_area() },
+                empty: if b.proved_empty {
+                    Some("omega0 = omega")
+                } else if implied {
+                    Some("omega0 inside omega")
+                } else {
+                    None
+                },
+                boxes: BoxCounts {
+                    inner: b.inner_boxes,
+                    outer: if implied { 0 } else { b.outer_boxes },
+                    undecided: if implied { 0 } else { b.undecided_boxes() },
+                },
+            }
         })
         .collect();
     let (undefined_area, warnings) = undefined_warnings(paving);
@@ -399,9 +410,14 @@ fn print_table(r: &PaveReport) {
         outln!("  warning: {w}");
     }
     for g in &r.regions {
-        if g.empty.is_some() {
+        if let Some(why) = g.empty {
+            let why = if why == "omega0 = omega" {
+                "Ω₀ = Ω"
+            } else {
+                "Ω₀ ⊂ Ω, p_φ = p_ψ = 0"
+            };
             outln!(
-                "  {} {:>12} {:>12} {:>12} {:>9} {:>9} {:>9}  empty (Ω₀ = Ω)",
+                "  {} {:>12} {:>12} {:>12} {:>9} {:>9} {:>9}  empty ({why})",
                 pad(g.label, 7),
                 "0",
                 "0",

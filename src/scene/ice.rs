@@ -137,6 +137,15 @@ impl Model for IceDisc {
         }
     }
 
+    /// §3, subcase 1: with p_φ = p_ψ = 0, τ = 0 and (3.5) reads
+    /// `a θ̇² sin θ < g (A + m a² sin²θ)/(A + m a²) ≤ g`, while Ω is
+    /// `a θ̇² sin θ < g`: Ω₀ ⊂ Ω (both readings define this Ω₀; the claim
+    /// S3.sub1 of `check-paper` checks the identity exactly).
+    fn omega0_inside_omega(&self, _v: Variant) -> bool {
+        let zero = |x: Interval| x.inf() == 0.0 && x.sup() == 0.0;
+        zero(self.disc.p_phi) && zero(self.disc.p_psi)
+    }
+
     fn constraints<T: Scalar>(&self, v: Variant, an: &Angle<T>) -> Constraints<T> {
         let d = &self.disc;
         let (m, a, g, big_a) = (T::lift(d.m), T::lift(d.a), T::lift(d.g), T::lift(d.big_a));

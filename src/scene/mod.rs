@@ -237,6 +237,11 @@ pub trait Model: Sized {
     fn omega0_is_omega(&self, _v: Variant) -> bool {
         false
     }
+    /// True when Ω₀ ⊂ Ω is proved for these parameters (§3, subcase 1), so
+    /// Ω̄∩Ω₀ is empty.
+    fn omega0_inside_omega(&self, _v: Variant) -> bool {
+        false
+    }
     /// θ̈ of the equation of motion in contact.
     fn acceleration<T: Scalar>(&self, v: Variant, a: &Angle<T>, theta_dot: T) -> T;
     /// A conserved energy whose level lines are the phase curves, if the paper
@@ -374,6 +379,11 @@ impl Scene {
     /// True when Ω₀ ≡ Ω by construction ([`Model::omega0_is_omega`]).
     pub fn omega0_is_omega(&self, v: Variant) -> bool {
         with_model!(self, m => m.omega0_is_omega(v))
+    }
+
+    /// True when Ω₀ ⊂ Ω is proved ([`Model::omega0_inside_omega`]).
+    pub fn omega0_inside_omega(&self, v: Variant) -> bool {
+        with_model!(self, m => m.omega0_inside_omega(v))
     }
 
     /// Certified coefficient enclosures over a θ-interval (decorated: a slab
