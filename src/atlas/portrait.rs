@@ -322,8 +322,11 @@ pub fn trajectories_with_heads(
                         0.0
                     }
                 };
+                // A curve needs a few hundred steps; a stiff field (e.g.
+                // μ = 10⁷) would take millions: stop it, the portrait is
+                // decoration, not a certified result.
                 let mut steps = 0;
-                while dt > 0.0 && arc < max_arc && steps < 200_000 {
+                while dt > 0.0 && arc < max_arc && steps < 4_000 {
                     steps += 1;
                     let speed = norm(f(s));
                     if !(speed.is_finite() && speed > 1e-12) {
