@@ -1,21 +1,12 @@
 //! The command line: bad input gets one clear line and exit code 2; good input
 //! gives the documented JSON.
 
-use std::process::Command;
+mod common;
 
-fn detach(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_detach"))
-        .args(args)
-        .output()
-        .expect("runs")
-}
+use common::detach;
 
 fn assert_bad_input(args: &[&str], needle: &str) {
-    let out = detach(args);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{args:?}: stderr {err}");
-    assert!(err.contains(needle), "{args:?}: `{needle}` not in {err}");
-    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    common::assert_bad_input(args, needle);
 }
 
 #[test]

@@ -1,32 +1,15 @@
 //! The built binary on the inputs of the hardening audit: one-ulp windows,
 //! budgets, closed pipes, provably empty cells, odd but valid inputs.
 
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn detach(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_detach"))
-        .args(args)
-        .output()
-        .expect("runs")
-}
+mod common;
 
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = detach(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("JSON on stdout")
-}
+use common::{detach, json};
 
 fn assert_bad_input(args: &[&str], needle: &str) {
-    let out = detach(args);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{args:?}: stderr {err}");
-    assert!(err.contains(needle), "{args:?}: `{needle}` not in {err}");
-    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    let err = common::assert_bad_input(args, needle);
     assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
 }
 

@@ -1,7 +1,7 @@
 //! The speed–accuracy chart of `detach methods`: undecided area against
 //! time, log–log, one panel per problem, one curve per method (and peer).
 
-use super::{draw_err, register_fonts, AtlasError};
+use super::{draw_err, start_drawing, AtlasError};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -41,15 +41,7 @@ pub fn draw_speed_accuracy(
     svg: &Path,
     png: &Path,
 ) -> Result<(), AtlasError> {
-    register_fonts()?;
-    for p in [svg, png] {
-        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|source| AtlasError::Io {
-                path: dir.to_path_buf(),
-                source,
-            })?;
-        }
-    }
+    start_drawing([svg, png])?;
     {
         let root = SVGBackend::new(svg, size).into_drawing_area();
         render(&root, panels, title)?;

@@ -176,15 +176,7 @@ pub fn draw_atlas_files(
     if style.width > MAX_SIDE || style.height > MAX_SIDE {
         return Err(AtlasError::TooLarge(style.width, style.height));
     }
-    register_fonts()?;
-    for p in [svg_path, png_path].into_iter().flatten() {
-        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|source| AtlasError::Io {
-                path: dir.to_path_buf(),
-                source,
-            })?;
-        }
-    }
+    start_drawing([svg_path, png_path].into_iter().flatten())?;
     let prep = prepare(paving, info, style);
     let size = (style.width, style.height);
     if let Some(p) = svg_path {
@@ -196,6 +188,20 @@ pub fn draw_atlas_files(
         let root = Figure::png(p, size).into_drawing_area();
         render(&root, paving, &prep)?;
         root.present().map_err(draw_err)?;
+    }
+    Ok(())
+}
+
+/// Registers the fonts and creates the folders the output files go into.
+fn start_drawing<'a>(paths: impl IntoIterator<Item = &'a Path>) -> Result<(), AtlasError> {
+    register_fonts()?;
+    for p in paths {
+        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|source| AtlasError::Io {
+                path: dir.to_path_buf(),
+                source,
+            })?;
+        }
     }
     Ok(())
 }

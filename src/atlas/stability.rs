@@ -11,7 +11,7 @@
 //! decided label is drawn: the map shows only where the methods fail.
 
 use super::raster::Class;
-use super::{draw_err, register_fonts, AtlasError, Figure};
+use super::{draw_err, start_drawing, AtlasError, Figure};
 use crate::pave::{Paving, PhaseBox};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -135,15 +135,7 @@ pub fn draw_stability_map(
     svg: &Path,
     png: &Path,
 ) -> Result<(), AtlasError> {
-    register_fonts()?;
-    for p in [svg, png] {
-        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|source| AtlasError::Io {
-                path: dir.to_path_buf(),
-                source,
-            })?;
-        }
-    }
+    start_drawing([svg, png])?;
     let grids: Vec<HeatGrid> = panels
         .iter()
         .map(|p| heat_grid(p.paving, GRID.0, GRID.1))

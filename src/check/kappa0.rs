@@ -9,7 +9,7 @@ use super::eval::{continuous, defined, show, show_i};
 use super::json::{arr_of, decls, obj_of, opt_str, str_of, Obj};
 use super::pieces::{self, cap_dec, Function, Kind};
 use super::roots::OneVar;
-use super::{Outcome, Unreadable, Verdict};
+use super::{Outcome, Unreadable};
 
 /// p' as a function, with p'' as its derivative. Both carry the lowest
 /// decoration of p, p' (and p''), since a derivative says nothing where the
@@ -46,16 +46,8 @@ pub fn check(root: &Obj) -> Result<Outcome, Unreadable> {
         opt_str(st, "equation")?.unwrap_or("")
     );
     let mut checked = 0;
-    let verdict = match verify(&p, b, peak, &ps, lo, hi, &mut checked) {
-        Ok(()) => Verdict::Valid,
-        Err(e) => Verdict::Invalid(e),
-    };
-    Ok(Outcome {
-        verdict,
-        claim,
-        checked,
-        unit: "pieces",
-    })
+    let result = verify(&p, b, peak, &ps, lo, hi, &mut checked);
+    Ok(Outcome::of(result, claim, checked, "pieces"))
 }
 
 fn verify(

@@ -78,6 +78,22 @@ pub(crate) struct Outcome {
     unit: &'static str,
 }
 
+impl Outcome {
+    /// The outcome of a check whose `verify` returned `result` after `checked` units.
+    fn of(result: Result<(), String>, claim: String, checked: u64, unit: &'static str) -> Outcome {
+        let verdict = match result {
+            Ok(()) => Verdict::Valid,
+            Err(e) => Verdict::Invalid(e),
+        };
+        Outcome {
+            verdict,
+            claim,
+            checked,
+            unit,
+        }
+    }
+}
+
 /// Checks a proof given as text.
 pub fn check_str(text: &str) -> Result<Report, Unreadable> {
     let start = Instant::now();

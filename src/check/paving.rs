@@ -9,7 +9,7 @@ use super::encoding::{base64_decode, decimal_enclosure, parse_hex_f64, BitReader
 use super::eval::{apply, defined, show, Op, Program};
 use super::json::{arr_of, as_obj, decls, obj_of, opt_str, pair_of, str_of, u64_of, Obj};
 use super::roots::constant;
-use super::{Outcome, Unreadable, Verdict};
+use super::{Outcome, Unreadable};
 
 /// Cached entries per axis before the cache is emptied (bounds memory; the
 /// preorder walk revisits recent intervals, so a small cache suffices).
@@ -292,16 +292,8 @@ fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
 pub fn check(root: &Obj) -> Result<Outcome, Unreadable> {
     let (st, claim) = parse(root)?;
     let mut checked = 0;
-    let verdict = match verify(&st, &mut checked) {
-        Ok(()) => Verdict::Valid,
-        Err(e) => Verdict::Invalid(e),
-    };
-    Ok(Outcome {
-        verdict,
-        claim,
-        checked,
-        unit: "leaves",
-    })
+    let result = verify(&st, &mut checked);
+    Ok(Outcome::of(result, claim, checked, "leaves"))
 }
 
 fn iv(a: f64, b: f64) -> Interval {

@@ -6,7 +6,7 @@ use super::encoding::decimal_enclosure;
 use super::eval::{defined, exact, show, Dual, Program};
 use super::json::{arr_of, as_obj, bool_of, decls, obj_of, opt_str, str_of, Obj};
 use super::pieces::{self, cap_dec, Function, Kind};
-use super::{Outcome, Unreadable, Verdict};
+use super::{Outcome, Unreadable};
 
 /// A compiled function of one variable and its derivative.
 pub struct OneVar {
@@ -130,7 +130,7 @@ pub fn check(root: &Obj) -> Result<Outcome, Unreadable> {
         if complete { ", complete" } else { "" }
     );
     let mut checked = 0u64;
-    let verdict = match verify(
+    let result = verify(
         &f,
         &base,
         lo_slot,
@@ -139,16 +139,8 @@ pub fn check(root: &Obj) -> Result<Outcome, Unreadable> {
         complete,
         &ps,
         &mut checked,
-    ) {
-        Ok(()) => Verdict::Valid,
-        Err(e) => Verdict::Invalid(e),
-    };
-    Ok(Outcome {
-        verdict,
-        claim,
-        checked,
-        unit: "pieces",
-    })
+    );
+    Ok(Outcome::of(result, claim, checked, "pieces"))
 }
 
 #[allow(clippy::too_many_arguments)]

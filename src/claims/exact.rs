@@ -211,6 +211,75 @@ pub fn jet2<T: Scalar>(x: Dual<Dual<T>>) -> (T, T, T) {
     (x.value.value, x.value.grad[0], x.grad[0].grad[0])
 }
 
+/// A second-order dual number in the path parameter `t`.
+pub type DD = Dual<Dual<Q>>;
+
+/// A rational constant lifted to [`DD`].
+pub fn dd_const(x: Q) -> DD {
+    DD::constant(Dual::constant(x))
+}
+
+/// A random rational path for identity tests: `tan(θ(t)/2) = u₀ + u₁t + u₂t²`
+/// and a height `y = y₀ + y₁t + y₂t²`, taken at `t = 0`.
+pub struct RationalPath {
+    /// `u₀ = tan(θ(0)/2)`.
+    pub u0: Q,
+    /// `y₂ = ÿ(0)/2`.
+    pub y2: Q,
+    /// `u(t)` as a second-order dual in t at `t = 0`.
+    pub u: DD,
+    /// `y(t)` as a second-order dual in t at `t = 0`.
+    pub y: DD,
+    /// `θ̇(0)`.
+    pub w: Q,
+    /// `θ̈(0)`.
+    pub thdd: Q,
+    /// `sin θ(0)`.
+    pub s: Q,
+    /// `cos θ(0)`.
+    pub c: Q,
+}
+
+impl RationalPath {
+    /// Draws `u₀` (a `tan(θ/2)`), then `u₁, u₂, y₀, y₁, y₂` (signed), in that order.
+    pub fn random(r: &mut Rng) -> RationalPath {
+        let (u0, u1, u2) = (
+            r.tan_half(),
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+        );
+        let (y0, y1, y2) = (
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+            Q::from_f64(r.signed()),
+        );
+        let tt = DD::variable(Dual::variable(Q::int(0), 0), 0);
+        let u = dd_const(u0) + dd_const(u1) * tt + dd_const(u2) * tt.sqr();
+        let y = dd_const(y0) + dd_const(y1) * tt + dd_const(y2) * tt.sqr();
+        // θ̇ = 2u̇/(1 + u²) as a first-order dual in t: θ̈ is its derivative.
+        let ud = Dual {
+            value: u0,
+            grad: [u1, Q::int(0)],
+        };
+        let udot = Dual {
+            value: u1,
+            grad: [Q::int(2) * u2, Q::int(0)],
+        };
+        let thd = Dual::<Q>::int(2) * udot / (Dual::<Q>::int(1) + ud.sqr());
+        let (s, c) = sin_cos_of_tan_half(u0);
+        RationalPath {
+            u0,
+            y2,
+            u,
+            y,
+            w: thd.value,
+            thdd: thd.grad[0],
+            s,
+            c,
+        }
+    }
+}
+
 /// Upper bound assumed on the total degree of every cleared difference.
 pub const DEGREE_BOUND: u64 = 200;
 /// |S|: sampled values are `k/2¹⁰`, `k ∈ [1, 2³⁰]`.

@@ -10,8 +10,8 @@
 //! (Cramer's rule) for `(ÿ, θ̈, N)`.
 
 use super::exact::{
-    angle_d, angle_dd, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, Identity, Rng,
-    Sample, Q,
+    angle_d, angle_dd, dd_const, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, Identity,
+    RationalPath, Rng, Sample, Q,
 };
 use super::witness::{find_difference, find_leaf, labels_on, window};
 use super::{dec, enc, Claim, Outcome, Strength, Verdict};
@@ -376,44 +376,27 @@ pub fn f1_7(mutant: bool) -> Outcome {
 pub fn f1_8(mutant: bool) -> Outcome {
     let id = identity_test(18, |r| {
         let p = P1::random(r);
-        let (u0, u1, u2) = (
-            r.tan_half(),
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-        );
-        let (y0, y1, y2) = (
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-        );
-        type DD = Dual<Dual<Q>>;
-        let tt = DD::variable(Dual::variable(Q::int(0), 0), 0);
-        let cst = |x: Q| DD::constant(Dual::constant(x));
-        let u = cst(u0) + cst(u1) * tt + cst(u2) * tt.sqr();
-        let y = cst(y0) + cst(y1) * tt + cst(y2) * tt.sqr();
+        let RationalPath {
+            u0,
+            y2,
+            u,
+            y,
+            w,
+            thdd,
+            s,
+            c,
+        } = RationalPath::random(r);
         let (su, cu) = sin_cos_of_tan_half(u);
-        let pd = p.map(cst);
+        let pd = p.map(dd_const);
         let lam = y - h(
             &pd,
             &Angle {
-                theta: cst(Q::int(0)),
+                theta: dd_const(Q::int(0)),
                 sin: su,
                 cos: cu,
             },
         );
         let lam_dd = jet2(lam).2;
-        // θ̇ = 2u̇/(1 + u²) as a first-order dual in t: θ̈ is its derivative.
-        let ud = Dual {
-            value: u0,
-            grad: [u1, Q::int(0)],
-        };
-        let udot = Dual {
-            value: u1,
-            grad: [Q::int(2) * u2, Q::int(0)],
-        };
-        let thd = Dual::<Q>::int(2) * udot / (Dual::<Q>::int(1) + ud.sqr());
-        let (w, thdd) = (thd.value, thd.grad[0]);
-        let (s, c) = sin_cos_of_tan_half(u0);
         let (_, h1, h2) = h_jet(&p, s, c);
         let sign = if mutant { Q::int(-1) } else { Q::int(1) };
         let printed = Q::int(2) * y2 - sign * h2 * w.sqr() - h1 * thdd;

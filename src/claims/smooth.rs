@@ -8,7 +8,8 @@
 //! `A θ̈ = ∂T/∂θ − a cos θ N` with `Λ̈ = 0`, solved exactly for `(z̈, θ̈, N)`.
 
 use super::exact::{
-    angle_d, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, verdict_of, Rng, Sample, Q,
+    angle_d, dd_const, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, verdict_of,
+    RationalPath, Rng, Sample, Q,
 };
 use super::{enc, Claim, Outcome, Strength, Verdict};
 use crate::roots::critical::{band_cell, g as g_crit};
@@ -318,34 +319,18 @@ pub fn f2_5(mutant: bool) -> Outcome {
 pub fn f2_6(mutant: bool) -> Outcome {
     let id = identity_test(26, |r| {
         let p = P2::random(r);
-        let (u0, u1, u2) = (
-            r.tan_half(),
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-        );
-        let (z0, z1, z2) = (
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-        );
-        type DD = Dual<Dual<Q>>;
-        let tt = DD::variable(Dual::variable(Q::int(0), 0), 0);
-        let k = |x: Q| DD::constant(Dual::constant(x));
-        let u = k(u0) + k(u1) * tt + k(u2) * tt.sqr();
-        let z = k(z0) + k(z1) * tt + k(z2) * tt.sqr();
+        let RationalPath {
+            u0,
+            y2: z2,
+            u,
+            y: z,
+            w,
+            thdd,
+            s,
+            c,
+        } = RationalPath::random(r);
         let (su, _) = sin_cos_of_tan_half(u);
-        let lam_dd = jet2(z - k(p.a) * su).2;
-        let ud = Dual {
-            value: u0,
-            grad: [u1, Q::int(0)],
-        };
-        let udot = Dual {
-            value: u1,
-            grad: [Q::int(2) * u2, Q::int(0)],
-        };
-        let thd = Dual::<Q>::int(2) * udot / (Dual::<Q>::int(1) + ud.sqr());
-        let (w, thdd) = (thd.value, thd.grad[0]);
-        let (s, c) = sin_cos_of_tan_half(u0);
+        let lam_dd = jet2(z - dd_const(p.a) * su).2;
         let n = p.m * (Q::int(2) * z2 + p.g); // m z̈ = N − m g
         let sgn = if mutant { Q::int(-1) } else { Q::int(1) };
         let printed = n / p.m - p.g + p.a * w.sqr() * s - sgn * p.a * thdd * c;
