@@ -75,17 +75,18 @@ fn unit(lo: f64, hi: f64) -> Interval {
     hull(lo.max(-1.0), hi.min(1.0))
 }
 
-/// sin over `[a, b]` from endpoint enclosures `sa`, `sb`: the range is the hull
-/// of the endpoint values and of the extremum values inside.
-fn sin_from(x: Interval, sa: f64, sb: f64) -> Interval {
+/// The range of sin or cos over `x = [a, b]` from the correctly rounded
+/// values at the ends: the hull of their enclosures and of the extrema inside.
+/// `extrema` maps `x` to the interval of indices k of the extrema it may hold
+/// (a maximum for even k, a minimum for odd k).
+fn range_from(x: Interval, va: f64, vb: f64, extrema: impl Fn(Interval) -> Interval) -> Interval {
     let (a, b) = (x.inf(), x.sup());
-    let (la, ha) = widen(sa);
-    let (lb, hb) = if a == b { (la, ha) } else { widen(sb) };
-    // Extrema at π/2 + kπ: k ∈ (x − π/2)/π.
+    let (la, ha) = widen(va);
+    let (lb, hb) = if a == b { (la, ha) } else { widen(vb) };
     let (k, n) = if a == b {
         (0.0, 0)
     } else {
-        integers_in((x - Interval::FRAC_PI_2) * Interval::FRAC_1_PI)
+        integers_in(extrema(x))
     };
     let (mut lo, mut hi) = (la.min(lb), ha.max(hb));
     match n {
@@ -97,24 +98,16 @@ fn sin_from(x: Interval, sa: f64, sb: f64) -> Interval {
     unit(lo, hi)
 }
 
-/// cos over `[a, b]`: extrema at kπ, k ∈ x/π.
+/// sin over `x`: extrema at π/2 + kπ, k ∈ (x − π/2)/π.
+fn sin_from(x: Interval, sa: f64, sb: f64) -> Interval {
+    range_from(x, sa, sb, |x| {
+        (x - Interval::FRAC_PI_2) * Interval::FRAC_1_PI
+    })
+}
+
+/// cos over `x`: extrema at kπ, k ∈ x/π.
 fn cos_from(x: Interval, ca: f64, cb: f64) -> Interval {
-    let (a, b) = (x.inf(), x.sup());
-    let (la, ha) = widen(ca);
-    let (lb, hb) = if a == b { (la, ha) } else { widen(cb) };
-    let (k, n) = if a == b {
-        (0.0, 0)
-    } else {
-        integers_in(x * Interval::FRAC_1_PI)
-    };
-    let (mut lo, mut hi) = (la.min(lb), ha.max(hb));
-    match n {
-        0 => {}
-        1 if is_even(k) => hi = 1.0,
-        1 => lo = -1.0,
-        _ => return MINUS_ONE_ONE,
-    }
-    unit(lo, hi)
+    range_from(x, ca, cb, |x| x * Interval::FRAC_1_PI)
 }
 
 /// Enclosure of sin over `x`.

@@ -220,6 +220,20 @@ fn bytes_of(v: &Value) -> Vec<u8> {
     to_bytes(v)
 }
 
+/// `text` with its `j`-th digit (modulo the number of digits) set to `d`;
+/// `None` when that changes nothing.
+fn with_digit(text: &str, j: usize, d: u8) -> Option<String> {
+    let digits: Vec<usize> = text
+        .char_indices()
+        .filter(|(_, c)| c.is_ascii_digit())
+        .map(|(k, _)| k)
+        .collect();
+    let at = digits[j % digits.len()];
+    let mut new = text.to_string();
+    new.replace_range(at..at + 1, &d.to_string());
+    (new != text).then_some(new)
+}
+
 fn flip(l: Label) -> Option<Label> {
     match l {
         Label::ProvedIn => Some(Label::ProvedOut),
@@ -343,18 +357,7 @@ fn mutate(b: &Base, m: &PavingMutation) -> Option<(Truth, Vec<u8>)> {
             let params = v["statement"]["parameters"].as_object_mut().unwrap();
             let keys: Vec<String> = params.keys().cloned().collect();
             let key = &keys[i % keys.len()];
-            let text = params[key].as_str().unwrap().to_string();
-            let digits: Vec<usize> = text
-                .char_indices()
-                .filter(|(_, c)| c.is_ascii_digit())
-                .map(|(k, _)| k)
-                .collect();
-            let at = digits[j % digits.len()];
-            let mut new = text.clone();
-            new.replace_range(at..at + 1, &d.to_string());
-            if new == text {
-                return None;
-            }
+            let new = with_digit(params[key].as_str().unwrap(), j, d)?;
             params.insert(key.clone(), json!(new));
             // The judge: the prover's own paving of the mutated scene.
             let truth = match Scene::build(b.id, &[(key.clone(), new.clone())]) {
@@ -498,21 +501,11 @@ fn mutate_roots(
             (Truth::Unknown, bytes_of(&v))
         }
         RootMutation::KappaDigit(j, d) => {
-            let text = v["statement"]["parameters"]["kappa"]
-                .as_str()
-                .unwrap()
-                .to_string();
-            let digits: Vec<usize> = text
-                .char_indices()
-                .filter(|(_, c)| c.is_ascii_digit())
-                .map(|(k, _)| k)
-                .collect();
-            let at = digits[j % digits.len()];
-            let mut new = text.clone();
-            new.replace_range(at..at + 1, &d.to_string());
-            if new == text {
-                return None;
-            }
+            let new = with_digit(
+                v["statement"]["parameters"]["kappa"].as_str().unwrap(),
+                j,
+                d,
+            )?;
             v["statement"]["parameters"]["kappa"] = json!(new);
             // The judge: the prover's roots at the new κ, compared with the claimed enclosures.
             let truth = match roots_2_9(&new, "0.7") {

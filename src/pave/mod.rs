@@ -433,15 +433,24 @@ pub fn pave_scene_in(
     opts: PaveOptions,
     progress: impl FnMut(u32, usize, usize),
 ) -> Result<Paving, PaveError> {
+    pave(
+        &SceneConstraints { scene, variant },
+        root_box(domain)?,
+        opts,
+        progress,
+    )
+}
+
+/// The largest double box inside a non-empty domain: where pavings start.
+fn root_box(domain: &Domain) -> Result<PhaseBox, PaveError> {
     if domain.is_empty() {
         return Err(PaveError::EmptyDomain);
     }
     let b = domain.inner_box();
-    let root = PhaseBox {
+    Ok(PhaseBox {
         theta: b[0],
         theta_dot: b[1],
-    };
-    pave(&SceneConstraints { scene, variant }, root, opts, progress)
+    })
 }
 
 /// [`pave_scene_in`] with a method.
@@ -453,17 +462,9 @@ pub fn pave_scene_method(
     mo: &MethodOptions,
     progress: impl FnMut(u32, usize, usize),
 ) -> Result<Paving, PaveError> {
-    if domain.is_empty() {
-        return Err(PaveError::EmptyDomain);
-    }
-    let b = domain.inner_box();
-    let root = PhaseBox {
-        theta: b[0],
-        theta_dot: b[1],
-    };
     pave_with(
         &SceneConstraints { scene, variant },
-        root,
+        root_box(domain)?,
         opts,
         mo,
         progress,
