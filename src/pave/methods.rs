@@ -789,18 +789,19 @@ pub fn pave_with<S: ConstraintSet>(
             .filter(|o| o.slab.is_none())
             .map(|o| slab_key(&o.bx))
             .collect();
-        missing.par_sort_unstable();
+        if missing.len() < PAR_MIN {
+            missing.sort_unstable();
+        } else {
+            missing.par_sort_unstable();
+        }
         missing.dedup();
         stats.slab_evaluations += missing.len() as u64;
-        let fresh: Vec<Arc<S::Slab>> = missing
-            .par_iter()
-            .map(|&(lo, hi)| {
-                let th = Interval::try_from((f64::from_bits(lo), f64::from_bits(hi)))
-                    .expect("ordered endpoints");
-                Arc::new(set.slab(th))
-            })
-            .collect();
-        frontier.par_iter_mut().for_each(|o| {
+        let fresh: Vec<Arc<S::Slab>> = par_map(&missing, |&(lo, hi)| {
+            let th = Interval::try_from((f64::from_bits(lo), f64::from_bits(hi)))
+                .expect("ordered endpoints");
+            Arc::new(set.slab(th))
+        });
+        par_each_mut(&mut frontier, |o| {
             if o.slab.is_none() {
                 let k = missing
                     .binary_search(&slab_key(&o.bx))
@@ -810,16 +811,13 @@ pub fn pave_with<S: ConstraintSet>(
         });
         drop(fresh);
 
-        let done: Vec<(Labels, Outcome, Work)> = frontier
-            .par_iter()
-            .map(|o| {
-                let mut work = Work::default();
-                let slab = o.slab.as_ref().expect("assigned above");
-                let labels = ctx.natural(slab, &o.bx, &mut work);
-                let outcome = ctx.process(o, &labels, &mut work);
-                (labels, outcome, work)
-            })
-            .collect();
+        let done: Vec<(Labels, Outcome, Work)> = par_map(&frontier, |o| {
+            let mut work = Work::default();
+            let slab = o.slab.as_ref().expect("assigned above");
+            let labels = ctx.natural(slab, &o.bx, &mut work);
+            let outcome = ctx.process(o, &labels, &mut work);
+            (labels, outcome, work)
+        });
         for (_, _, w) in &done {
             stats.box_evaluations += w.evals;
             stats.slab_evaluations += w.slabs;
@@ -899,39 +897,37 @@ pub fn pave_with<S: ConstraintSet>(
                 Shared::new(leaves.spare_capacity_mut()),
                 Shared::new(next.spare_capacity_mut()),
             );
-            done.into_par_iter()
-                .enumerate()
-                .for_each(|(k, (labels, outcome, _))| {
-                    let o = &frontier[k];
-                    let off = offsets[k];
-                    let p = plan[k];
-                    let mut f = Filler {
-                        arena: an.part(base_nodes + off[0], p.nodes as usize),
-                        arena_base: (base_nodes + off[0]) as u32,
-                        leaves: ln.part(off[1], p.leaves as usize),
-                        leaf_base: (base_leaves + off[1]) as u32,
-                        opens: on.part(off[2], p.opens as usize),
-                        used: [0; 3],
-                    };
-                    let own = if p.refine {
-                        match outcome {
-                            Outcome::Split(ax) => {
-                                let t = [Local::Mid(ax), Local::Open, Local::Open];
-                                f.expand(&t, &mut 0, o.node, o.bx, o.slab.clone())
-                            }
-                            Outcome::Tree(t) => f.expand(&t, &mut 0, o.node, o.bx, o.slab.clone()),
-                            Outcome::Leaf => unreachable!("a leaf is not refined"),
+            par_each_owned(done, |k, (labels, outcome, _)| {
+                let o = &frontier[k];
+                let off = offsets[k];
+                let p = plan[k];
+                let mut f = Filler {
+                    arena: an.part(base_nodes + off[0], p.nodes as usize),
+                    arena_base: (base_nodes + off[0]) as u32,
+                    leaves: ln.part(off[1], p.leaves as usize),
+                    leaf_base: (base_leaves + off[1]) as u32,
+                    opens: on.part(off[2], p.opens as usize),
+                    used: [0; 3],
+                };
+                let own = if p.refine {
+                    match outcome {
+                        Outcome::Split(ax) => {
+                            let t = [Local::Mid(ax), Local::Open, Local::Open];
+                            f.expand(&t, &mut 0, o.node, o.bx, o.slab.clone())
                         }
-                    } else {
-                        f.expand(&[Local::Leaf(labels)], &mut 0, o.node, o.bx, None)
-                    };
-                    // Every planned slot written: what makes set_len below sound.
-                    assert_eq!(
-                        f.used,
-                        [p.nodes as usize, p.leaves as usize, p.opens as usize]
-                    );
-                    an.part(o.node as usize, 1)[0].write(own);
-                });
+                        Outcome::Tree(t) => f.expand(&t, &mut 0, o.node, o.bx, o.slab.clone()),
+                        Outcome::Leaf => unreachable!("a leaf is not refined"),
+                    }
+                } else {
+                    f.expand(&[Local::Leaf(labels)], &mut 0, o.node, o.bx, None)
+                };
+                // Every planned slot written: what makes set_len below sound.
+                assert_eq!(
+                    f.used,
+                    [p.nodes as usize, p.leaves as usize, p.opens as usize]
+                );
+                an.part(o.node as usize, 1)[0].write(own);
+            });
             // SAFETY: each box wrote exactly its planned slots (asserted
             // above), the shares are disjoint and together cover `total`.
             unsafe {
@@ -947,9 +943,7 @@ pub fn pave_with<S: ConstraintSet>(
                 + missing.len() * size_of::<S::Slab>(),
         );
         // Dropping the old frontier releases slabs; do it off the main thread.
-        std::mem::replace(&mut frontier, next)
-            .into_par_iter()
-            .for_each(drop);
+        par_each_owned(std::mem::replace(&mut frontier, next), |_, o| drop(o));
         if !frontier.is_empty() {
             level += 1;
         }
@@ -1215,6 +1209,35 @@ fn write_preorder(
         || write_preorder(arena, leaves, size, a, ln, ll, leaf_base),
         || write_preorder(arena, leaves, size, a + 1, rn, rl, right_base),
     );
+}
+
+/// Below this many items a level's step runs on the calling thread: waking
+/// the pool costs more (tens of µs per call) than the work.
+const PAR_MIN: usize = 1024;
+
+fn par_map<T: Sync, U: Send>(xs: &[T], f: impl Fn(&T) -> U + Sync + Send) -> Vec<U> {
+    if xs.len() < PAR_MIN {
+        xs.iter().map(f).collect()
+    } else {
+        xs.par_iter().map(f).collect()
+    }
+}
+
+fn par_each_mut<T: Send>(xs: &mut [T], f: impl Fn(&mut T) + Sync + Send) {
+    if xs.len() < PAR_MIN {
+        xs.iter_mut().for_each(f)
+    } else {
+        xs.par_iter_mut().for_each(f)
+    }
+}
+
+/// `f(index, item)` for every item, consuming the vector.
+fn par_each_owned<T: Send>(xs: Vec<T>, f: impl Fn(usize, T) + Sync + Send) {
+    if xs.len() < PAR_MIN {
+        xs.into_iter().enumerate().for_each(|(k, x)| f(k, x))
+    } else {
+        xs.into_par_iter().enumerate().for_each(|(k, x)| f(k, x))
+    }
 }
 
 fn slab_key(b: &PhaseBox) -> (u64, u64) {
