@@ -13,7 +13,7 @@
 //! possible pole of `tan`, an argument of `ln` reaching 0 — the functions fall
 //! back to `inari`'s own.
 
-use crate::scalar::Scalar;
+use crate::scalar::{Dual, Scalar};
 use crate::scene::{Angle, Constraints, Quadratic, Scene, Variant};
 use inari::{const_interval, DecInterval, Interval};
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -318,6 +318,30 @@ pub fn slab_constraints(scene: &Scene, v: Variant, theta: Interval) -> Constrain
     Constraints {
         omega: unwrap_quadratic(c.omega),
         omega0: unwrap_quadratic(c.omega0),
+    }
+}
+
+/// [`slab_constraints`] over a dual θ: every coefficient with its
+/// θ-derivative over the slab (gradient index 0).
+pub fn slab_dual_constraints(
+    scene: &Scene,
+    v: Variant,
+    theta: Interval,
+) -> Constraints<Dual<DecInterval>> {
+    let t = Dual::variable(CrDec(DecInterval::new(theta)), 0);
+    let c = scene.constraints(v, &Angle::new(t));
+    let un = |x: Dual<CrDec>| Dual {
+        value: x.value.0,
+        grad: [x.grad[0].0, x.grad[1].0],
+    };
+    let q = |q: Quadratic<Dual<CrDec>>| Quadratic {
+        c2: un(q.c2),
+        c1: un(q.c1),
+        c0: un(q.c0),
+    };
+    Constraints {
+        omega: q(c.omega),
+        omega0: q(c.omega0),
     }
 }
 

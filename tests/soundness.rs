@@ -6,7 +6,7 @@
 //! the derivations in `src/scene/*.rs`, not through the crate's code. A label
 //! `in` needs `g < 0` at every point, `out` needs `g > 0`.
 
-use detach::pave::{pave_scene_in, Label, PaveOptions, Paving};
+use detach::pave::{pave_scene_method, Label, Method, MethodOptions, PaveOptions, Paving};
 use detach::scene::{Scene, SceneId, Variant};
 use rug::Float;
 
@@ -308,8 +308,13 @@ fn run(eps: f64, per_paving: usize) -> usize {
             .domain()
             .window(case.theta, case.theta_dot)
             .expect("valid window");
-        for v in [Variant::Derived, Variant::Printed] {
-            let paving = pave_scene_in(
+        // `slices` labels by the monotone test as well as the natural one.
+        for (v, method) in [
+            (Variant::Derived, Method::Natural),
+            (Variant::Printed, Method::Natural),
+            (Variant::Derived, Method::Slices),
+        ] {
+            let paving = pave_scene_method(
                 &scene,
                 v,
                 &domain,
@@ -317,6 +322,7 @@ fn run(eps: f64, per_paving: usize) -> usize {
                     eps,
                     max_boxes: 200_000,
                 },
+                &MethodOptions::new(method),
                 |_, _, _| {},
             )
             .unwrap();

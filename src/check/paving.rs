@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use super::area::{AreaSum, LeafArea};
 use super::encoding::{base64_decode, decimal_enclosure, parse_hex_f64, BitReader};
-use super::eval::{apply, defined, show, Op, Program};
+use super::eval::{apply, continuous, defined, show, Dual, Op, Program};
 use super::json::{arr_of, as_obj, decls, obj_of, opt_str, pair_of, str_of, u64_of, Obj};
 use super::roots::constant;
 use super::{Outcome, Unreadable};
@@ -300,6 +300,80 @@ fn iv(a: f64, b: f64) -> Interval {
     Interval::try_from((a, b)).unwrap_or(Interval::EMPTY)
 }
 
+/// The value `v` is defined and proves the label (in: `sup < 0`, out: `inf > 0`).
+fn holds(v: DecInterval, want_in: bool) -> bool {
+    defined(v)
+        && v.interval().is_some_and(|i| {
+            if want_in {
+                i.sup() < 0.0
+            } else {
+                i.inf() > 0.0
+            }
+        })
+}
+
+/// The monotone test (FORMAT.md, step 3): where a partial derivative of the
+/// expression has a constant sign on `t × w`, the largest value (for `in`;
+/// the smallest for `out`) lies on one end of that variable, so the variable
+/// is replaced by that end and the expression evaluated naturally on the
+/// reduced box. Requires the value and both partials to be continuous
+/// (`≥ dac`), which makes the function differentiable on the box (the rules
+/// at non-differentiable points, `sqrt` and `abs` at 0, are undefined).
+/// Returns `NAI` when no variable can be fixed.
+fn monotone_bound(
+    prog: &Program,
+    root: u32,
+    t: Interval,
+    w: Interval,
+    want_in: bool,
+) -> DecInterval {
+    let (td, wd) = (DecInterval::new(t), DecInterval::new(w));
+    let seed = |k: usize| -> Dual<DecInterval> {
+        let vars = if k == 0 {
+            [Dual::variable(td), constant_dual(wd)]
+        } else {
+            [constant_dual(td), Dual::variable(wd)]
+        };
+        prog.value(&vars, root)
+    };
+    let (dt, dw) = (seed(0), seed(1));
+    if !(continuous(dt.v) && continuous(dt.d) && continuous(dw.d)) {
+        return DecInterval::NAI;
+    }
+    let mut fixed = false;
+    let mut end = |x: Interval, d: DecInterval| -> Interval {
+        let d = d.interval().unwrap_or(Interval::ENTIRE);
+        // Nondecreasing: the largest value at the upper end, the smallest at the lower.
+        let pick = if d.inf() >= 0.0 {
+            Some(want_in)
+        } else if d.sup() <= 0.0 {
+            Some(!want_in)
+        } else {
+            None
+        };
+        match pick {
+            Some(upper) => {
+                fixed = true;
+                let e = if upper { x.sup() } else { x.inf() };
+                iv(e, e)
+            }
+            None => x,
+        }
+    };
+    let (t1, w1) = (end(t, dt.d), end(w, dw.d));
+    if !fixed {
+        return DecInterval::NAI;
+    }
+    prog.value(&[DecInterval::new(t1), DecInterval::new(w1)], root)
+}
+
+fn constant_dual(x: DecInterval) -> Dual<DecInterval> {
+    Dual {
+        v: x,
+        d: DecInterval::new(iv(0.0, 0.0)),
+    }
+}
+
 /// A leaf box `[t0, t1] × [w0, w1]`.
 #[derive(Clone, Copy)]
 struct Cell([f64; 4]);
@@ -369,14 +443,11 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
                         continue;
                     }
                     let v = ev.value(c);
-                    let ok = defined(v)
-                        && v.interval().is_some_and(|i| {
-                            if l == IN {
-                                i.sup() < 0.0
-                            } else {
-                                i.inf() > 0.0
-                            }
-                        });
+                    let ok = holds(v, l == IN)
+                        || holds(
+                            monotone_bound(&st.prog, st.roots[c], t, w, l == IN),
+                            l == IN,
+                        );
                     if !ok {
                         return Err(format!(
                             "leaf {leaves} [{:e}, {:e}] x [{:e}, {:e}], constraint {}: \
@@ -473,4 +544,58 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn compiled(text: &str) -> (Program, u32) {
+        let mut prog = Program::new(&["t", "w"]).unwrap();
+        let root = prog.compile(text).unwrap();
+        (prog, root)
+    }
+
+    fn natural(prog: &Program, root: u32, t: Interval, w: Interval) -> DecInterval {
+        prog.value(&[DecInterval::new(t), DecInterval::new(w)], root)
+    }
+
+    // g = t² − t − w on [2, 3] × [0, 1]: by hand g ≥ 4 − 2 − 1 = 1 (∂g/∂t =
+    // 2t − 1 ≥ 3, ∂g/∂w = −1), while the natural extension gives [0, 7].
+    #[test]
+    fn the_monotone_test_proves_what_natural_cannot() {
+        let (prog, root) = compiled("t*t - t - w");
+        let (t, w) = (iv(2.0, 3.0), iv(0.0, 1.0));
+        assert!(!holds(natural(&prog, root, t, w), false));
+        let m = monotone_bound(&prog, root, t, w, false);
+        assert_eq!(m.interval().map(|i| i.inf()), Some(1.0));
+        assert!(holds(m, false));
+    }
+
+    // The same box cannot be proved in (g(3, 0) = 6), and a box crossing
+    // g = 0 (g(1, 1) = −1, g(2, 0) = 2) is proved neither in nor out.
+    #[test]
+    fn the_monotone_test_refuses_false_labels() {
+        let (prog, root) = compiled("t*t - t - w");
+        assert!(!holds(
+            monotone_bound(&prog, root, iv(2.0, 3.0), iv(0.0, 1.0), true),
+            true
+        ));
+        for want_in in [true, false] {
+            let m = monotone_bound(&prog, root, iv(1.0, 2.0), iv(0.0, 1.0), want_in);
+            assert!(!holds(m, want_in));
+        }
+    }
+
+    // abs has no derivative at 0: with 2.5 inside [2, 3] the test does not
+    // apply, although |t − 2.5| + t − w is monotone in w.
+    #[test]
+    fn no_monotone_test_where_a_derivative_does_not_exist() {
+        let (prog, root) = compiled("abs(t - 2.5) + t - w");
+        let m = monotone_bound(&prog, root, iv(2.0, 3.0), iv(0.0, 1.0), false);
+        assert!(!defined(m));
+        let (prog, root) = compiled("sqrt(t - 2) - w - 1");
+        let m = monotone_bound(&prog, root, iv(2.0, 3.0), iv(0.0, 1.0), true);
+        assert!(!defined(m));
+    }
 }

@@ -19,11 +19,11 @@
 
 use super::{
     CellSpec, ConstraintSet, Label, Leaf, Node, PaveError, PaveOptions, PaveStats, Paving,
-    PhaseBox, StopReason, MAX_CONSTRAINTS,
+    PhaseBox, SlabEnds, StopReason, MAX_CONSTRAINTS,
 };
 use crate::scalar::{is_defined, Dual};
 use crate::scene::Quadratic;
-use inari::{DecInterval, Interval};
+use inari::{DecInterval, Decoration, Interval};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::fmt;
@@ -175,6 +175,8 @@ struct Ctx<'a, S: ConstraintSet> {
     same_as: Vec<Option<usize>>,
     relevant: u8,
     min_width: [f64; 2],
+    /// `slices`: the undecided area per slab it refines down to.
+    slab_area: f64,
 }
 
 /// Per-box work counters.
@@ -195,10 +197,47 @@ impl<S: ConstraintSet> Ctx<'_, S> {
     }
 
     fn wide(&self, b: &PhaseBox) -> [bool; 2] {
-        [
-            b.theta[1] - b.theta[0] > self.min_width[0],
-            b.theta_dot[1] - b.theta_dot[0] > self.min_width[1],
-        ]
+        let (h, k) = (b.theta[1] - b.theta[0], b.theta_dot[1] - b.theta_dot[0]);
+        if self.method == Method::Slices {
+            // Slabs are refined while their undecided area is above the
+            // threshold (equidistributed), down to a floor that bounds the
+            // depth at vertical tangents.
+            return [h > self.min_width[0] && h * k > self.slab_area, false];
+        }
+        [h > self.min_width[0], k > self.min_width[1]]
+    }
+
+    /// `slices`: an estimate (steering only) of the undecided area a fresh
+    /// slab would leave, from the roots of its quadratics in f64 at θ's two
+    /// ends and middle; the full box where their number changes.
+    fn estimated_band(&self, b: &PhaseBox) -> f64 {
+        let [t0, t1] = b.theta;
+        let [w0, w1] = b.theta_dot;
+        let full = (t1 - t0) * (w1 - w0);
+        let mut per_end: [Vec<f64>; 3] = Default::default();
+        for (k, t) in [t0, 0.5 * t0 + 0.5 * t1, t1].into_iter().enumerate() {
+            let Some(qs) = self.set.steer_at(t) else {
+                return full;
+            };
+            for (i, [c2, c1, c0]) in qs.into_iter().enumerate() {
+                if self.with_copies(1 << i) & self.relevant != 0 && self.same_as[i].is_none() {
+                    roots(c2, c1, c0, &mut per_end[k]);
+                }
+            }
+            per_end[k].retain(|r| w0 < *r && *r < w1);
+            per_end[k].sort_by(f64::total_cmp);
+        }
+        let n = per_end[0].len();
+        if per_end.iter().any(|r| r.len() != n) {
+            return full;
+        }
+        let band: f64 = (0..n)
+            .map(|j| {
+                let r = per_end.iter().map(|e| e[j]);
+                r.clone().fold(f64::NEG_INFINITY, f64::max) - r.fold(f64::INFINITY, f64::min)
+            })
+            .sum();
+        band * (t1 - t0)
     }
 
     /// The axis to refine an undecided box along, if any. `natural`,
@@ -250,6 +289,35 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         labels
     }
 
+    /// Natural labels, then the checker's monotone test on the constraints
+    /// they leave undecided (when the slab's end data is at hand).
+    fn label(
+        &self,
+        slab: &S::Slab,
+        ends: Option<&[SlabEnds]>,
+        b: &PhaseBox,
+        work: &mut Work,
+    ) -> Labels {
+        let mut labels = self.natural(slab, b, work);
+        let Some(ends) = ends else {
+            return labels;
+        };
+        for i in self.own() {
+            if labels[i] == Label::Undecided {
+                if let Some(e) = ends.get(i) {
+                    work.evals += 1;
+                    labels[i] = monotone_label(e, b);
+                }
+            }
+        }
+        for (i, s) in self.same_as.iter().enumerate() {
+            if let Some(j) = *s {
+                labels[i] = labels[j];
+            }
+        }
+        labels
+    }
+
     fn decided_mask(&self, labels: &Labels) -> u8 {
         (0..self.n)
             .filter(|&i| labels[i].is_decided())
@@ -289,6 +357,14 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                 }
             }
             Method::Contract | Method::Slices => {
+                // `slices`: no rigorous work on a slab still too coarse.
+                if self.method == Method::Slices
+                    && o.fresh
+                    && self.choose_axis(&o.bx).is_some()
+                    && self.estimated_band(&o.bx) > self.slab_area
+                {
+                    return Outcome::Split(0);
+                }
                 if o.fresh {
                     if let Some(t) = self.contract(slab, &o.bx, work) {
                         return Outcome::Tree(t);
@@ -331,8 +407,15 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         let all = (self.decided_mask(labels) | gained) & self.relevant == self.relevant;
         if gained & self.relevant != 0 && (all || at_resolution) {
             let mut budget = CERTIFY_LEAVES;
-            if let Some(t) = self.certify(b, slab, gained & self.relevant, &mut budget, work, false)
-            {
+            if let Some(t) = self.certify(
+                b,
+                slab,
+                None,
+                gained & self.relevant,
+                &mut budget,
+                work,
+                false,
+            ) {
                 return Some(t);
             }
         }
@@ -355,7 +438,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             return None;
         }
         let mut budget = CERTIFY_LEAVES;
-        self.certify(b, slab, wanted, &mut budget, work, true)
+        self.certify(b, slab, None, wanted, &mut budget, work, true)
     }
 
     /// A subtree whose leaves all carry natural labels deciding every
@@ -364,16 +447,18 @@ impl<S: ConstraintSet> Ctx<'_, S> {
     /// from the slab's coefficients is reached by narrowing θ̇ alone (the
     /// dependency of c₂θ̇² + c₁θ̇ shrinks with the width), sharing the slab;
     /// the θ-centred form needs narrower θ-slabs too.
+    #[allow(clippy::too_many_arguments)]
     fn certify(
         &self,
         b: &PhaseBox,
         slab: &S::Slab,
+        ends: Option<&[SlabEnds]>,
         wanted: u8,
         budget: &mut u32,
         work: &mut Work,
         theta: bool,
     ) -> Option<Vec<Local>> {
-        let labels = self.natural(slab, b, work);
+        let labels = self.label(slab, ends, b, work);
         if self.decided_mask(&labels) & wanted == wanted {
             return Some(vec![Local::Leaf(labels)]);
         }
@@ -394,11 +479,11 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             work.slabs += 2;
             for half in [lo, hi] {
                 let sl = self.set.slab(half.theta_interval());
-                out.extend(self.certify(&half, &sl, wanted, budget, work, theta)?);
+                out.extend(self.certify(&half, &sl, None, wanted, budget, work, theta)?);
             }
         } else {
-            out.extend(self.certify(&lo, slab, wanted, budget, work, theta)?);
-            out.extend(self.certify(&hi, slab, wanted, budget, work, theta)?);
+            out.extend(self.certify(&lo, slab, ends, wanted, budget, work, theta)?);
+            out.extend(self.certify(&hi, slab, ends, wanted, budget, work, theta)?);
         }
         Some(out)
     }
@@ -433,10 +518,18 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             .own()
             .filter(|&i| self.with_copies(1 << i) & self.relevant != 0)
             .collect();
+        // The slab's ends and θ-derivatives: tight bands (the roots at the
+        // two ends) and labels by the checker's monotone test.
+        work.slabs += 3;
+        let ends = self.set.slab_ends(b.theta_interval());
+        let ends = ends.as_deref();
         let mut qs = Vec::with_capacity(rel_own.len());
         for &i in &rel_own {
             let q = self.set.quadratic(slab, i)?;
-            qs.push(Steer::new(&q)?);
+            qs.push(match ends.and_then(|e| e.get(i)) {
+                Some(e) => Steer::from_ends(e)?,
+                None => Steer::new(&q)?,
+            });
         }
         let [w0, w1] = b.theta_dot;
         let mut pts: Vec<f64> = Vec::new();
@@ -498,10 +591,42 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                     continue;
                 }
                 let bx = with_w(b, na, nz);
-                let labels = self.natural(slab, &bx, work);
+                let labels = self.label(slab, ends, &bx, work);
                 if self.decided_mask(&labels) & self.relevant == self.relevant {
                     done = Some((na, nz, vec![Local::Leaf(labels)]));
                     break;
+                }
+            }
+            if done.is_none() {
+                // Not monotone in θ̇ (a quadratic's vertex inside): split there.
+                let d = SHRINK[0] * (z - a);
+                let na = if lo_free { a + d } else { a };
+                let nz = if hi_free { z - d } else { z };
+                let mut cuts: Vec<f64> = Vec::new();
+                for q in &qs {
+                    q.turning_cuts((nz - na) / 64.0, &mut cuts);
+                }
+                cuts.retain(|v| na < *v && *v < nz);
+                cuts.sort_by(f64::total_cmp);
+                cuts.dedup();
+                if !cuts.is_empty() && ends.is_some() {
+                    let mut t = Vec::with_capacity(2 * cuts.len() + 1);
+                    let mut lo = na;
+                    for hi in cuts.iter().copied().chain(std::iter::once(nz)) {
+                        let labels = self.label(slab, ends, &with_w(b, lo, hi), work);
+                        if self.decided_mask(&labels) & self.relevant != self.relevant {
+                            t.clear();
+                            break;
+                        }
+                        if hi < nz {
+                            t.push(Local::At(1, hi));
+                        }
+                        t.push(Local::Leaf(labels));
+                        lo = hi;
+                    }
+                    if !t.is_empty() {
+                        done = Some((na, nz, t));
+                    }
                 }
             }
             if done.is_none() {
@@ -514,7 +639,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                     let mut budget = CERTIFY_LEAVES;
                     let bx = with_w(b, na, nz);
                     if let Some(t) =
-                        self.certify(&bx, slab, self.relevant, &mut budget, work, false)
+                        self.certify(&bx, slab, ends, self.relevant, &mut budget, work, false)
                     {
                         done = Some((na, nz, t));
                     }
@@ -560,7 +685,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                     if self.choose_axis(&bx).is_some() {
                         out.push(Local::Open);
                     } else {
-                        out.push(Local::Leaf(self.natural(slab, &bx, work)));
+                        out.push(Local::Leaf(self.label(slab, ends, &bx, work)));
                     }
                 }
             }
@@ -638,6 +763,52 @@ pub fn centred_label(q: &Quadratic<DecInterval>, w: Interval) -> Label {
     }
 }
 
+/// The proof checker's monotone test (`proofs/FORMAT.md`, paving step 3) on
+/// `b` for one quadratic constraint: where ∂g/∂θ or ∂g/∂θ̇ has a constant sign
+/// on the box, g is largest (smallest) at one end of that variable, so the
+/// label is decided on the box reduced to those ends. The value and both
+/// derivatives must be continuous (`≥ dac`), as the checker requires.
+pub fn monotone_label(e: &SlabEnds, b: &PhaseBox) -> Label {
+    let w = DecInterval::new(b.theta_dot_interval());
+    let g = e.dual.eval(Dual::variable(w, 1));
+    let dac = |x: DecInterval| x.decoration() >= Decoration::Dac;
+    if !(dac(g.value) && dac(g.grad[0]) && dac(g.grad[1])) {
+        return Label::Undecided;
+    }
+    let sign = |d: DecInterval| match d.interval() {
+        Some(i) if i.inf() >= 0.0 => 1,
+        Some(i) if i.sup() <= 0.0 => -1,
+        _ => 0,
+    };
+    let (st, sw) = (sign(g.grad[0]), sign(g.grad[1]));
+    if st == 0 && sw == 0 {
+        return Label::Undecided;
+    }
+    let whole = Quadratic {
+        c2: e.dual.c2.value,
+        c1: e.dual.c1.value,
+        c0: e.dual.c0.value,
+    };
+    for want_in in [true, false] {
+        // The end (0 lower, 1 upper) where g is largest for `in`, smallest for `out`.
+        let pick = |sg: i32| (sg != 0).then_some(usize::from((sg > 0) == want_in));
+        let q = pick(st).map_or(&whole, |k| &e.ends[k]);
+        let wv = pick(sw).map_or(w, |k| DecInterval::new(point(b.theta_dot[k])));
+        let v = q.eval(wv);
+        let label = Label::from_enclosure(v);
+        if label
+            == (if want_in {
+                Label::ProvedIn
+            } else {
+                Label::ProvedOut
+            })
+        {
+            return label;
+        }
+    }
+    Label::Undecided
+}
+
 /// Steering data of one quadratic: f64 bounds of the coefficients. Over the
 /// coefficient box, `sup q(w) = c₂⁺w² + c₁^± w + c₀⁺` (the sign of w picks
 /// the end of c₁), likewise `inf q`; their sign sets are the tentative
@@ -646,6 +817,13 @@ struct Steer {
     c2: [f64; 2],
     c1: [f64; 2],
     c0: [f64; 2],
+    /// With the slab's end data: the quadratic (midpoint coefficients
+    /// c₂, c₁, c₀) at each end of the slab. Where it is monotone in θ, its
+    /// value over the slab lies between the two, which is much tighter than
+    /// the coefficient box.
+    ends: Option<[[f64; 3]; 2]>,
+    /// With the end data: ∂/∂θ of the quadratic (midpoint coefficients).
+    d_theta: Option<[f64; 3]>,
 }
 
 impl Steer {
@@ -658,13 +836,65 @@ impl Steer {
             c2: b(q.c2)?,
             c1: b(q.c1)?,
             c0: b(q.c0)?,
+            ends: None,
+            d_theta: None,
         })
     }
+    fn from_ends(e: &SlabEnds) -> Option<Steer> {
+        let value = Quadratic {
+            c2: e.dual.c2.value,
+            c1: e.dual.c1.value,
+            c0: e.dual.c0.value,
+        };
+        let mid = |x: DecInterval| -> Option<f64> {
+            let m = x.interval().filter(|_| is_defined(x))?.mid();
+            m.is_finite().then_some(m)
+        };
+        let end = |q: &Quadratic<DecInterval>| Some([mid(q.c2)?, mid(q.c1)?, mid(q.c0)?]);
+        let g = |x: crate::scalar::Dual<DecInterval>| mid(x.grad[0]);
+        Some(Steer {
+            ends: Some([end(&e.ends[0])?, end(&e.ends[1])?]),
+            d_theta: Some([g(e.dual.c2)?, g(e.dual.c1)?, g(e.dual.c0)?]),
+            ..Steer::new(&value)?
+        })
+    }
+    fn at_ends(&self, w: f64) -> Option<[f64; 2]> {
+        self.ends
+            .map(|e| e.map(|[c2, c1, c0]| c2 * w * w + c1 * w + c0))
+    }
+    /// Cuts around the θ̇ where the quadratic turns (at either end of the
+    /// slab) and where its θ-derivative changes sign, `pad` to each side:
+    /// the parts outside are monotone in that variable, and the narrow part
+    /// around such a point is decided with little dependency.
+    fn turning_cuts(&self, pad: f64, out: &mut Vec<f64>) {
+        let mut turn: Vec<f64> = Vec::new();
+        for [c2, c1, _] in self.ends.into_iter().flatten() {
+            turn.push(-c1 / (2.0 * c2));
+        }
+        turn.retain(|v| v.is_finite());
+        if let (Some(lo), Some(hi)) = (
+            turn.iter().copied().reduce(f64::min),
+            turn.iter().copied().reduce(f64::max),
+        ) {
+            out.extend([lo - pad, hi + pad]);
+        }
+        let mut flat = Vec::new();
+        if let Some([c2, c1, c0]) = self.d_theta {
+            roots(c2, c1, c0, &mut flat);
+        }
+        out.extend(flat.into_iter().flat_map(|r| [r - pad, r + pad]));
+    }
     fn sup_q(&self, w: f64) -> f64 {
+        if let Some([a, b]) = self.at_ends(w) {
+            return a.max(b);
+        }
         let c1 = if w >= 0.0 { self.c1[1] } else { self.c1[0] };
         self.c2[1] * w * w + c1 * w + self.c0[1]
     }
     fn inf_q(&self, w: f64) -> f64 {
+        if let Some([a, b]) = self.at_ends(w) {
+            return a.min(b);
+        }
         let c1 = if w >= 0.0 { self.c1[0] } else { self.c1[1] };
         self.c2[0] * w * w + c1 * w + self.c0[0]
     }
@@ -679,6 +909,12 @@ impl Steer {
         }
     }
     fn breakpoints(&self, out: &mut Vec<f64>) {
+        if let Some(e) = self.ends {
+            for [c2, c1, c0] in e {
+                roots(c2, c1, c0, out);
+            }
+            return;
+        }
         for (a, c) in [(self.c2[1], self.c0[1]), (self.c2[0], self.c0[0])] {
             for b in self.c1 {
                 roots(a, b, c, out);
@@ -751,6 +987,12 @@ pub fn pave_with<S: ConstraintSet>(
             }
         }
     }
+    // `slices` refines by area; its width floor is ε² instead of ε.
+    let theta_floor = if mo.method == Method::Slices {
+        opts.eps
+    } else {
+        1.0
+    };
     let ctx = Ctx {
         set,
         root,
@@ -759,9 +1001,12 @@ pub fn pave_with<S: ConstraintSet>(
         same_as: same_as.clone(),
         relevant,
         min_width: [
-            opts.eps * (root.theta[1] - root.theta[0]),
+            opts.eps * (root.theta[1] - root.theta[0]) * theta_floor,
             opts.eps * (root.theta_dot[1] - root.theta_dot[0]),
         ],
+        slab_area: opts.eps.powi(2)
+            * (root.theta[1] - root.theta[0])
+            * (root.theta_dot[1] - root.theta_dot[0]),
     };
 
     let mut arena: Vec<Building> = vec![Building::Open];

@@ -14,12 +14,12 @@ pub mod export;
 pub mod methods;
 
 use crate::scalar::is_defined;
-use crate::scene::{Constraints, Domain, Quadratic, Scene, Variant};
+use crate::scene::{Angle, Constraints, Domain, Quadratic, Scene, Variant};
 use inari::{DecInterval, Interval};
 use serde::Serialize;
 
 pub use area::{standard_cells, AreaBounds, CellSpec};
-pub use methods::{pave_with, run_method, Method, MethodOptions, MethodRun};
+pub use methods::{monotone_label, pave_with, run_method, Method, MethodOptions, MethodRun};
 
 /// Most constraints one paving can carry.
 pub const MAX_CONSTRAINTS: usize = 4;
@@ -197,6 +197,26 @@ pub trait ConstraintSet: Sync {
     fn centred_coefficients(&self, _theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {
         None
     }
+    /// Every constraint's coefficients over `theta` with their θ-derivatives,
+    /// and at θ's two ends: what the checker's monotone test needs
+    /// ([`methods::monotone_label`]). `None`: labels are natural only.
+    fn slab_ends(&self, _theta: Interval) -> Option<Vec<SlabEnds>> {
+        None
+    }
+    /// Every constraint's coefficients `[c₂, c₁, c₀]` at a point θ in plain
+    /// f64: steering only (where to split), never a label.
+    fn steer_at(&self, _theta: f64) -> Option<Vec<[f64; 3]>> {
+        None
+    }
+}
+
+/// One quadratic constraint on a θ-slab for the monotone test: coefficients
+/// as duals in θ over the slab, and as enclosures at the slab's lower and
+/// upper θ.
+#[derive(Clone, Copy, Debug)]
+pub struct SlabEnds {
+    pub dual: Quadratic<crate::scalar::Dual<DecInterval>>,
+    pub ends: [Quadratic<DecInterval>; 2],
 }
 
 /// Ω and Ω₀ of a scene, in one reading of the paper.
@@ -233,6 +253,26 @@ impl ConstraintSet for SceneConstraints<'_> {
             1 => Some(c.omega0),
             _ => None,
         }
+    }
+    fn steer_at(&self, theta: f64) -> Option<Vec<[f64; 3]>> {
+        let c = self.scene.constraints(self.variant, &Angle::new(theta));
+        let q = |q: Quadratic<f64>| [q.c2, q.c1, q.c0];
+        Some(vec![q(c.omega), q(c.omega0)])
+    }
+    fn slab_ends(&self, theta: Interval) -> Option<Vec<SlabEnds>> {
+        let d = crate::elementary::slab_dual_constraints(self.scene, self.variant, theta);
+        let end = |x: f64| Interval::try_from((x, x)).ok().map(|p| self.slab(p));
+        let (lo, hi) = (end(theta.inf())?, end(theta.sup())?);
+        Some(vec![
+            SlabEnds {
+                dual: d.omega,
+                ends: [lo.omega, hi.omega],
+            },
+            SlabEnds {
+                dual: d.omega0,
+                ends: [lo.omega0, hi.omega0],
+            },
+        ])
     }
     fn centred_coefficients(&self, theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {
         use crate::scalar::Dual;
