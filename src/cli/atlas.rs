@@ -34,7 +34,8 @@ pub struct PaveFlags {
     #[arg(long, default_value_t = 4_000_000, value_parser = detach::param::parse_count, allow_negative_numbers = true)]
     pub max_boxes: usize,
     /// Paving method: natural, centred, contract or slices. Every method's
-    /// labels are confirmed by the proof checker's natural evaluation.
+    /// labels are re-decided by the proof checker (natural evaluation, or its
+    /// monotone test for contract and slices).
     #[arg(long, value_enum, default_value_t = Method::Natural)]
     pub method: Method,
     /// Refine only for this region or cell (omega, omega0, omega_and_omega0,

@@ -2,10 +2,12 @@
 //!
 //! Every method builds the same kind of tree — midpoint splits, splits at
 //! recorded exact points, labelled leaves — and every label it writes is one
-//! that the natural interval extension confirms on that leaf, which is all the
-//! proof checker recomputes. Stronger enclosures (centred forms, contractors)
-//! therefore only *steer*: they say where to split, or that a box is worth
-//! certifying by a few extra splits, never a label on their own.
+//! the proof checker recomputes on that leaf: by the natural interval
+//! extension or, for `contract` and `slices`, by the monotone test
+//! ([`monotone_label`]: where a partial derivative keeps its sign on the
+//! leaf, the extreme values are at that variable's ends). Other enclosures
+//! (centred forms, the f64 roots) only *steer*: they say where to split, or
+//! that a box is worth certifying by a few extra splits, never a label.
 //!
 //! - `natural`: label by the natural extension, bisect undecided boxes.
 //! - `centred`: natural ∩ mean-value form ∩ monotonicity in θ̇ (and, where
@@ -15,7 +17,10 @@
 //!   constraint into certainly in / certainly out / undecided, recorded as
 //!   splits at the contraction points; removed parts are verified leaves.
 //! - `slices`: the contraction with θ-only refinement: an adaptive 1-D
-//!   subdivision in θ, the budget spent where the undecided area is largest.
+//!   subdivision in θ that equidistributes the undecided area (a slab is
+//!   split while the band its quadratics' end-point roots predict is above
+//!   ε² of the domain's area), then one contraction per final slab whose
+//!   cuts are placed at those roots and verified by the monotone test.
 
 use super::{
     CellSpec, ConstraintSet, Label, Leaf, Node, PaveError, PaveOptions, PaveStats, Paving,
