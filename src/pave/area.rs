@@ -96,6 +96,13 @@ impl Paving {
     /// runs in leaf order, so the result does not depend on the thread count.
     pub fn area_bounds_all(&self, cells: &[CellSpec], uncovered_sup: f64) -> Vec<AreaBounds> {
         use rayon::prelude::*;
+        // Below this the pool's start-up costs more than the sums.
+        if self.leaves.len() < 1 << 16 {
+            return cells
+                .iter()
+                .map(|c| self.area_bounds(c, uncovered_sup))
+                .collect();
+        }
         cells
             .par_iter()
             .map(|c| self.area_bounds(c, uncovered_sup))

@@ -28,7 +28,7 @@ use super::{
 };
 use crate::scalar::{is_defined, Dual};
 use crate::scene::Quadratic;
-use inari::{DecInterval, Decoration, Interval};
+use inari::{DecInterval, Interval};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::fmt;
@@ -161,6 +161,8 @@ enum Building {
 
 /// Leaves one certification may add (bounds the work on a hard box).
 const CERTIFY_LEAVES: u32 = 64;
+/// The same with the monotone test at hand.
+const CERTIFY_LEAVES_MONOTONE: u32 = 8;
 
 /// Relative inward steps tried to place a contraction point so the removed
 /// part verifies.
@@ -286,16 +288,14 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         {
             *l = Label::from_enclosure(g);
         }
-        for (i, s) in self.same_as.iter().enumerate() {
-            if let Some(j) = *s {
-                labels[i] = labels[j];
-            }
-        }
+        self.copy_aliases(&mut labels);
         labels
     }
 
-    /// Natural labels, then the checker's monotone test on the constraints
-    /// they leave undecided (when the slab's end data is at hand).
+    /// Labels the checker confirms. Without the slab's end data: natural.
+    /// With it: the monotone test on the relevant constraints first (cheaper
+    /// and, next to the boundary, stronger), the natural labels only if one
+    /// is left undecided; other constraints keep what natural gives, if run.
     fn label(
         &self,
         slab: &S::Slab,
@@ -303,24 +303,36 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         b: &PhaseBox,
         work: &mut Work,
     ) -> Labels {
-        let mut labels = self.natural(slab, b, work);
         let Some(ends) = ends else {
-            return labels;
+            return self.natural(slab, b, work);
         };
+        let mut labels = [Label::Undecided; MAX_CONSTRAINTS];
+        work.evals += 1;
         for i in self.own() {
-            if labels[i] == Label::Undecided {
+            if self.with_copies(1 << i) & self.relevant != 0 {
                 if let Some(e) = ends.get(i) {
-                    work.evals += 1;
                     labels[i] = monotone_label(e, b);
                 }
             }
         }
+        self.copy_aliases(&mut labels);
+        if self.undecided(&labels) {
+            let nat = self.natural(slab, b, work);
+            for (l, n) in labels.iter_mut().zip(nat) {
+                if !l.is_decided() {
+                    *l = n;
+                }
+            }
+        }
+        labels
+    }
+
+    fn copy_aliases(&self, labels: &mut Labels) {
         for (i, s) in self.same_as.iter().enumerate() {
             if let Some(j) = *s {
                 labels[i] = labels[j];
             }
         }
-        labels
     }
 
     fn decided_mask(&self, labels: &Labels) -> u8 {
@@ -588,7 +600,14 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             // With a free side the tentative end is a root of the bound:
             // the unshrunk part touches zero, so start shrinking at once.
             let first = if lo_free || hi_free { 1 } else { 0 };
-            for f in std::iter::once(0.0).chain(SHRINK).skip(first) {
+            // With the monotone test a part fails for its shape (a turning
+            // point inside), which shrinking does not mend: two steps only.
+            let steps = match ends {
+                Some(_) if qs.iter().any(|q| q.turns_inside(a, z)) => 0,
+                Some(_) => 2,
+                None => SHRINK.len() + 1,
+            };
+            for f in std::iter::once(0.0).chain(SHRINK).skip(first).take(steps) {
                 let d = f * (z - a);
                 let na = if lo_free && f > 0.0 { a + d } else { a };
                 let nz = if hi_free && f > 0.0 { z - d } else { z };
@@ -641,7 +660,15 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                 let na = if lo_free { a + d } else { a };
                 let nz = if hi_free { z - d } else { z };
                 if na < nz {
-                    let mut budget = CERTIFY_LEAVES;
+                    // With the monotone test a few θ̇-splits suffice (they
+                    // tighten the derivatives); more only burn evaluations
+                    // on a slab too wide to be monotone, which θ-refinement
+                    // handles.
+                    let mut budget = if ends.is_some() {
+                        CERTIFY_LEAVES_MONOTONE
+                    } else {
+                        CERTIFY_LEAVES
+                    };
                     let bx = with_w(b, na, nz);
                     if let Some(t) =
                         self.certify(&bx, slab, ends, self.relevant, &mut budget, work, false)
@@ -774,41 +801,43 @@ pub fn centred_label(q: &Quadratic<DecInterval>, w: Interval) -> Label {
 /// label is decided on the box reduced to those ends. The value and both
 /// derivatives must be continuous (`≥ dac`), as the checker requires.
 pub fn monotone_label(e: &SlabEnds, b: &PhaseBox) -> Label {
-    let w = DecInterval::new(b.theta_dot_interval());
-    let g = e.dual.eval(Dual::variable(w, 1));
-    let dac = |x: DecInterval| x.decoration() >= Decoration::Dac;
-    if !(dac(g.value) && dac(g.grad[0]) && dac(g.grad[1])) {
+    if !e.smooth {
         return Label::Undecided;
     }
-    let sign = |d: DecInterval| match d.interval() {
-        Some(i) if i.inf() >= 0.0 => 1,
-        Some(i) if i.sup() <= 0.0 => -1,
-        _ => 0,
+    let w = b.theta_dot_interval();
+    // ∂g/∂θ = c₂'θ̇² + c₁'θ̇ + c₀', ∂g/∂θ̇ = 2c₂θ̇ + c₁ over the box.
+    let g_theta = e.d_theta.eval(w);
+    let two = Interval::try_from((2.0, 2.0)).expect("2 is a double");
+    let g_w = two * e.value.c2 * w + e.value.c1;
+    let sign = |d: Interval| {
+        if d.is_empty() || !d.inf().is_finite() && !d.sup().is_finite() {
+            0
+        } else if d.inf() >= 0.0 {
+            1
+        } else if d.sup() <= 0.0 {
+            -1
+        } else {
+            0
+        }
     };
-    let (st, sw) = (sign(g.grad[0]), sign(g.grad[1]));
+    let (st, sw) = (sign(g_theta), sign(g_w));
     if st == 0 && sw == 0 {
         return Label::Undecided;
     }
-    let whole = Quadratic {
-        c2: e.dual.c2.value,
-        c1: e.dual.c1.value,
-        c0: e.dual.c0.value,
-    };
     for want_in in [true, false] {
         // The end (0 lower, 1 upper) where g is largest for `in`, smallest for `out`.
         let pick = |sg: i32| (sg != 0).then_some(usize::from((sg > 0) == want_in));
-        let q = pick(st).map_or(&whole, |k| &e.ends[k]);
-        let wv = pick(sw).map_or(w, |k| DecInterval::new(point(b.theta_dot[k])));
+        let q = pick(st).map_or(&e.value, |k| &e.ends[k]);
+        let wv = pick(sw).map_or(w, |k| point(b.theta_dot[k]));
         let v = q.eval(wv);
-        let label = Label::from_enclosure(v);
-        if label
-            == (if want_in {
-                Label::ProvedIn
-            } else {
-                Label::ProvedOut
-            })
-        {
-            return label;
+        if v.is_empty() {
+            continue;
+        }
+        if want_in && v.sup() < 0.0 {
+            return Label::ProvedIn;
+        }
+        if !want_in && v.inf() > 0.0 {
+            return Label::ProvedOut;
         }
     }
     Label::Undecided
@@ -846,20 +875,23 @@ impl Steer {
         })
     }
     fn from_ends(e: &SlabEnds) -> Option<Steer> {
+        if !e.smooth {
+            return None;
+        }
+        let dec = |x: Interval| DecInterval::new(x);
         let value = Quadratic {
-            c2: e.dual.c2.value,
-            c1: e.dual.c1.value,
-            c0: e.dual.c0.value,
+            c2: dec(e.value.c2),
+            c1: dec(e.value.c1),
+            c0: dec(e.value.c0),
         };
-        let mid = |x: DecInterval| -> Option<f64> {
-            let m = x.interval().filter(|_| is_defined(x))?.mid();
+        let mid = |x: Interval| -> Option<f64> {
+            let m = x.mid();
             m.is_finite().then_some(m)
         };
-        let end = |q: &Quadratic<DecInterval>| Some([mid(q.c2)?, mid(q.c1)?, mid(q.c0)?]);
-        let g = |x: crate::scalar::Dual<DecInterval>| mid(x.grad[0]);
+        let mids = |q: &Quadratic<Interval>| Some([mid(q.c2)?, mid(q.c1)?, mid(q.c0)?]);
         Some(Steer {
-            ends: Some([end(&e.ends[0])?, end(&e.ends[1])?]),
-            d_theta: Some([g(e.dual.c2)?, g(e.dual.c1)?, g(e.dual.c0)?]),
+            ends: Some([mids(&e.ends[0])?, mids(&e.ends[1])?]),
+            d_theta: Some(mids(&e.d_theta)?),
             ..Steer::new(&value)?
         })
     }
@@ -871,6 +903,13 @@ impl Steer {
     /// slab) and where its θ-derivative changes sign, `pad` to each side:
     /// the parts outside are monotone in that variable, and the narrow part
     /// around such a point is decided with little dependency.
+    fn turns_inside(&self, a: f64, z: f64) -> bool {
+        self.ends.into_iter().flatten().any(|[c2, c1, _]| {
+            let v = -c1 / (2.0 * c2);
+            a < v && v < z
+        })
+    }
+
     fn turning_cuts(&self, pad: f64, out: &mut Vec<f64>) {
         let mut turn: Vec<f64> = Vec::new();
         for [c2, c1, _] in self.ends.into_iter().flatten() {
@@ -1046,7 +1085,7 @@ pub fn pave_with<S: ConstraintSet>(
         }
         missing.dedup();
         stats.slab_evaluations += missing.len() as u64;
-        let fresh: Vec<Arc<S::Slab>> = par_map(&missing, |&(lo, hi)| {
+        let fresh: Vec<Arc<S::Slab>> = par_map(&missing, PAR_MIN_HEAVY, |&(lo, hi)| {
             let th = Interval::try_from((f64::from_bits(lo), f64::from_bits(hi)))
                 .expect("ordered endpoints");
             Arc::new(set.slab(th))
@@ -1061,7 +1100,7 @@ pub fn pave_with<S: ConstraintSet>(
         });
         drop(fresh);
 
-        let done: Vec<(Labels, Outcome, Work)> = par_map(&frontier, |o| {
+        let done: Vec<(Labels, Outcome, Work)> = par_map(&frontier, PAR_MIN_HEAVY, |o| {
             let mut work = Work::default();
             let slab = o.slab.as_ref().expect("assigned above");
             let labels = ctx.natural(slab, &o.bx, &mut work);
@@ -1078,7 +1117,19 @@ pub fn pave_with<S: ConstraintSet>(
         // Only integer bookkeeping here; the tree is written in parallel.
         order.clear();
         order.extend(0..frontier.len());
-        if mo.method == Method::Slices {
+        // Only when the budget binds does the order matter.
+        let wanted: usize = done
+            .iter()
+            .map(|(_, outcome, _)| match outcome {
+                Outcome::Leaf => 0,
+                Outcome::Split(_) => 1,
+                Outcome::Tree(t) => {
+                    let c = Plan::of_tree(t);
+                    (c.leaves + c.opens) as usize - 1
+                }
+            })
+            .sum();
+        if mo.method == Method::Slices && leaves.len() + frontier.len() + wanted > opts.max_boxes {
             let area = |o: &Open<S::Slab>| {
                 (o.bx.theta[1] - o.bx.theta[0]) * (o.bx.theta_dot[1] - o.bx.theta_dot[0])
             };
@@ -1464,9 +1515,11 @@ fn write_preorder(
 /// Below this many items a level's step runs on the calling thread: waking
 /// the pool costs more (tens of µs per call) than the work.
 const PAR_MIN: usize = 1024;
+/// The same for work of a microsecond or more per item (slabs, processing).
+const PAR_MIN_HEAVY: usize = 64;
 
-fn par_map<T: Sync, U: Send>(xs: &[T], f: impl Fn(&T) -> U + Sync + Send) -> Vec<U> {
-    if xs.len() < PAR_MIN {
+fn par_map<T: Sync, U: Send>(xs: &[T], min: usize, f: impl Fn(&T) -> U + Sync + Send) -> Vec<U> {
+    if xs.len() < min {
         xs.iter().map(f).collect()
     } else {
         xs.par_iter().map(f).collect()

@@ -210,13 +210,51 @@ pub trait ConstraintSet: Sync {
     }
 }
 
-/// One quadratic constraint on a θ-slab for the monotone test: coefficients
-/// as duals in θ over the slab, and as enclosures at the slab's lower and
-/// upper θ.
+/// One quadratic constraint on a θ-slab for the monotone test: its
+/// coefficients over the slab, their θ-derivatives over the slab, and the
+/// coefficients at the slab's lower and upper θ. Plain intervals: `smooth`
+/// records once per slab that every one of them is continuous (`≥ dac`), so
+/// the quadratic and its derivatives are continuous on any box of the slab.
 #[derive(Clone, Copy, Debug)]
 pub struct SlabEnds {
-    pub dual: Quadratic<crate::scalar::Dual<DecInterval>>,
-    pub ends: [Quadratic<DecInterval>; 2],
+    pub value: Quadratic<Interval>,
+    pub d_theta: Quadratic<Interval>,
+    pub ends: [Quadratic<Interval>; 2],
+    pub smooth: bool,
+}
+
+impl SlabEnds {
+    pub fn new(
+        dual: Quadratic<crate::scalar::Dual<DecInterval>>,
+        ends: [Quadratic<DecInterval>; 2],
+    ) -> SlabEnds {
+        let parts = [dual.c2, dual.c1, dual.c0];
+        let all: Vec<DecInterval> = parts
+            .iter()
+            .flat_map(|d| [d.value, d.grad[0]])
+            .chain(ends.iter().flat_map(|q| [q.c2, q.c1, q.c0]))
+            .collect();
+        let smooth = all
+            .iter()
+            .all(|x| x.decoration() >= inari::Decoration::Dac && !x.is_empty());
+        let i = |x: DecInterval| x.interval().unwrap_or(Interval::ENTIRE);
+        let q = |f: &dyn Fn(&crate::scalar::Dual<DecInterval>) -> DecInterval| Quadratic {
+            c2: i(f(&dual.c2)),
+            c1: i(f(&dual.c1)),
+            c0: i(f(&dual.c0)),
+        };
+        let e = |q: &Quadratic<DecInterval>| Quadratic {
+            c2: i(q.c2),
+            c1: i(q.c1),
+            c0: i(q.c0),
+        };
+        SlabEnds {
+            value: q(&|d| d.value),
+            d_theta: q(&|d| d.grad[0]),
+            ends: [e(&ends[0]), e(&ends[1])],
+            smooth,
+        }
+    }
 }
 
 /// Ω and Ω₀ of a scene, in one reading of the paper.
@@ -264,14 +302,8 @@ impl ConstraintSet for SceneConstraints<'_> {
         let end = |x: f64| Interval::try_from((x, x)).ok().map(|p| self.slab(p));
         let (lo, hi) = (end(theta.inf())?, end(theta.sup())?);
         Some(vec![
-            SlabEnds {
-                dual: d.omega,
-                ends: [lo.omega, hi.omega],
-            },
-            SlabEnds {
-                dual: d.omega0,
-                ends: [lo.omega0, hi.omega0],
-            },
+            SlabEnds::new(d.omega, [lo.omega, hi.omega]),
+            SlabEnds::new(d.omega0, [lo.omega0, hi.omega0]),
         ])
     }
     fn centred_coefficients(&self, theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {
