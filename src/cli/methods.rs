@@ -203,8 +203,20 @@ fn time_at(points: &[(f64, f64)], u: f64) -> Option<f64> {
     })
 }
 
-/// `(problem, label, (time, undecided area) points)` of one peer curve.
-type PeerCurve = (String, String, Vec<(f64, f64)>);
+/// `(problem, label, (time, undecided area) points, (undecided area, boxes)
+/// points)` of one peer curve.
+type PeerCurve = (String, String, Vec<(f64, f64)>, Vec<(f64, f64)>);
+
+#[derive(Serialize)]
+struct LeafRatio {
+    problem: &'static str,
+    method: &'static str,
+    peer: String,
+    leaves: usize,
+    undecided_area: f64,
+    /// The peer's undecided area at the same number of boxes (log–log).
+    peer_undecided_area: f64,
+}
 
 fn peer_curves(path: &PathBuf) -> (Vec<PeerCurve>, serde_json::Value) {
     let Ok(text) = std::fs::read_to_string(path) else {
@@ -233,9 +245,18 @@ fn peer_curves(path: &PathBuf) -> (Vec<PeerCurve>, serde_json::Value) {
             continue;
         };
         let label = format!("{peer} {method}");
+        let boxes = r["boxes"].as_f64().map(|n| (u, n));
         match out.iter_mut().find(|c| c.0 == problem && c.1 == label) {
-            Some(c) => c.2.push((t, u)),
-            None => out.push((problem.to_string(), label, vec![(t, u)])),
+            Some(c) => {
+                c.2.push((t, u));
+                c.3.extend(boxes);
+            }
+            None => out.push((
+                problem.to_string(),
+                label,
+                vec![(t, u)],
+                boxes.into_iter().collect(),
+            )),
         }
     }
     let meta = serde_json::json!({
@@ -355,6 +376,7 @@ pub fn run_methods(args: &MethodsArgs) -> CliResult {
 
     let (peers, peer_meta) = peer_curves(&args.peers);
     let mut ratios = Vec::new();
+    let mut per_leaf = Vec::new();
     let mut panels = Vec::new();
     for p in &problems {
         let mut curves = Vec::new();
@@ -364,7 +386,23 @@ pub fn run_methods(args: &MethodsArgs) -> CliResult {
                 .filter(|r| r.problem == p.key && r.method == m.name())
                 .map(|r| (r.process_s, r.undecided_area))
                 .collect();
-            for (_, label, peer_pts) in peers.iter().filter(|c| c.0 == p.key) {
+            for (_, label, peer_pts, peer_boxes) in peers.iter().filter(|c| c.0 == p.key) {
+                for r in runs
+                    .iter()
+                    .filter(|r| r.problem == p.key && r.method == m.name())
+                {
+                    // `time_at` on (area, boxes) points: the area at a box count.
+                    if let Some(pu) = time_at(peer_boxes, r.leaves as f64) {
+                        per_leaf.push(LeafRatio {
+                            problem: p.key,
+                            method: m.name(),
+                            peer: label.clone(),
+                            leaves: r.leaves,
+                            undecided_area: r.undecided_area,
+                            peer_undecided_area: pu,
+                        });
+                    }
+                }
                 for u in [0.3, 0.1, 0.03, 0.01, 0.003] {
                     if let (Some(ours), Some(theirs)) = (time_at(&pts, u), time_at(peer_pts, u)) {
                         ratios.push(Ratio {
@@ -383,7 +421,7 @@ pub fn run_methods(args: &MethodsArgs) -> CliResult {
                 points: pts,
             });
         }
-        for (_, label, pts) in peers.iter().filter(|c| c.0 == p.key) {
+        for (_, label, pts, _) in peers.iter().filter(|c| c.0 == p.key) {
             curves.push(Curve {
                 label: label.clone(),
                 peer: true,
@@ -408,6 +446,21 @@ pub fn run_methods(args: &MethodsArgs) -> CliResult {
             );
         }
     }
+    if !per_leaf.is_empty() {
+        outln!("undecided area at equal leaf count (detach / peer, below 1: detach tighter):");
+        for r in per_leaf.iter().filter(|r| r.peer.ends_with("sep")) {
+            outln!(
+                "  {:<12} {:<9} vs {:<10} {:>8} leaves  {:>10.4e} / {:>10.4e} = {:>5.2}",
+                r.problem,
+                r.method,
+                r.peer,
+                r.leaves,
+                r.undecided_area,
+                r.peer_undecided_area,
+                r.undecided_area / r.peer_undecided_area
+            );
+        }
+    }
     let svg = args.out.join("methods.svg");
     let png = args.out.join("methods.png");
     draw_speed_accuracy(
@@ -427,6 +480,7 @@ pub fn run_methods(args: &MethodsArgs) -> CliResult {
         "runs": runs,
         "peers": peer_meta,
         "ratios": ratios,
+        "equal_leaf_count": per_leaf,
     });
     std::fs::write(
         &json,

@@ -903,10 +903,12 @@ impl Steer {
     /// slab) and where its θ-derivative changes sign, `pad` to each side:
     /// the parts outside are monotone in that variable, and the narrow part
     /// around such a point is decided with little dependency.
+    /// A turning point inside (a, z) where the evaluation has a dependency
+    /// (c₁ ≠ 0: θ̇ occurs twice; c₂θ̇² alone is one exact square).
     fn turns_inside(&self, a: f64, z: f64) -> bool {
         self.ends.into_iter().flatten().any(|[c2, c1, _]| {
             let v = -c1 / (2.0 * c2);
-            a < v && v < z
+            c1 != 0.0 && a < v && v < z
         })
     }
 
