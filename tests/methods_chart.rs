@@ -42,8 +42,8 @@ fn methods_writes_table_json_and_chart_with_peers() {
     std::fs::write(
         &peers,
         r#"{"peer":"codac","version":"test","runs":[
-            {"problem":"omega_2_8","method":"sep","time_s":10.0,"undecided_area":5.0},
-            {"problem":"omega_2_8","method":"sep","time_s":100.0,"undecided_area":0.01},
+            {"problem":"omega_2_8","method":"sep","time_s":10.0,"undecided_area":5.0,"boxes":100},
+            {"problem":"omega_2_8","method":"sep","time_s":100.0,"undecided_area":0.01,"boxes":1000000},
             {"problem":"omega0_1_11","method":"sep","time_s":1.0,"undecided_area":9.0}]}"#,
     )
     .unwrap();
@@ -83,6 +83,24 @@ fn methods_writes_table_json_and_chart_with_peers() {
     assert!(runs[1]["undecided_area"].as_f64() < runs[0]["undecided_area"].as_f64());
     // The peer curve spans the detach points of Ω (2.8): a ratio is reported.
     assert!(!json["ratios"].as_array().unwrap().is_empty());
+    // Whole-process times are recorded beside the paving call's.
+    for r in runs {
+        let p = r["process_s"].as_f64().unwrap();
+        assert!(p.is_finite() && p > 0.0);
+    }
+    // Undecided area at equal leaf count: the peer's by log–log
+    // interpolation between (100 boxes, 5.0) and (10⁶ boxes, 0.01), in
+    // closed form here.
+    let eq = json["equal_leaf_count"].as_array().unwrap();
+    assert!(!eq.is_empty());
+    for e in eq {
+        assert_eq!(e["problem"], "omega_2_8");
+        let n = e["leaves"].as_f64().unwrap();
+        let s = (n.ln() - 100f64.ln()) / (1e6f64.ln() - 100f64.ln());
+        let want = (5f64.ln() + s * (0.01f64.ln() - 5f64.ln())).exp();
+        let got = e["peer_undecided_area"].as_f64().unwrap();
+        assert!((got - want).abs() <= 1e-9 * want, "{got} vs {want}");
+    }
     for f in ["methods.svg", "methods.png"] {
         assert!(std::fs::metadata(dir.join(f)).unwrap().len() > 1000, "{f}");
     }

@@ -1119,18 +1119,22 @@ pub fn pave_with<S: ConstraintSet>(
         // Only integer bookkeeping here; the tree is written in parallel.
         order.clear();
         order.extend(0..frontier.len());
-        // Only when the budget binds does the order matter.
-        let wanted: usize = done
-            .iter()
-            .map(|(_, outcome, _)| match outcome {
-                Outcome::Leaf => 0,
-                Outcome::Split(_) => 1,
-                Outcome::Tree(t) => {
-                    let c = Plan::of_tree(t);
-                    (c.leaves + c.opens) as usize - 1
-                }
-            })
-            .sum();
+        // Only when the budget binds does the order matter (`slices` only;
+        // the others refine in frontier order).
+        let wanted: usize = if mo.method != Method::Slices {
+            0
+        } else {
+            done.iter()
+                .map(|(_, outcome, _)| match outcome {
+                    Outcome::Leaf => 0,
+                    Outcome::Split(_) => 1,
+                    Outcome::Tree(t) => {
+                        let c = Plan::of_tree(t);
+                        (c.leaves + c.opens) as usize - 1
+                    }
+                })
+                .sum()
+        };
         if mo.method == Method::Slices && leaves.len() + frontier.len() + wanted > opts.max_boxes {
             let area = |o: &Open<S::Slab>| {
                 (o.bx.theta[1] - o.bx.theta[0]) * (o.bx.theta_dot[1] - o.bx.theta_dot[0])
