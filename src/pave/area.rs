@@ -94,24 +94,37 @@ const ZERO: Interval = const_interval!(0.0, 0.0);
 impl Paving {
     /// [`Paving::area_bounds`] of several sets, one thread per set; each sum
     /// runs in leaf order, so the result does not depend on the thread count.
+    /// Every leaf's area is computed once for all the sets.
     pub fn area_bounds_all(&self, cells: &[CellSpec], uncovered_sup: f64) -> Vec<AreaBounds> {
         use rayon::prelude::*;
         // Below this the pool's start-up costs more than the sums.
         if self.leaves.len() < 1 << 16 {
+            let areas: Vec<Interval> = self.leaves.iter().map(|l| l.bx.area()).collect();
             return cells
                 .iter()
-                .map(|c| self.area_bounds(c, uncovered_sup))
+                .map(|c| self.bounds_with(c, |k| areas[k], uncovered_sup))
                 .collect();
         }
+        let areas: Vec<Interval> = self.leaves.par_iter().map(|l| l.bx.area()).collect();
         cells
             .par_iter()
-            .map(|c| self.area_bounds(c, uncovered_sup))
+            .map(|c| self.bounds_with(c, |k| areas[k], uncovered_sup))
             .collect()
     }
 
     /// Area bounds of a set. `uncovered_sup` bounds the area of the true domain
     /// outside the root box (it is added to the outer bound only).
     pub fn area_bounds(&self, cell: &CellSpec, uncovered_sup: f64) -> AreaBounds {
+        self.bounds_with(cell, |k| self.leaves[k].bx.area(), uncovered_sup)
+    }
+
+    /// [`Paving::area_bounds`] with leaf `k`'s area given by `area(k)`.
+    fn bounds_with(
+        &self,
+        cell: &CellSpec,
+        area: impl Fn(usize) -> Interval,
+        uncovered_sup: f64,
+    ) -> AreaBounds {
         if cell.contradictory(&self.same_as) {
             return AreaBounds {
                 inner_area: 0.0,
@@ -123,13 +136,13 @@ impl Paving {
         }
         let (mut inner, mut outer) = (ZERO, ZERO);
         let (mut ni, mut no) = (0, 0);
-        for leaf in &self.leaves {
+        for (k, leaf) in self.leaves.iter().enumerate() {
             if cell.proved_in(leaf) {
-                inner += leaf.bx.area();
+                inner += area(k);
                 ni += 1;
             }
             if !cell.proved_out(leaf) {
-                outer += leaf.bx.area();
+                outer += area(k);
                 no += 1;
             }
         }
