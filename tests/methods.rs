@@ -85,6 +85,50 @@ fn exact(x: f64) -> Rational {
     Rational::from_f64(x).unwrap()
 }
 
+/// The paver's monotone labels (`contract`, `slices`) and the checker's
+/// monotone test are two implementations (coefficient form against the text
+/// of the formulas): on parameters away from the defaults every label the
+/// paver writes must still be re-decided by the checker.
+#[test]
+fn monotone_labels_verify_on_varied_parameters() {
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let mut pick = |lo: f64, hi: f64| format!("{:.4}", lo + (hi - lo) * rng.unit());
+    let mut checked = 0;
+    for k in 0..12 {
+        let (id, names): (SceneId, [(&str, f64, f64); 2]) = match k % 3 {
+            0 => (SceneId::ViscousDisc, [("mu", 0.05, 20.0), ("C", 0.01, 2.0)]),
+            1 => (
+                SceneId::SmoothDisc,
+                [("p_phi", 0.0, 2.0), ("p_psi", 0.0, 2.0)],
+            ),
+            _ => (SceneId::IceDisc, [("c0", -60.0, 60.0), ("p_psi", 0.0, 2.0)]),
+        };
+        let over: Vec<(String, String)> = names
+            .iter()
+            .map(|(n, lo, hi)| (n.to_string(), pick(*lo, *hi)))
+            .collect();
+        let (scene, params) = Scene::build(id, &over).unwrap();
+        let v = VARIANTS[k / 3 % 2];
+        let m = [Method::Slices, Method::Contract][k / 6];
+        let p = pave(&scene, v, 1.0 / 256.0, MethodOptions::new(m));
+        let proof = paving_proof(
+            &PavingStatement {
+                scene: id,
+                variant: v,
+                params: &params,
+                domain: &scene.domain(),
+                domain_text: id.domain_text().map(|s| s.map(String::from)),
+                title: "test".into(),
+            },
+            &p,
+        );
+        let report = check_bytes(&serde_json::to_vec(&proof).unwrap()).unwrap();
+        assert_eq!(report.verdict, Verdict::Valid, "{id} {v} {m} {over:?}");
+        checked += report.checked;
+    }
+    assert!(checked > 10_000, "{checked}");
+}
+
 #[test]
 fn leaves_tile_the_root_exactly() {
     for id in SceneId::ALL {
