@@ -1117,67 +1117,73 @@ pub fn pave_with<S: ConstraintSet>(
         // Refinement decisions in frontier order (`slices`: largest
         // undecided area first), each adding leaves while the budget allows.
         // Only integer bookkeeping here; the tree is written in parallel.
-        order.clear();
-        order.extend(0..frontier.len());
-        // Only when the budget binds does the order matter (`slices` only;
-        // the others refine in frontier order).
-        let wanted: usize = if mo.method != Method::Slices {
-            0
-        } else {
-            done.iter()
-                .map(|(_, outcome, _)| match outcome {
-                    Outcome::Leaf => 0,
-                    Outcome::Split(_) => 1,
-                    Outcome::Tree(t) => {
-                        let c = Plan::of_tree(t);
-                        (c.leaves + c.opens) as usize - 1
-                    }
-                })
-                .sum()
-        };
-        if mo.method == Method::Slices && leaves.len() + frontier.len() + wanted > opts.max_boxes {
-            let area = |o: &Open<S::Slab>| {
-                (o.bx.theta[1] - o.bx.theta[0]) * (o.bx.theta_dot[1] - o.bx.theta_dot[0])
-            };
-            order.sort_by(|&a, &b| area(&frontier[b]).total_cmp(&area(&frontier[a])));
+        let counts: Vec<Plan> = par_map(&done, PAR_MIN, |(_, outcome, _)| Plan::of(outcome));
+        let (mut want_leaves, mut want_nodes) = (0usize, 0usize);
+        for c in counts.iter().filter(|c| c.refine) {
+            want_leaves += c.extra();
+            want_nodes += c.nodes as usize;
         }
-        plan.clear();
-        plan.resize(frontier.len(), Plan::default());
-        let mut leaves_if_stopped = leaves.len() + frontier.len();
         let room = (u32::MAX as usize).saturating_sub(arena.len() + 2 * frontier.len());
-        let mut nodes_planned = 0usize;
-        for &k in &order {
-            let (labels, outcome, _) = &done[k];
-            let count = match outcome {
-                Outcome::Leaf => Plan::LEAF,
-                Outcome::Split(_) => Plan {
-                    nodes: 2,
-                    leaves: 0,
-                    opens: 2,
-                    refine: true,
-                },
-                Outcome::Tree(t) => Plan::of_tree(t),
-            };
-            let extra = (count.leaves + count.opens) as usize - 1;
-            let fits = leaves_if_stopped + extra <= opts.max_boxes
-                && nodes_planned + count.nodes as usize <= room;
-            if count.refine && fits {
-                leaves_if_stopped += extra;
-                nodes_planned += count.nodes as usize;
-                plan[k] = count;
-                if let Outcome::Tree(t) = outcome {
-                    undecided_left |= t
-                        .iter()
-                        .any(|l| matches!(l, Local::Leaf(x) if ctx.undecided(x)));
-                }
-            } else {
-                plan[k] = Plan::LEAF;
-                if count.refine {
-                    budget_hit = true;
+        plan.clear();
+        if leaves.len() + frontier.len() + want_leaves <= opts.max_boxes && want_nodes <= room {
+            // Every refinement fits, so the order does not matter: each box
+            // is decided on its own, in parallel, as the loop below would.
+            let per_box = |k: usize| -> (Plan, bool, bool) {
+                let (labels, outcome, _) = &done[k];
+                if counts[k].refine {
+                    let undecided = matches!(outcome, Outcome::Tree(t)
+                        if t.iter().any(|l| matches!(l, Local::Leaf(x) if ctx.undecided(x))));
+                    (counts[k], undecided, false)
                 } else if ctx.undecided(labels) {
-                    undecided_left = true;
-                    if ctx.at_ulp_limit(&frontier[k].bx) {
-                        ulp_limit = true;
+                    (Plan::LEAF, true, ctx.at_ulp_limit(&frontier[k].bx))
+                } else {
+                    (Plan::LEAF, false, false)
+                }
+            };
+            let decided: Vec<(Plan, bool, bool)> = if done.len() < PAR_MIN {
+                (0..done.len()).map(per_box).collect()
+            } else {
+                (0..done.len()).into_par_iter().map(per_box).collect()
+            };
+            plan.extend(decided.iter().map(|d| d.0));
+            undecided_left |= decided.iter().any(|d| d.1);
+            ulp_limit |= decided.iter().any(|d| d.2);
+        } else {
+            order.clear();
+            order.extend(0..frontier.len());
+            if mo.method == Method::Slices {
+                let area = |o: &Open<S::Slab>| {
+                    (o.bx.theta[1] - o.bx.theta[0]) * (o.bx.theta_dot[1] - o.bx.theta_dot[0])
+                };
+                order.sort_by(|&a, &b| area(&frontier[b]).total_cmp(&area(&frontier[a])));
+            }
+            plan.resize(frontier.len(), Plan::default());
+            let mut leaves_if_stopped = leaves.len() + frontier.len();
+            let mut nodes_planned = 0usize;
+            for &k in &order {
+                let (labels, outcome, _) = &done[k];
+                let count = counts[k];
+                let extra = count.extra();
+                let fits = leaves_if_stopped + extra <= opts.max_boxes
+                    && nodes_planned + count.nodes as usize <= room;
+                if count.refine && fits {
+                    leaves_if_stopped += extra;
+                    nodes_planned += count.nodes as usize;
+                    plan[k] = count;
+                    if let Outcome::Tree(t) = outcome {
+                        undecided_left |= t
+                            .iter()
+                            .any(|l| matches!(l, Local::Leaf(x) if ctx.undecided(x)));
+                    }
+                } else {
+                    plan[k] = Plan::LEAF;
+                    if count.refine {
+                        budget_hit = true;
+                    } else if ctx.undecided(labels) {
+                        undecided_left = true;
+                        if ctx.at_ulp_limit(&frontier[k].bx) {
+                            ulp_limit = true;
+                        }
                     }
                 }
             }
@@ -1323,6 +1329,23 @@ impl Plan {
             }
         }
         p
+    }
+    /// What a box's outcome asks for.
+    fn of(outcome: &Outcome) -> Plan {
+        match outcome {
+            Outcome::Leaf => Plan::LEAF,
+            Outcome::Split(_) => Plan {
+                nodes: 2,
+                leaves: 0,
+                opens: 2,
+                refine: true,
+            },
+            Outcome::Tree(t) => Plan::of_tree(t),
+        }
+    }
+    /// Leaves (counting open boxes) it adds beyond the box itself.
+    fn extra(&self) -> usize {
+        (self.leaves + self.opens) as usize - 1
     }
 }
 
