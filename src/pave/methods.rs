@@ -214,6 +214,12 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         [h > self.min_width[0], k > self.min_width[1]]
     }
 
+    /// `slices`: a fresh slab that can still be split and whose predicted
+    /// undecided band is above the threshold.
+    fn slab_too_coarse(&self, b: &PhaseBox) -> bool {
+        self.choose_axis(b).is_some() && self.estimated_band(b) > self.slab_area
+    }
+
     /// `slices`: an estimate (steering only) of the undecided area a fresh
     /// slab would leave, from the roots of its quadratics in f64 at θ's two
     /// ends and middle; the full box where their number changes.
@@ -375,11 +381,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             }
             Method::Contract | Method::Slices => {
                 // `slices`: no rigorous work on a slab still too coarse.
-                if self.method == Method::Slices
-                    && o.fresh
-                    && self.choose_axis(&o.bx).is_some()
-                    && self.estimated_band(&o.bx) > self.slab_area
-                {
+                if self.method == Method::Slices && o.fresh && self.slab_too_coarse(&o.bx) {
                     return Outcome::Split(0);
                 }
                 if o.fresh {
@@ -1073,12 +1075,22 @@ pub fn pave_with<S: ConstraintSet>(
 
     while !frontier.is_empty() {
         progress(level, frontier.len(), leaves.len());
+        // `slices`: a fresh slab its f64 roots call too coarse is split in θ
+        // without interval work (its labels would be discarded).
+        let presplit: Vec<bool> = if mo.method == Method::Slices {
+            par_map(&frontier, PAR_MIN_HEAVY, |o| {
+                o.slab.is_none() && o.fresh && ctx.slab_too_coarse(&o.bx)
+            })
+        } else {
+            Vec::new()
+        };
         // θ-slabs of boxes just split in θ, each computed once per level;
         // boxes split in θ̇ share their parent's slab.
         let mut missing: Vec<(u64, u64)> = frontier
             .iter()
-            .filter(|o| o.slab.is_none())
-            .map(|o| slab_key(&o.bx))
+            .enumerate()
+            .filter(|(k, o)| o.slab.is_none() && !presplit.get(*k).copied().unwrap_or(false))
+            .map(|(_, o)| slab_key(&o.bx))
             .collect();
         if missing.len() < PAR_MIN {
             missing.sort_unstable();
@@ -1094,17 +1106,21 @@ pub fn pave_with<S: ConstraintSet>(
         });
         par_each_mut(&mut frontier, |o| {
             if o.slab.is_none() {
-                let k = missing
-                    .binary_search(&slab_key(&o.bx))
-                    .expect("every missing key was computed");
-                o.slab = Some(fresh[k].clone());
+                // Absent only for a pre-split box (whose θ-interval no other
+                // box needed).
+                if let Ok(k) = missing.binary_search(&slab_key(&o.bx)) {
+                    o.slab = Some(fresh[k].clone());
+                }
             }
         });
         drop(fresh);
 
         let done: Vec<(Labels, Outcome, Work)> = par_map(&frontier, PAR_MIN_HEAVY, |o| {
             let mut work = Work::default();
-            let slab = o.slab.as_ref().expect("assigned above");
+            let Some(slab) = o.slab.as_ref() else {
+                // Pre-split: undecided as far as anything was computed.
+                return ([Label::Undecided; MAX_CONSTRAINTS], Outcome::Split(0), work);
+            };
             let labels = ctx.natural(slab, &o.bx, &mut work);
             let outcome = ctx.process(o, &labels, &mut work);
             (labels, outcome, work)
