@@ -14,7 +14,7 @@
 //! back to `inari`'s own.
 
 use crate::scalar::{Dual, Scalar};
-use crate::scene::{Angle, Constraints, Quadratic, Scene, Variant};
+use crate::scene::{Angle, Constraints, Scene, Variant};
 use inari::{const_interval, DecInterval, Interval};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -303,22 +303,12 @@ impl Scalar for CrDec {
     }
 }
 
-fn unwrap_quadratic(q: Quadratic<CrDec>) -> Quadratic<DecInterval> {
-    Quadratic {
-        c2: q.c2.0,
-        c1: q.c1.0,
-        c0: q.c0.0,
-    }
-}
-
 /// [`Scene::constraints_on`] with the elementary functions of this module:
 /// certified coefficient enclosures of Ω and Ω₀ over a θ-slab.
 pub fn slab_constraints(scene: &Scene, v: Variant, theta: Interval) -> Constraints<DecInterval> {
-    let c = scene.constraints(v, &Angle::new(CrDec(DecInterval::new(theta))));
-    Constraints {
-        omega: unwrap_quadratic(c.omega),
-        omega0: unwrap_quadratic(c.omega0),
-    }
+    scene
+        .constraints(v, &Angle::new(CrDec(DecInterval::new(theta))))
+        .map(|x| x.0)
 }
 
 /// [`slab_constraints`] over a dual θ: every coefficient with its
@@ -329,20 +319,12 @@ pub fn slab_dual_constraints(
     theta: Interval,
 ) -> Constraints<Dual<DecInterval>> {
     let t = Dual::variable(CrDec(DecInterval::new(theta)), 0);
-    let c = scene.constraints(v, &Angle::new(t));
-    let un = |x: Dual<CrDec>| Dual {
-        value: x.value.0,
-        grad: [x.grad[0].0, x.grad[1].0],
-    };
-    let q = |q: Quadratic<Dual<CrDec>>| Quadratic {
-        c2: un(q.c2),
-        c1: un(q.c1),
-        c0: un(q.c0),
-    };
-    Constraints {
-        omega: q(c.omega),
-        omega0: q(c.omega0),
-    }
+    scene
+        .constraints(v, &Angle::new(t))
+        .map(|x: Dual<CrDec>| Dual {
+            value: x.value.0,
+            grad: x.grad.map(|g| g.0),
+        })
 }
 
 #[cfg(test)]

@@ -128,6 +128,12 @@ pub fn is_defined(x: DecInterval) -> bool {
     x.decoration() >= Decoration::Def && x.interval().is_some_and(|i| !i.is_empty())
 }
 
+/// [`is_defined`] and also continuous on the whole argument (`≥ dac`): what a
+/// derivative or a mean-value argument needs.
+pub fn is_continuous(x: DecInterval) -> bool {
+    x.decoration() >= Decoration::Dac && is_defined(x)
+}
+
 /// Forward-mode dual number: a value and its gradient with respect to (θ, θ̇).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dual<T> {

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use super::area::{AreaSum, LeafArea};
 use super::encoding::{base64_decode, decimal_enclosure, parse_hex_f64, BitReader};
-use super::eval::{apply, continuous, defined, show, Dual, Op, Program};
+use super::eval::{apply, continuous, defined, show, Dual, Num, Op, Program};
 use super::json::{arr_of, as_obj, decls, obj_of, opt_str, pair_of, str_of, u64_of, Obj};
 use super::roots::constant;
 use super::{Outcome, Unreadable};
@@ -330,9 +330,9 @@ fn monotone_bound(
     let (td, wd) = (DecInterval::new(t), DecInterval::new(w));
     let seed = |k: usize| -> Dual<DecInterval> {
         let vars = if k == 0 {
-            [Dual::variable(td), constant_dual(wd)]
+            [Dual::variable(td), Num::constant(wd)]
         } else {
-            [constant_dual(td), Dual::variable(wd)]
+            [Num::constant(td), Dual::variable(wd)]
         };
         prog.value(&vars, root)
     };
@@ -365,13 +365,6 @@ fn monotone_bound(
         return DecInterval::NAI;
     }
     prog.value(&[DecInterval::new(t1), DecInterval::new(w1)], root)
-}
-
-fn constant_dual(x: DecInterval) -> Dual<DecInterval> {
-    Dual {
-        v: x,
-        d: DecInterval::new(iv(0.0, 0.0)),
-    }
 }
 
 /// A leaf box `[t0, t1] × [w0, w1]`.

@@ -13,7 +13,7 @@ pub mod area;
 pub mod export;
 pub mod methods;
 
-use crate::scalar::is_defined;
+use crate::scalar::{is_continuous, is_defined};
 use crate::scene::{Angle, Constraints, Domain, Quadratic, Scene, Variant};
 use inari::{DecInterval, Interval};
 use serde::Serialize;
@@ -228,30 +228,16 @@ impl SlabEnds {
         dual: Quadratic<crate::scalar::Dual<DecInterval>>,
         ends: [Quadratic<DecInterval>; 2],
     ) -> SlabEnds {
-        let parts = [dual.c2, dual.c1, dual.c0];
-        let all: Vec<DecInterval> = parts
+        let value = dual.map(|d| d.value);
+        let d_theta = dual.map(|d| d.grad[0]);
+        let smooth = [value, d_theta, ends[0], ends[1]]
             .iter()
-            .flat_map(|d| [d.value, d.grad[0]])
-            .chain(ends.iter().flat_map(|q| [q.c2, q.c1, q.c0]))
-            .collect();
-        let smooth = all
-            .iter()
-            .all(|x| x.decoration() >= inari::Decoration::Dac && !x.is_empty());
+            .all(|q| [q.c2, q.c1, q.c0].into_iter().all(is_continuous));
         let i = |x: DecInterval| x.interval().unwrap_or(Interval::ENTIRE);
-        let q = |f: &dyn Fn(&crate::scalar::Dual<DecInterval>) -> DecInterval| Quadratic {
-            c2: i(f(&dual.c2)),
-            c1: i(f(&dual.c1)),
-            c0: i(f(&dual.c0)),
-        };
-        let e = |q: &Quadratic<DecInterval>| Quadratic {
-            c2: i(q.c2),
-            c1: i(q.c1),
-            c0: i(q.c0),
-        };
         SlabEnds {
-            value: q(&|d| d.value),
-            d_theta: q(&|d| d.grad[0]),
-            ends: [e(&ends[0]), e(&ends[1])],
+            value: value.map(i),
+            d_theta: d_theta.map(i),
+            ends: ends.map(|q| q.map(i)),
             smooth,
         }
     }
@@ -322,7 +308,7 @@ impl ConstraintSet for SceneConstraints<'_> {
             let mv = at_m + c.grad[0] * dm;
             let ok = [c.value, c.grad[0], at_m, mv]
                 .iter()
-                .all(|x| x.decoration() >= inari::Decoration::Dac && is_defined(*x));
+                .all(|x| is_continuous(*x));
             match (ok, c.value.interval(), mv.interval()) {
                 (true, Some(a), Some(b)) if !a.intersection(b).is_empty() => {
                     DecInterval::set_dec(a.intersection(b), c.value.decoration())

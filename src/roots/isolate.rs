@@ -24,8 +24,8 @@
 //! returned enclosures together with the proved root-free parts always cover
 //! `[lo, hi]`, also when the budget runs out.
 
-use crate::scalar::{is_defined, Dual, Scalar};
-use inari::{DecInterval, Decoration, Interval};
+use crate::scalar::{is_continuous, is_defined, Dual, Scalar};
+use inari::{DecInterval, Interval};
 use serde::Serialize;
 
 /// A real function written once for every [`Scalar`].
@@ -228,8 +228,7 @@ impl<F: RealFn> Engine<'_, F> {
         if is_defined(y.value) && !y.value.interval().expect("defined").contains(0.0) {
             return (Newton::NoRoot, true);
         }
-        let smooth = |d: DecInterval| d.decoration() >= Decoration::Dac && d.interval().is_some();
-        if !smooth(y.value) || !smooth(y.grad[0]) {
+        if !is_continuous(y.value) || !is_continuous(y.grad[0]) {
             return (Newton::NotSmooth, false);
         }
         let d = y.grad[0].interval().expect("checked");

@@ -48,6 +48,17 @@ pub struct Quadratic<T> {
     pub c0: T,
 }
 
+impl<T> Quadratic<T> {
+    /// The same quadratic with every coefficient passed through `f`.
+    pub fn map<U>(self, f: impl Fn(T) -> U) -> Quadratic<U> {
+        Quadratic {
+            c2: f(self.c2),
+            c1: f(self.c1),
+            c0: f(self.c0),
+        }
+    }
+}
+
 impl<T: Scalar> Quadratic<T> {
     pub fn eval(&self, theta_dot: T) -> T {
         self.c2 * theta_dot.sqr() + self.c1 * theta_dot + self.c0
@@ -75,6 +86,16 @@ impl<T: Scalar> Angle<T> {
 pub struct Constraints<T> {
     pub omega: Quadratic<T>,
     pub omega0: Quadratic<T>,
+}
+
+impl<T> Constraints<T> {
+    /// Both constraints with every coefficient passed through `f`.
+    pub fn map<U>(self, f: impl Fn(T) -> U) -> Constraints<U> {
+        Constraints {
+            omega: self.omega.map(&f),
+            omega0: self.omega0.map(&f),
+        }
+    }
 }
 
 /// A rectangle of the phase plane whose endpoints are exact reals given as
