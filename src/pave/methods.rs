@@ -232,8 +232,8 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             let Some(qs) = self.set.steer_at(t) else {
                 return full;
             };
-            for (i, [c2, c1, c0]) in qs.into_iter().enumerate() {
-                if self.with_copies(1 << i) & self.relevant != 0 && self.same_as[i].is_none() {
+            for i in self.relevant_own() {
+                if let Some(&[c2, c1, c0]) = qs.get(i) {
                     roots(c2, c1, c0, &mut per_end[k]);
                 }
             }
@@ -314,11 +314,9 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         };
         let mut labels = [Label::Undecided; MAX_CONSTRAINTS];
         work.evals += 1;
-        for i in self.own() {
-            if self.with_copies(1 << i) & self.relevant != 0 {
-                if let Some(e) = ends.get(i) {
-                    labels[i] = monotone_label(e, b);
-                }
+        for i in self.relevant_own() {
+            if let Some(e) = ends.get(i) {
+                labels[i] = monotone_label(e, b);
             }
         }
         self.copy_aliases(&mut labels);
@@ -356,6 +354,12 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         (0..self.n).filter(|&i| self.same_as[i].is_none())
     }
 
+    /// Own constraints whose labels matter (themselves or through a copy).
+    fn relevant_own(&self) -> impl Iterator<Item = usize> + '_ {
+        self.own()
+            .filter(|&i| self.with_copies(1 << i) & self.relevant != 0)
+    }
+
     /// A mask over own constraints extended to their copies.
     fn with_copies(&self, m: u8) -> u8 {
         (0..self.n).fold(m, |acc, i| match self.same_as[i] {
@@ -380,10 +384,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                 }
             }
             Method::Contract | Method::Slices => {
-                // `slices`: no rigorous work on a slab still too coarse.
-                if self.method == Method::Slices && o.fresh && self.slab_too_coarse(&o.bx) {
-                    return Outcome::Split(0);
-                }
+                // (`slices` splits a slab still too coarse before this.)
                 if o.fresh {
                     if let Some(t) = self.contract(slab, &o.bx, work) {
                         return Outcome::Tree(t);
@@ -533,17 +534,13 @@ impl<S: ConstraintSet> Ctx<'_, S> {
     /// (open, or undecided leaves at the resolution). `None` when it
     /// removes nothing.
     fn contract(&self, slab: &Arc<S::Slab>, b: &PhaseBox, work: &mut Work) -> Option<Vec<Local>> {
-        let rel_own: Vec<usize> = self
-            .own()
-            .filter(|&i| self.with_copies(1 << i) & self.relevant != 0)
-            .collect();
         // The slab's ends and θ-derivatives: tight bands (the roots at the
         // two ends) and labels by the checker's monotone test.
         work.slabs += 3;
         let ends = self.set.slab_ends(b.theta_interval());
         let ends = ends.as_deref();
-        let mut qs = Vec::with_capacity(rel_own.len());
-        for &i in &rel_own {
+        let mut qs = Vec::new();
+        for i in self.relevant_own() {
             let q = self.set.quadratic(slab, i)?;
             qs.push(match ends.and_then(|e| e.get(i)) {
                 Some(e) => Steer::from_ends(e)?,
@@ -623,7 +620,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                     break;
                 }
             }
-            if done.is_none() {
+            if done.is_none() && ends.is_some() {
                 // Not monotone in θ̇ (a quadratic's vertex inside): split there.
                 let d = SHRINK[0] * (z - a);
                 let na = if lo_free { a + d } else { a };
@@ -635,7 +632,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                 cuts.retain(|v| na < *v && *v < nz);
                 cuts.sort_by(f64::total_cmp);
                 cuts.dedup();
-                if !cuts.is_empty() && ends.is_some() {
+                if !cuts.is_empty() {
                     let mut t = Vec::with_capacity(2 * cuts.len() + 1);
                     let mut lo = na;
                     for hi in cuts.iter().copied().chain(std::iter::once(nz)) {
@@ -812,7 +809,7 @@ pub fn monotone_label(e: &SlabEnds, b: &PhaseBox) -> Label {
     let two = Interval::try_from((2.0, 2.0)).expect("2 is a double");
     let g_w = two * e.value.c2 * w + e.value.c1;
     let sign = |d: Interval| {
-        if d.is_empty() || !d.inf().is_finite() && !d.sup().is_finite() {
+        if d.is_empty() {
             0
         } else if d.inf() >= 0.0 {
             1
@@ -901,10 +898,6 @@ impl Steer {
         self.ends
             .map(|e| e.map(|[c2, c1, c0]| c2 * w * w + c1 * w + c0))
     }
-    /// Cuts around the θ̇ where the quadratic turns (at either end of the
-    /// slab) and where its θ-derivative changes sign, `pad` to each side:
-    /// the parts outside are monotone in that variable, and the narrow part
-    /// around such a point is decided with little dependency.
     /// A turning point inside (a, z) where the evaluation has a dependency
     /// (c₁ ≠ 0: θ̇ occurs twice; c₂θ̇² alone is one exact square).
     fn turns_inside(&self, a: f64, z: f64) -> bool {
@@ -914,6 +907,10 @@ impl Steer {
         })
     }
 
+    /// Cuts around the θ̇ where the quadratic turns (at either end of the
+    /// slab) and where its θ-derivative changes sign, `pad` to each side:
+    /// the parts outside are monotone in that variable, and the narrow part
+    /// around such a point is decided with little dependency.
     fn turning_cuts(&self, pad: f64, out: &mut Vec<f64>) {
         let mut turn: Vec<f64> = Vec::new();
         for [c2, c1, _] in self.ends.into_iter().flatten() {
@@ -1076,10 +1073,11 @@ pub fn pave_with<S: ConstraintSet>(
     while !frontier.is_empty() {
         progress(level, frontier.len(), leaves.len());
         // `slices`: a fresh slab its f64 roots call too coarse is split in θ
-        // without interval work (its labels would be discarded).
+        // without interval work (its labels would be discarded). Fresh boxes
+        // are exactly those without a slab.
         let presplit: Vec<bool> = if mo.method == Method::Slices {
             par_map(&frontier, PAR_MIN_HEAVY, |o| {
-                o.slab.is_none() && o.fresh && ctx.slab_too_coarse(&o.bx)
+                o.fresh && ctx.slab_too_coarse(&o.bx)
             })
         } else {
             Vec::new()
@@ -1115,16 +1113,22 @@ pub fn pave_with<S: ConstraintSet>(
         });
         drop(fresh);
 
-        let done: Vec<(Labels, Outcome, Work)> = par_map(&frontier, PAR_MIN_HEAVY, |o| {
-            let mut work = Work::default();
-            let Some(slab) = o.slab.as_ref() else {
-                // Pre-split: undecided as far as anything was computed.
-                return ([Label::Undecided; MAX_CONSTRAINTS], Outcome::Split(0), work);
-            };
-            let labels = ctx.natural(slab, &o.bx, &mut work);
-            let outcome = ctx.process(o, &labels, &mut work);
-            (labels, outcome, work)
-        });
+        let done: Vec<(Labels, Outcome, Work)> =
+            par_map_range(frontier.len(), PAR_MIN_HEAVY, |k| {
+                let o = &frontier[k];
+                let mut work = Work::default();
+                // A pre-split box has a slab only if another box shares its
+                // θ-interval; without one it is undecided as far as computed.
+                let labels = match o.slab.as_ref() {
+                    Some(slab) => ctx.natural(slab, &o.bx, &mut work),
+                    None => [Label::Undecided; MAX_CONSTRAINTS],
+                };
+                if presplit.get(k).copied().unwrap_or(false) {
+                    return (labels, Outcome::Split(0), work);
+                }
+                let outcome = ctx.process(o, &labels, &mut work);
+                (labels, outcome, work)
+            });
         for (_, _, w) in &done {
             stats.box_evaluations += w.evals;
             stats.slab_evaluations += w.slabs;
@@ -1156,11 +1160,7 @@ pub fn pave_with<S: ConstraintSet>(
                     (Plan::LEAF, false, false)
                 }
             };
-            let decided: Vec<(Plan, bool, bool)> = if done.len() < PAR_MIN {
-                (0..done.len()).map(per_box).collect()
-            } else {
-                (0..done.len()).into_par_iter().map(per_box).collect()
-            };
+            let decided: Vec<(Plan, bool, bool)> = par_map_range(done.len(), PAR_MIN, per_box);
             plan.extend(decided.iter().map(|d| d.0));
             undecided_left |= decided.iter().any(|d| d.1);
             ulp_limit |= decided.iter().any(|d| d.2);
@@ -1564,10 +1564,15 @@ const PAR_MIN: usize = 1024;
 const PAR_MIN_HEAVY: usize = 64;
 
 fn par_map<T: Sync, U: Send>(xs: &[T], min: usize, f: impl Fn(&T) -> U + Sync + Send) -> Vec<U> {
-    if xs.len() < min {
-        xs.iter().map(f).collect()
+    par_map_range(xs.len(), min, |k| f(&xs[k]))
+}
+
+/// `f(k)` for `k` in `0..n`, in parallel from `min` items.
+fn par_map_range<U: Send>(n: usize, min: usize, f: impl Fn(usize) -> U + Sync + Send) -> Vec<U> {
+    if n < min {
+        (0..n).map(f).collect()
     } else {
-        xs.par_iter().map(f).collect()
+        (0..n).into_par_iter().map(f).collect()
     }
 }
 
