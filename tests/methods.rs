@@ -4,13 +4,16 @@
 //! thread count. Each non-natural method also decides more than `natural`.
 
 use detach::certificate::{paving_proof, PavingStatement};
-use detach::check::{check_bytes, Verdict};
+use detach::check::{check_bytes, Report as CheckReport, Verdict};
 use detach::pave::{
     pave_scene_method, standard_cells, Label, Method, MethodOptions, PaveOptions, Paving,
 };
 use detach::scene::{Angle, Scene, SceneId, Variant};
 use inari::{DecInterval, Interval};
 use rug::Rational;
+
+mod common;
+use common::Rng;
 
 const VARIANTS: [Variant; 2] = [Variant::Derived, Variant::Printed];
 
@@ -37,15 +40,26 @@ fn undecided(p: &Paving, scene: &Scene, cell: usize) -> f64 {
         .undecided_area()
 }
 
-/// A small deterministic generator (xorshift), enough for sample points.
-struct Rng(u64);
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
+/// The paving written as a proof file and run through the checker.
+fn checked_proof(
+    id: SceneId,
+    v: Variant,
+    scene: &Scene,
+    params: &detach::param::ParamSet,
+    p: &Paving,
+) -> CheckReport {
+    let proof = paving_proof(
+        &PavingStatement {
+            scene: id,
+            variant: v,
+            params,
+            domain: &scene.domain(),
+            domain_text: id.domain_text().map(|s| s.map(String::from)),
+            title: "test".into(),
+        },
+        p,
+    );
+    check_bytes(&serde_json::to_vec(&proof).unwrap()).unwrap()
 }
 
 #[test]
@@ -60,19 +74,7 @@ fn every_method_writes_a_proof_the_checker_accepts() {
                         relevant,
                     };
                     let p = pave(&scene, v, 1.0 / 128.0, mo);
-                    let proof = paving_proof(
-                        &PavingStatement {
-                            scene: id,
-                            variant: v,
-                            params: &params,
-                            domain: &scene.domain(),
-                            domain_text: id.domain_text().map(|s| s.map(String::from)),
-                            title: "test".into(),
-                        },
-                        &p,
-                    );
-                    let bytes = serde_json::to_vec(&proof).unwrap();
-                    let report = check_bytes(&bytes).unwrap();
+                    let report = checked_proof(id, v, &scene, &params, &p);
                     assert_eq!(report.verdict, Verdict::Valid, "{id} {v} {m} {relevant:?}");
                     assert_eq!(report.checked, p.leaves.len() as u64);
                 }
@@ -111,18 +113,7 @@ fn monotone_labels_verify_on_varied_parameters() {
         let v = VARIANTS[k / 3 % 2];
         let m = [Method::Slices, Method::Contract][k / 6];
         let p = pave(&scene, v, 1.0 / 256.0, MethodOptions::new(m));
-        let proof = paving_proof(
-            &PavingStatement {
-                scene: id,
-                variant: v,
-                params: &params,
-                domain: &scene.domain(),
-                domain_text: id.domain_text().map(|s| s.map(String::from)),
-                title: "test".into(),
-            },
-            &p,
-        );
-        let report = check_bytes(&serde_json::to_vec(&proof).unwrap()).unwrap();
+        let report = checked_proof(id, v, &scene, &params, &p);
         assert_eq!(report.verdict, Verdict::Valid, "{id} {v} {m} {over:?}");
         checked += report.checked;
     }

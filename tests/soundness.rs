@@ -10,6 +10,9 @@ use detach::pave::{pave_scene_method, Label, Method, MethodOptions, PaveOptions,
 use detach::scene::{Scene, SceneId, Variant};
 use rug::Float;
 
+mod common;
+use common::Rng;
+
 const PREC: u32 = 200;
 
 fn f(x: f64) -> Float {
@@ -173,17 +176,6 @@ fn constraints(id: SceneId, v: Variant, p: &P, th: &Float, w: &Float) -> [Float;
             };
             [omega.0, omega0.0]
         }
-    }
-}
-
-/// A small deterministic generator (xorshift) for sample points.
-struct Rng(u64);
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
 }
 

@@ -185,9 +185,10 @@ pub(super) fn machine() -> serde_json::Value {
     })
 }
 
-/// Time at undecided area `u` on a curve of `(time, area)` points, by
+/// On a curve of `(x, y)` points with y falling as x grows (time against
+/// undecided area, or area against box count), the x where y = `u`, by
 /// log–log interpolation between the two points around it.
-fn time_at(points: &[(f64, f64)], u: f64) -> Option<f64> {
+fn x_at(points: &[(f64, f64)], u: f64) -> Option<f64> {
     let mut p: Vec<(f64, f64)> = points
         .iter()
         .copied()
@@ -391,8 +392,8 @@ pub fn run_methods(args: &MethodsArgs) -> CliResult {
                     .iter()
                     .filter(|r| r.problem == p.key && r.method == m.name())
                 {
-                    // `time_at` on (area, boxes) points: the area at a box count.
-                    if let Some(pu) = time_at(peer_boxes, r.leaves as f64) {
+                    // On (area, boxes) points: the area at this box count.
+                    if let Some(pu) = x_at(peer_boxes, r.leaves as f64) {
                         per_leaf.push(LeafRatio {
                             problem: p.key,
                             method: m.name(),
@@ -404,7 +405,7 @@ pub fn run_methods(args: &MethodsArgs) -> CliResult {
                     }
                 }
                 for u in [0.3, 0.1, 0.03, 0.01, 0.003] {
-                    if let (Some(ours), Some(theirs)) = (time_at(&pts, u), time_at(peer_pts, u)) {
+                    if let (Some(ours), Some(theirs)) = (x_at(&pts, u), x_at(peer_pts, u)) {
                         ratios.push(Ratio {
                             problem: p.key,
                             method: format!("detach {}", m.name()),

@@ -1,4 +1,5 @@
-//! Helpers shared by the integration tests that run the built binary.
+//! Helpers shared by the integration tests: running the built binary, and a
+//! deterministic generator for sample points.
 #![allow(dead_code)]
 
 use std::process::{Command, Output};
@@ -31,4 +32,16 @@ pub fn assert_bad_input(args: &[&str], needle: &str) -> String {
     assert!(err.contains(needle), "{args:?}: `{needle}` not in {err}");
     assert!(!err.contains("panicked"), "{args:?}: {err}");
     err
+}
+
+/// A small deterministic generator (xorshift), enough for sample points.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn unit(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
 }
