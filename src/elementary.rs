@@ -13,7 +13,7 @@
 //! possible pole of `tan`, an argument of `ln` reaching 0 — the functions fall
 //! back to `inari`'s own.
 
-use crate::scalar::{Dual, Scalar};
+use crate::scalar::{DualTheta, Scalar};
 use crate::scene::{Angle, Constraints, Scene, Variant};
 use inari::{const_interval, DecInterval, Interval};
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -317,11 +317,11 @@ pub fn slab_dual_constraints(
     scene: &Scene,
     v: Variant,
     theta: Interval,
-) -> Constraints<Dual<DecInterval>> {
-    let t = Dual::variable(CrDec(DecInterval::new(theta)), 0);
+) -> Constraints<DualTheta<DecInterval>> {
+    let t = DualTheta::variable(CrDec(DecInterval::new(theta)), 0);
     scene
         .constraints(v, &Angle::new(t))
-        .map(|x: Dual<CrDec>| Dual {
+        .map(|x: DualTheta<CrDec>| DualTheta {
             value: x.value.0,
             grad: x.grad.map(|g| g.0),
         })

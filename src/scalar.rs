@@ -134,99 +134,103 @@ pub fn is_continuous(x: DecInterval) -> bool {
     x.decoration() >= Decoration::Dac && is_defined(x)
 }
 
-/// Forward-mode dual number: a value and its gradient with respect to (θ, θ̇).
+/// Forward-mode dual number: a value and its gradient with respect to the
+/// first `N` of (θ, θ̇). `N = 2` (the default) carries both; `N = 1` carries
+/// ∂/∂θ only, at about half the cost, for θ-slabs.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Dual<T> {
+pub struct DualN<T, const N: usize> {
     pub value: T,
-    pub grad: [T; 2],
+    pub grad: [T; N],
 }
 
-impl<T: Scalar> Dual<T> {
+/// The dual number over (θ, θ̇).
+pub type Dual<T> = DualN<T, 2>;
+/// The dual number over θ alone.
+pub type DualTheta<T> = DualN<T, 1>;
+
+impl<T: Scalar, const N: usize> DualN<T, N> {
     /// A constant (zero gradient).
     pub fn constant(value: T) -> Self {
-        Dual {
+        DualN {
             value,
-            grad: [T::int(0), T::int(0)],
+            grad: [T::int(0); N],
         }
     }
     /// The independent variable number `index` (0 = θ, 1 = θ̇).
     pub fn variable(value: T, index: usize) -> Self {
-        let mut grad = [T::int(0), T::int(0)];
+        let mut grad = [T::int(0); N];
         grad[index] = T::int(1);
-        Dual { value, grad }
+        DualN { value, grad }
     }
     fn chain(self, value: T, slope: T) -> Self {
-        Dual {
+        DualN {
             value,
-            grad: [self.grad[0] * slope, self.grad[1] * slope],
+            grad: self.grad.map(|g| g * slope),
         }
+    }
+    fn zip(self, r: Self, f: impl Fn(T, T) -> T) -> [T; N] {
+        std::array::from_fn(|i| f(self.grad[i], r.grad[i]))
     }
 }
 
-impl<T: Scalar> Add for Dual<T> {
+impl<T: Scalar, const N: usize> Add for DualN<T, N> {
     type Output = Self;
     fn add(self, r: Self) -> Self {
-        Dual {
+        DualN {
             value: self.value + r.value,
-            grad: [self.grad[0] + r.grad[0], self.grad[1] + r.grad[1]],
+            grad: self.zip(r, |a, b| a + b),
         }
     }
 }
 
-impl<T: Scalar> Sub for Dual<T> {
+impl<T: Scalar, const N: usize> Sub for DualN<T, N> {
     type Output = Self;
     fn sub(self, r: Self) -> Self {
-        Dual {
+        DualN {
             value: self.value - r.value,
-            grad: [self.grad[0] - r.grad[0], self.grad[1] - r.grad[1]],
+            grad: self.zip(r, |a, b| a - b),
         }
     }
 }
 
-impl<T: Scalar> Mul for Dual<T> {
+impl<T: Scalar, const N: usize> Mul for DualN<T, N> {
     type Output = Self;
     fn mul(self, r: Self) -> Self {
-        Dual {
+        DualN {
             value: self.value * r.value,
-            grad: [
-                self.grad[0] * r.value + self.value * r.grad[0],
-                self.grad[1] * r.value + self.value * r.grad[1],
-            ],
+            grad: self.zip(r, |a, b| a * r.value + self.value * b),
         }
     }
 }
 
-impl<T: Scalar> Div for Dual<T> {
+impl<T: Scalar, const N: usize> Div for DualN<T, N> {
     type Output = Self;
     fn div(self, r: Self) -> Self {
         let value = self.value / r.value;
         // (u/v)' = (u' − (u/v)·v') / v
-        Dual {
+        DualN {
             value,
-            grad: [
-                (self.grad[0] - value * r.grad[0]) / r.value,
-                (self.grad[1] - value * r.grad[1]) / r.value,
-            ],
+            grad: self.zip(r, |a, b| (a - value * b) / r.value),
         }
     }
 }
 
-impl<T: Scalar> Neg for Dual<T> {
+impl<T: Scalar, const N: usize> Neg for DualN<T, N> {
     type Output = Self;
     fn neg(self) -> Self {
-        Dual {
+        DualN {
             value: -self.value,
-            grad: [-self.grad[0], -self.grad[1]],
+            grad: self.grad.map(|g| -g),
         }
     }
 }
 
-impl<T: Scalar> Scalar for Dual<T> {
+impl<T: Scalar, const N: usize> Scalar for DualN<T, N> {
     fn lift(x: Interval) -> Self {
-        Dual::constant(T::lift(x))
+        Self::constant(T::lift(x))
     }
     fn int(n: i32) -> Self {
-        Dual::constant(T::int(n))
+        Self::constant(T::int(n))
     }
     fn sqr(self) -> Self {
         self.chain(self.value.sqr(), T::int(2) * self.value)

@@ -225,7 +225,7 @@ pub struct SlabEnds {
 
 impl SlabEnds {
     pub fn new(
-        dual: Quadratic<crate::scalar::Dual<DecInterval>>,
+        dual: Quadratic<crate::scalar::DualTheta<DecInterval>>,
         ends: [Quadratic<DecInterval>; 2],
     ) -> SlabEnds {
         let value = dual.map(|d| d.value);
@@ -293,18 +293,18 @@ impl ConstraintSet for SceneConstraints<'_> {
         ])
     }
     fn centred_coefficients(&self, theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {
-        use crate::scalar::Dual;
+        use crate::scalar::DualTheta;
         use crate::scene::Angle;
         let t = DecInterval::new(theta);
         let m = Interval::try_from((theta.mid(), theta.mid())).ok()?;
         let d = self
             .scene
-            .constraints(self.variant, &Angle::new(Dual::variable(t, 0)));
+            .constraints(self.variant, &Angle::new(DualTheta::variable(t, 0)));
         let p = self.scene.constraints_on(self.variant, m);
         // c(θ) ∈ c(m) + c'(Θ)(Θ − m) for every θ ∈ Θ (mean-value theorem,
         // c continuously differentiable where the enclosures are ≥ dac).
         let dm = DecInterval::new(theta - m);
-        let one = |c: Dual<DecInterval>, at_m: DecInterval| -> DecInterval {
+        let one = |c: DualTheta<DecInterval>, at_m: DecInterval| -> DecInterval {
             let mv = at_m + c.grad[0] * dm;
             let ok = [c.value, c.grad[0], at_m, mv]
                 .iter()
@@ -316,7 +316,7 @@ impl ConstraintSet for SceneConstraints<'_> {
                 _ => c.value,
             }
         };
-        let q = |d: Quadratic<Dual<DecInterval>>, p: Quadratic<DecInterval>| Quadratic {
+        let q = |d: Quadratic<DualTheta<DecInterval>>, p: Quadratic<DecInterval>| Quadratic {
             c2: one(d.c2, p.c2),
             c1: one(d.c1, p.c1),
             c0: one(d.c0, p.c0),
