@@ -2,7 +2,9 @@
 //! witness box (inside one, outside the other); where they agree, a check that
 //! they never contradict each other.
 
-use detach::pave::{pave, AreaBounds, CellSpec, ConstraintSet, Label, PaveOptions, PhaseBox};
+use detach::pave::{
+    pave, AreaBounds, CellSpec, ConstraintSet, Label, PaveOptions, PerConstraint, PhaseBox,
+};
 use detach::scene::{Angle, Constraints, Scene, SceneId, Variant};
 use inari::{DecInterval, Interval};
 
@@ -187,17 +189,16 @@ impl ConstraintSet for TwoReadings<'_> {
             self.scene.constraints_on(Variant::Printed, theta),
         ]
     }
-    fn enclose(&self, c: &Self::Slab, theta_dot: Interval) -> Vec<DecInterval> {
+    fn enclose(&self, c: &Self::Slab, theta_dot: Interval) -> PerConstraint<DecInterval> {
         let w = DecInterval::new(theta_dot);
-        c.iter()
-            .map(|c| {
-                if self.which == 0 {
-                    c.omega.eval(w)
-                } else {
-                    c.omega0.eval(w)
-                }
-            })
-            .collect()
+        let g = c.map(|c| {
+            if self.which == 0 {
+                c.omega.eval(w)
+            } else {
+                c.omega0.eval(w)
+            }
+        });
+        PerConstraint::new(&g).expect("two constraints")
     }
 }
 

@@ -1,7 +1,7 @@
 //! Certified boxes found with the paver: a box where two constraints `{g < 0}`
 //! are proved to disagree (in one, out of the other), or carry given labels.
 
-use crate::pave::{pave, ConstraintSet, Label, PaveOptions, PhaseBox};
+use crate::pave::{pave, ConstraintSet, Label, PaveOptions, PerConstraint, PhaseBox};
 use inari::{DecInterval, Interval};
 use serde_json::json;
 
@@ -18,8 +18,8 @@ impl<F: Fn(Interval, Interval) -> [DecInterval; 2] + Sync> ConstraintSet for Pai
     fn slab(&self, theta: Interval) -> Interval {
         theta
     }
-    fn enclose(&self, theta: &Interval, theta_dot: Interval) -> Vec<DecInterval> {
-        (self.f)(*theta, theta_dot).to_vec()
+    fn enclose(&self, theta: &Interval, theta_dot: Interval) -> PerConstraint<DecInterval> {
+        PerConstraint::new(&(self.f)(*theta, theta_dot)).expect("two constraints")
     }
 }
 

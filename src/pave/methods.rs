@@ -227,21 +227,25 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         let [t0, t1] = b.theta;
         let [w0, w1] = b.theta_dot;
         let full = (t1 - t0) * (w1 - w0);
-        let mut per_end: [Vec<f64>; 3] = Default::default();
+        // At most two roots per constraint, at each of the three points.
+        let mut per_end = [[0.0f64; 2 * MAX_CONSTRAINTS]; 3];
+        let mut count = [0usize; 3];
         for (k, t) in [t0, 0.5 * t0 + 0.5 * t1, t1].into_iter().enumerate() {
             let Some(qs) = self.set.steer_at(t) else {
                 return full;
             };
             for i in self.relevant_own() {
                 if let Some(&[c2, c1, c0]) = qs.get(i) {
-                    roots(c2, c1, c0, &mut per_end[k]);
+                    for r in roots(c2, c1, c0).filter(|r| w0 < *r && *r < w1) {
+                        per_end[k][count[k]] = r;
+                        count[k] += 1;
+                    }
                 }
             }
-            per_end[k].retain(|r| w0 < *r && *r < w1);
-            per_end[k].sort_by(f64::total_cmp);
+            per_end[k][..count[k]].sort_by(f64::total_cmp);
         }
-        let n = per_end[0].len();
-        if per_end.iter().any(|r| r.len() != n) {
+        let n = count[0];
+        if count.iter().any(|&c| c != n) {
             return full;
         }
         let band: f64 = (0..n)
@@ -288,10 +292,12 @@ impl<S: ConstraintSet> Ctx<'_, S> {
     fn natural(&self, slab: &S::Slab, b: &PhaseBox, work: &mut Work) -> Labels {
         work.evals += 1;
         let mut labels = [Label::ProvedOut; MAX_CONSTRAINTS];
-        for (l, g) in labels
-            .iter_mut()
-            .zip(self.set.enclose(slab, b.theta_dot_interval()))
-        {
+        for (l, g) in labels.iter_mut().zip(
+            self.set
+                .enclose(slab, b.theta_dot_interval())
+                .iter()
+                .copied(),
+        ) {
             *l = Label::from_enclosure(g);
         }
         self.copy_aliases(&mut labels);
@@ -923,11 +929,9 @@ impl Steer {
         ) {
             out.extend([lo - pad, hi + pad]);
         }
-        let mut flat = Vec::new();
         if let Some([c2, c1, c0]) = self.d_theta {
-            roots(c2, c1, c0, &mut flat);
+            out.extend(roots(c2, c1, c0).flat_map(|r| [r - pad, r + pad]));
         }
-        out.extend(flat.into_iter().flat_map(|r| [r - pad, r + pad]));
     }
     fn sup_q(&self, w: f64) -> f64 {
         if let Some([a, b]) = self.at_ends(w) {
@@ -956,36 +960,36 @@ impl Steer {
     fn breakpoints(&self, out: &mut Vec<f64>) {
         if let Some(e) = self.ends {
             for [c2, c1, c0] in e {
-                roots(c2, c1, c0, out);
+                out.extend(roots(c2, c1, c0));
             }
             return;
         }
         for (a, c) in [(self.c2[1], self.c0[1]), (self.c2[0], self.c0[0])] {
             for b in self.c1 {
-                roots(a, b, c, out);
+                out.extend(roots(a, b, c));
             }
         }
     }
 }
 
 /// Real roots of `a x² + b x + c` in f64 (steering only).
-fn roots(a: f64, b: f64, c: f64, out: &mut Vec<f64>) {
+fn roots(a: f64, b: f64, c: f64) -> impl Iterator<Item = f64> {
+    let mut r = [f64::NAN; 2];
     if a == 0.0 {
         if b != 0.0 {
-            out.push(-c / b);
+            r[0] = -c / b;
         }
-        return;
+    } else {
+        let disc = b * b - 4.0 * a * c;
+        if disc >= 0.0 {
+            let q = -0.5 * (b + b.signum() * disc.sqrt());
+            r[0] = q / a;
+            if q != 0.0 {
+                r[1] = c / q;
+            }
+        }
     }
-    let disc = b * b - 4.0 * a * c;
-    if disc.is_nan() || disc < 0.0 {
-        return;
-    }
-    let q = -0.5 * (b + b.signum() * disc.sqrt());
-    out.push(q / a);
-    if q != 0.0 {
-        out.push(c / q);
-    }
-    out.retain(|x| x.is_finite());
+    r.into_iter().filter(|x| x.is_finite())
 }
 
 /// Paves `root` with a method. `natural` with every constraint relevant is

@@ -170,6 +170,38 @@ pub enum Node {
     Leaf(u32),
 }
 
+/// One value per constraint (at most [`MAX_CONSTRAINTS`]), kept inline: the
+/// per-box evaluations allocate nothing.
+#[derive(Clone, Copy, Debug)]
+pub struct PerConstraint<T> {
+    items: [T; MAX_CONSTRAINTS],
+    len: usize,
+}
+
+impl<T: Copy> PerConstraint<T> {
+    /// The values of `items` in order; `None` for more than
+    /// [`MAX_CONSTRAINTS`] or none at all.
+    pub fn new(items: &[T]) -> Option<Self> {
+        let first = *items.first()?;
+        if items.len() > MAX_CONSTRAINTS {
+            return None;
+        }
+        let mut buf = [first; MAX_CONSTRAINTS];
+        buf[..items.len()].copy_from_slice(items);
+        Some(PerConstraint {
+            items: buf,
+            len: items.len(),
+        })
+    }
+}
+
+impl<T> std::ops::Deref for PerConstraint<T> {
+    type Target = [T];
+    fn deref(&self) -> &[T] {
+        &self.items[..self.len]
+    }
+}
+
 /// A list of constraints `{g_i < 0}` evaluated on boxes.
 pub trait ConstraintSet: Sync {
     /// θ-only data shared by all boxes of one θ-slab.
@@ -177,7 +209,7 @@ pub trait ConstraintSet: Sync {
     fn names(&self) -> Vec<String>;
     fn slab(&self, theta: Interval) -> Self::Slab;
     /// Decorated enclosures of every `g_i` over `theta × theta_dot`.
-    fn enclose(&self, slab: &Self::Slab, theta_dot: Interval) -> Vec<DecInterval>;
+    fn enclose(&self, slab: &Self::Slab, theta_dot: Interval) -> PerConstraint<DecInterval>;
     /// For each constraint, `Some(j)` when it is by construction the same
     /// function as constraint `j < i`: the paver copies label `j` to it, and
     /// cells asking opposite signs of the two are reported exactly empty.
@@ -200,12 +232,12 @@ pub trait ConstraintSet: Sync {
     /// Every constraint's coefficients over `theta` with their θ-derivatives,
     /// and at θ's two ends: what the checker's monotone test needs
     /// ([`methods::monotone_label`]). `None`: labels are natural only.
-    fn slab_ends(&self, _theta: Interval) -> Option<Vec<SlabEnds>> {
+    fn slab_ends(&self, _theta: Interval) -> Option<PerConstraint<SlabEnds>> {
         None
     }
     /// Every constraint's coefficients `[c₂, c₁, c₀]` at a point θ in plain
     /// f64: steering only (where to split), never a label.
-    fn steer_at(&self, _theta: f64) -> Option<Vec<[f64; 3]>> {
+    fn steer_at(&self, _theta: f64) -> Option<PerConstraint<[f64; 3]>> {
         None
     }
 }
@@ -260,9 +292,9 @@ impl ConstraintSet for SceneConstraints<'_> {
     fn slab(&self, theta: Interval) -> Self::Slab {
         crate::elementary::slab_constraints(self.scene, self.variant, theta)
     }
-    fn enclose(&self, c: &Self::Slab, theta_dot: Interval) -> Vec<DecInterval> {
+    fn enclose(&self, c: &Self::Slab, theta_dot: Interval) -> PerConstraint<DecInterval> {
         let w = DecInterval::new(theta_dot);
-        vec![c.omega.eval(w), c.omega0.eval(w)]
+        PerConstraint::new(&[c.omega.eval(w), c.omega0.eval(w)]).expect("two constraints")
     }
     fn same_as(&self) -> Vec<Option<usize>> {
         if self.scene.omega0_is_omega(self.variant) {
@@ -278,16 +310,16 @@ impl ConstraintSet for SceneConstraints<'_> {
             _ => None,
         }
     }
-    fn steer_at(&self, theta: f64) -> Option<Vec<[f64; 3]>> {
+    fn steer_at(&self, theta: f64) -> Option<PerConstraint<[f64; 3]>> {
         let c = self.scene.constraints(self.variant, &Angle::new(theta));
         let q = |q: Quadratic<f64>| [q.c2, q.c1, q.c0];
-        Some(vec![q(c.omega), q(c.omega0)])
+        PerConstraint::new(&[q(c.omega), q(c.omega0)])
     }
-    fn slab_ends(&self, theta: Interval) -> Option<Vec<SlabEnds>> {
+    fn slab_ends(&self, theta: Interval) -> Option<PerConstraint<SlabEnds>> {
         let d = crate::elementary::slab_dual_constraints(self.scene, self.variant, theta);
         let end = |x: f64| Interval::try_from((x, x)).ok().map(|p| self.slab(p));
         let (lo, hi) = (end(theta.inf())?, end(theta.sup())?);
-        Some(vec![
+        PerConstraint::new(&[
             SlabEnds::new(d.omega, [lo.omega, hi.omega]),
             SlabEnds::new(d.omega0, [lo.omega0, hi.omega0]),
         ])
