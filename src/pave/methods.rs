@@ -164,6 +164,9 @@ const CERTIFY_LEAVES: u32 = 64;
 /// The same with the monotone test at hand.
 const CERTIFY_LEAVES_MONOTONE: u32 = 8;
 
+/// A free end's guard piece is this fraction of the part (inverse).
+const GUARD: f64 = 32.0;
+
 /// Relative inward steps tried to place a contraction point so the removed
 /// part verifies.
 const SHRINK: [f64; 5] = [
@@ -627,13 +630,24 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                 }
             }
             if done.is_none() && ends.is_some() {
-                // Not monotone in θ̇ (a quadratic's vertex inside): split there.
+                // Not monotone in θ̇ (a quadratic's vertex inside): split
+                // there. And a thin guard piece next to each free end: over
+                // the whole part the natural ∂g/∂θ (θ̇ occurs twice) may
+                // lose the sign it has next to the boundary, which the
+                // guard keeps; the far part is then decided by its value.
                 let d = SHRINK[0] * (z - a);
                 let na = if lo_free { a + d } else { a };
                 let nz = if hi_free { z - d } else { z };
                 let mut cuts: Vec<f64> = Vec::new();
                 for q in &qs {
                     q.turning_cuts((nz - na) / 64.0, &mut cuts);
+                }
+                let guard = (nz - na) / GUARD;
+                if lo_free {
+                    cuts.push(na + guard);
+                }
+                if hi_free {
+                    cuts.push(nz - guard);
                 }
                 cuts.retain(|v| na < *v && *v < nz);
                 cuts.sort_by(f64::total_cmp);
