@@ -1102,12 +1102,19 @@ pub fn pave_with<S: ConstraintSet>(
         };
         // θ-slabs of boxes just split in θ, each computed once per level;
         // boxes split in θ̇ share their parent's slab.
-        let mut missing: Vec<(u64, u64)> = frontier
-            .iter()
-            .enumerate()
-            .filter(|(k, o)| o.slab.is_none() && !presplit.get(*k).copied().unwrap_or(false))
-            .map(|(_, o)| slab_key(&o.bx))
-            .collect();
+        let needs_slab = |k: usize| -> Option<(u64, u64)> {
+            let o = &frontier[k];
+            (o.slab.is_none() && !presplit.get(k).copied().unwrap_or(false))
+                .then(|| slab_key(&o.bx))
+        };
+        let mut missing: Vec<(u64, u64)> = if frontier.len() < PAR_MIN {
+            (0..frontier.len()).filter_map(needs_slab).collect()
+        } else {
+            (0..frontier.len())
+                .into_par_iter()
+                .filter_map(needs_slab)
+                .collect()
+        };
         if missing.len() < PAR_MIN {
             missing.sort_unstable();
         } else {
@@ -1147,10 +1154,15 @@ pub fn pave_with<S: ConstraintSet>(
                 let outcome = ctx.process(o, &labels, &mut work);
                 (labels, outcome, work)
             });
-        for (_, _, w) in &done {
-            stats.box_evaluations += w.evals;
-            stats.slab_evaluations += w.slabs;
-        }
+        let work = |(_, _, w): &(Labels, Outcome, Work)| [w.evals, w.slabs];
+        let add = |a: [u64; 2], b: [u64; 2]| [a[0] + b[0], a[1] + b[1]];
+        let [evals, slabs] = if done.len() < PAR_MIN {
+            done.iter().map(work).fold([0, 0], add)
+        } else {
+            done.par_iter().map(work).reduce(|| [0, 0], add)
+        };
+        stats.box_evaluations += evals;
+        stats.slab_evaluations += slabs;
 
         // Refinement decisions in frontier order (`slices`: largest
         // undecided area first), each adding leaves while the budget allows.
