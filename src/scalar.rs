@@ -193,6 +193,8 @@ impl<T: Scalar, const N: usize> Sub for DualN<T, N> {
     }
 }
 
+// The product and quotient rules mix operations, as they should.
+#[allow(clippy::suspicious_arithmetic_impl)]
 impl<T: Scalar, const N: usize> Mul for DualN<T, N> {
     type Output = Self;
     fn mul(self, r: Self) -> Self {
@@ -203,6 +205,7 @@ impl<T: Scalar, const N: usize> Mul for DualN<T, N> {
     }
 }
 
+#[allow(clippy::suspicious_arithmetic_impl)]
 impl<T: Scalar, const N: usize> Div for DualN<T, N> {
     type Output = Self;
     fn div(self, r: Self) -> Self {
