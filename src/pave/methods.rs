@@ -538,6 +538,36 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         coef >= dep
     }
 
+    /// The θ̇-range `[lo, hi]` of `b` cut at `cuts` (sorted, inside), every
+    /// piece labelled and decided for the relevant constraints; `None` if
+    /// one is not.
+    #[allow(clippy::too_many_arguments)]
+    fn verified_pieces(
+        &self,
+        slab: &S::Slab,
+        ends: Option<&[SlabEnds]>,
+        b: &PhaseBox,
+        lo: f64,
+        hi: f64,
+        cuts: &[f64],
+        work: &mut Work,
+    ) -> Option<Vec<Local>> {
+        let mut t = Vec::with_capacity(2 * cuts.len() + 1);
+        let mut from = lo;
+        for to in cuts.iter().copied().chain(std::iter::once(hi)) {
+            let labels = self.label(slab, ends, &with_w(b, from, to), work);
+            if self.decided_mask(&labels) & self.relevant != self.relevant {
+                return None;
+            }
+            if to < hi {
+                t.push(Local::At(1, to));
+            }
+            t.push(Local::Leaf(labels));
+            from = to;
+        }
+        Some(t)
+    }
+
     /// Contraction of a box on a new θ-slab: the θ̇-partition into parts
     /// decided for every relevant constraint (verified leaves) and the rest
     /// (open, or undecided leaves at the resolution). `None` when it
@@ -631,10 +661,11 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             }
             if done.is_none() && ends.is_some() {
                 // Not monotone in θ̇ (a quadratic's vertex inside): split
-                // there. And a thin guard piece next to each free end: over
-                // the whole part the natural ∂g/∂θ (θ̇ occurs twice) may
-                // lose the sign it has next to the boundary, which the
-                // guard keeps; the far part is then decided by its value.
+                // there. Failing that, also a thin guard piece next to each
+                // free end: over the whole part the natural ∂g/∂θ (θ̇ occurs
+                // twice) may lose the sign it has next to the boundary,
+                // which the guard keeps; the far part is then decided by its
+                // value. (Guards only when needed: each is one more leaf.)
                 let d = SHRINK[0] * (z - a);
                 let na = if lo_free { a + d } else { a };
                 let nz = if hi_free { z - d } else { z };
@@ -643,32 +674,19 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                     q.turning_cuts((nz - na) / 64.0, &mut cuts);
                 }
                 let guard = (nz - na) / GUARD;
-                if lo_free {
-                    cuts.push(na + guard);
-                }
-                if hi_free {
-                    cuts.push(nz - guard);
-                }
-                cuts.retain(|v| na < *v && *v < nz);
-                cuts.sort_by(f64::total_cmp);
-                cuts.dedup();
-                if !cuts.is_empty() {
-                    let mut t = Vec::with_capacity(2 * cuts.len() + 1);
-                    let mut lo = na;
-                    for hi in cuts.iter().copied().chain(std::iter::once(nz)) {
-                        let labels = self.label(slab, ends, &with_w(b, lo, hi), work);
-                        if self.decided_mask(&labels) & self.relevant != self.relevant {
-                            t.clear();
-                            break;
-                        }
-                        if hi < nz {
-                            t.push(Local::At(1, hi));
-                        }
-                        t.push(Local::Leaf(labels));
-                        lo = hi;
+                let guards = [(lo_free, na + guard), (hi_free, nz - guard)];
+                let mut with_guards = cuts.clone();
+                with_guards.extend(guards.iter().filter(|g| g.0).map(|g| g.1));
+                for mut cuts in [cuts, with_guards] {
+                    cuts.retain(|v| na < *v && *v < nz);
+                    cuts.sort_by(f64::total_cmp);
+                    cuts.dedup();
+                    if cuts.is_empty() {
+                        continue;
                     }
-                    if !t.is_empty() {
+                    if let Some(t) = self.verified_pieces(slab, ends, b, na, nz, &cuts, work) {
                         done = Some((na, nz, t));
+                        break;
                     }
                 }
             }
