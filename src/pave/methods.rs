@@ -24,7 +24,7 @@
 
 use super::{
     CellSpec, ConstraintSet, Label, Leaf, Node, PaveError, PaveOptions, PaveStats, Paving,
-    PhaseBox, SlabEnds, StopReason, MAX_CONSTRAINTS,
+    PerConstraint, PhaseBox, SlabEnds, StopReason, MAX_CONSTRAINTS,
 };
 use crate::scalar::{is_defined, Dual};
 use crate::scene::Quadratic;
@@ -133,6 +133,10 @@ enum Local {
     /// Stays open: refined at the next level.
     Open,
 }
+
+/// One box processed: its labels, outcome, work, and the slab it computed
+/// for itself (which its θ̇-children share).
+type Done<Sl> = (Labels, Outcome, Work, Option<Arc<Sl>>);
 
 /// What processing one open box decided.
 enum Outcome {
@@ -377,11 +381,15 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         })
     }
 
-    fn process(&self, o: &Open<S::Slab>, labels: &Labels, work: &mut Work) -> Outcome {
-        let slab = o
-            .slab
-            .as_ref()
-            .expect("slabs are assigned before processing");
+    /// `ends`: the slab's end data when computed with the slab.
+    fn process(
+        &self,
+        o: &Open<S::Slab>,
+        slab: &Arc<S::Slab>,
+        ends: Option<PerConstraint<SlabEnds>>,
+        labels: &Labels,
+        work: &mut Work,
+    ) -> Outcome {
         if !self.undecided(labels) {
             return Outcome::Leaf;
         }
@@ -395,7 +403,11 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             Method::Contract | Method::Slices => {
                 // (`slices` splits a slab still too coarse before this.)
                 if o.fresh {
-                    if let Some(t) = self.contract(slab, &o.bx, work) {
+                    let ends = ends.or_else(|| {
+                        work.slabs += 3;
+                        self.set.slab_ends(o.bx.theta_interval())
+                    });
+                    if let Some(t) = self.contract(slab, &o.bx, ends, work) {
                         return Outcome::Tree(t);
                     }
                 }
@@ -572,11 +584,15 @@ impl<S: ConstraintSet> Ctx<'_, S> {
     /// decided for every relevant constraint (verified leaves) and the rest
     /// (open, or undecided leaves at the resolution). `None` when it
     /// removes nothing.
-    fn contract(&self, slab: &Arc<S::Slab>, b: &PhaseBox, work: &mut Work) -> Option<Vec<Local>> {
-        // The slab's ends and θ-derivatives: tight bands (the roots at the
-        // two ends) and labels by the checker's monotone test.
-        work.slabs += 3;
-        let ends = self.set.slab_ends(b.theta_interval());
+    /// `ends`: the slab's ends and θ-derivatives, for tight bands (the
+    /// roots at the two ends) and labels by the checker's monotone test.
+    fn contract(
+        &self,
+        slab: &Arc<S::Slab>,
+        b: &PhaseBox,
+        ends: Option<PerConstraint<SlabEnds>>,
+        work: &mut Work,
+    ) -> Option<Vec<Local>> {
         let ends = ends.as_deref();
         let mut qs = Vec::new();
         for i in self.relevant_own() {
@@ -1120,9 +1136,11 @@ pub fn pave_with<S: ConstraintSet>(
         };
         // θ-slabs of boxes just split in θ, each computed once per level;
         // boxes split in θ̇ share their parent's slab.
+        let own_slabs = mo.method == Method::Slices;
         let needs_slab = |k: usize| -> Option<(u64, u64)> {
             let o = &frontier[k];
-            (o.slab.is_none() && !presplit.get(k).copied().unwrap_or(false))
+            // `slices` computes each fresh slab with its end data, below.
+            (o.slab.is_none() && !presplit.get(k).copied().unwrap_or(false) && !own_slabs)
                 .then(|| slab_key(&o.bx))
         };
         let mut missing: Vec<(u64, u64)> = if frontier.len() < PAR_MIN {
@@ -1156,23 +1174,32 @@ pub fn pave_with<S: ConstraintSet>(
         });
         drop(fresh);
 
-        let done: Vec<(Labels, Outcome, Work)> =
-            par_map_range(frontier.len(), PAR_MIN_HEAVY, |k| {
-                let o = &frontier[k];
-                let mut work = Work::default();
+        let done: Vec<Done<S::Slab>> = par_map_range(frontier.len(), PAR_MIN_HEAVY, |k| {
+            let o = &frontier[k];
+            let mut work = Work::default();
+            if presplit.get(k).copied().unwrap_or(false) {
                 // A pre-split box has a slab only if another box shares its
                 // θ-interval; without one it is undecided as far as computed.
                 let labels = match o.slab.as_ref() {
                     Some(slab) => ctx.natural(slab, &o.bx, &mut work),
                     None => [Label::Undecided; MAX_CONSTRAINTS],
                 };
-                if presplit.get(k).copied().unwrap_or(false) {
-                    return (labels, Outcome::Split(0), work);
+                return (labels, Outcome::Split(0), work, None);
+            }
+            let (slab, ends, own) = match o.slab.as_ref() {
+                Some(slab) => (slab.clone(), None, None),
+                None => {
+                    work.slabs += 3;
+                    let (slab, ends) = set.slab_and_ends(o.bx.theta_interval());
+                    let slab = Arc::new(slab);
+                    (slab.clone(), ends, Some(slab))
                 }
-                let outcome = ctx.process(o, &labels, &mut work);
-                (labels, outcome, work)
-            });
-        let work = |(_, _, w): &(Labels, Outcome, Work)| [w.evals, w.slabs];
+            };
+            let labels = ctx.natural(&slab, &o.bx, &mut work);
+            let outcome = ctx.process(o, &slab, ends, &labels, &mut work);
+            (labels, outcome, work, own)
+        });
+        let work = |(_, _, w, _): &Done<S::Slab>| [w.evals, w.slabs];
         let add = |a: [u64; 2], b: [u64; 2]| [a[0] + b[0], a[1] + b[1]];
         let [evals, slabs] = if done.len() < PAR_MIN {
             done.iter().map(work).fold([0, 0], add)
@@ -1185,7 +1212,7 @@ pub fn pave_with<S: ConstraintSet>(
         // Refinement decisions in frontier order (`slices`: largest
         // undecided area first), each adding leaves while the budget allows.
         // Only integer bookkeeping here; the tree is written in parallel.
-        let counts: Vec<Plan> = par_map(&done, PAR_MIN, |(_, outcome, _)| Plan::of(outcome));
+        let counts: Vec<Plan> = par_map(&done, PAR_MIN, |(_, outcome, _, _)| Plan::of(outcome));
         let (mut want_leaves, mut want_nodes) = (0usize, 0usize);
         for c in counts.iter().filter(|c| c.refine) {
             want_leaves += c.extra();
@@ -1197,7 +1224,7 @@ pub fn pave_with<S: ConstraintSet>(
             // Every refinement fits, so the order does not matter: each box
             // is decided on its own, in parallel, as the loop below would.
             let per_box = |k: usize| -> (Plan, bool, bool) {
-                let (labels, outcome, _) = &done[k];
+                let (labels, outcome, _, _) = &done[k];
                 if counts[k].refine {
                     let undecided = matches!(outcome, Outcome::Tree(t)
                         if t.iter().any(|l| matches!(l, Local::Leaf(x) if ctx.undecided(x))));
@@ -1225,7 +1252,7 @@ pub fn pave_with<S: ConstraintSet>(
             let mut leaves_if_stopped = leaves.len() + frontier.len();
             let mut nodes_planned = 0usize;
             for &k in &order {
-                let (labels, outcome, _) = &done[k];
+                let (labels, outcome, _, _) = &done[k];
                 let count = counts[k];
                 let extra = count.extra();
                 let fits = leaves_if_stopped + extra <= opts.max_boxes
@@ -1274,8 +1301,9 @@ pub fn pave_with<S: ConstraintSet>(
                 Shared::new(leaves.spare_capacity_mut()),
                 Shared::new(next.spare_capacity_mut()),
             );
-            par_each_owned(done, |k, (labels, outcome, _)| {
+            par_each_owned(done, |k, (labels, outcome, _, own)| {
                 let o = &frontier[k];
+                let slab = own.or_else(|| o.slab.clone());
                 let off = offsets[k];
                 let p = plan[k];
                 let mut f = Filler {
@@ -1290,9 +1318,9 @@ pub fn pave_with<S: ConstraintSet>(
                     match outcome {
                         Outcome::Split(ax) => {
                             let t = [Local::Mid(ax), Local::Open, Local::Open];
-                            f.expand(&t, &mut 0, o.node, o.bx, o.slab.clone())
+                            f.expand(&t, &mut 0, o.node, o.bx, slab)
                         }
-                        Outcome::Tree(t) => f.expand(&t, &mut 0, o.node, o.bx, o.slab.clone()),
+                        Outcome::Tree(t) => f.expand(&t, &mut 0, o.node, o.bx, slab),
                         Outcome::Leaf => unreachable!("a leaf is not refined"),
                     }
                 } else {

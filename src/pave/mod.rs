@@ -235,6 +235,11 @@ pub trait ConstraintSet: Sync {
     fn slab_ends(&self, _theta: Interval) -> Option<PerConstraint<SlabEnds>> {
         None
     }
+    /// [`ConstraintSet::slab`] and [`ConstraintSet::slab_ends`] together, for
+    /// a set that can share their work.
+    fn slab_and_ends(&self, theta: Interval) -> (Self::Slab, Option<PerConstraint<SlabEnds>>) {
+        (self.slab(theta), self.slab_ends(theta))
+    }
     /// Every constraint's coefficients `[c₂, c₁, c₀]` at a point θ in plain
     /// f64: steering only (where to split), never a label.
     fn steer_at(&self, _theta: f64) -> Option<PerConstraint<[f64; 3]>> {
@@ -316,13 +321,21 @@ impl ConstraintSet for SceneConstraints<'_> {
         PerConstraint::new(&[q(c.omega), q(c.omega0)])
     }
     fn slab_ends(&self, theta: Interval) -> Option<PerConstraint<SlabEnds>> {
+        self.slab_and_ends(theta).1
+    }
+    /// The dual slab's values are the slab itself (the same operations on
+    /// the same enclosures), so the natural slab comes free.
+    fn slab_and_ends(&self, theta: Interval) -> (Self::Slab, Option<PerConstraint<SlabEnds>>) {
         let d = crate::elementary::slab_dual_constraints(self.scene, self.variant, theta);
+        let slab = d.map(|x| x.value);
         let end = |x: f64| Interval::try_from((x, x)).ok().map(|p| self.slab(p));
-        let (lo, hi) = (end(theta.inf())?, end(theta.sup())?);
-        PerConstraint::new(&[
-            SlabEnds::new(d.omega, [lo.omega, hi.omega]),
-            SlabEnds::new(d.omega0, [lo.omega0, hi.omega0]),
-        ])
+        let ends = end(theta.inf()).zip(end(theta.sup())).and_then(|(lo, hi)| {
+            PerConstraint::new(&[
+                SlabEnds::new(d.omega, [lo.omega, hi.omega]),
+                SlabEnds::new(d.omega0, [lo.omega0, hi.omega0]),
+            ])
+        });
+        (slab, ends)
     }
     fn centred_coefficients(&self, theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {
         use crate::scalar::DualTheta;
