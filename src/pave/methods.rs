@@ -1124,24 +1124,14 @@ pub fn pave_with<S: ConstraintSet>(
 
     while !frontier.is_empty() {
         progress(level, frontier.len(), leaves.len());
-        // `slices`: a fresh slab its f64 roots call too coarse is split in θ
-        // without interval work (its labels would be discarded). Fresh boxes
-        // are exactly those without a slab.
-        let presplit: Vec<bool> = if mo.method == Method::Slices {
-            par_map(&frontier, PAR_MIN_HEAVY, |o| {
-                o.fresh && ctx.slab_too_coarse(&o.bx)
-            })
-        } else {
-            Vec::new()
-        };
-        // θ-slabs of boxes just split in θ, each computed once per level;
-        // boxes split in θ̇ share their parent's slab.
+        // θ-slabs of boxes just split in θ (fresh boxes are exactly those
+        // without a slab), each computed once per level; boxes split in θ̇
+        // share their parent's slab. `slices` computes each fresh slab
+        // itself, with its end data, when processing it.
         let own_slabs = mo.method == Method::Slices;
         let needs_slab = |k: usize| -> Option<(u64, u64)> {
             let o = &frontier[k];
-            // `slices` computes each fresh slab with its end data, below.
-            (o.slab.is_none() && !presplit.get(k).copied().unwrap_or(false) && !own_slabs)
-                .then(|| slab_key(&o.bx))
+            (o.slab.is_none() && !own_slabs).then(|| slab_key(&o.bx))
         };
         let mut missing: Vec<(u64, u64)> = if frontier.len() < PAR_MIN {
             (0..frontier.len()).filter_map(needs_slab).collect()
@@ -1177,14 +1167,15 @@ pub fn pave_with<S: ConstraintSet>(
         let done: Vec<Done<S::Slab>> = par_map_range(frontier.len(), PAR_MIN_HEAVY, |k| {
             let o = &frontier[k];
             let mut work = Work::default();
-            if presplit.get(k).copied().unwrap_or(false) {
-                // A pre-split box has a slab only if another box shares its
-                // θ-interval; without one it is undecided as far as computed.
-                let labels = match o.slab.as_ref() {
-                    Some(slab) => ctx.natural(slab, &o.bx, &mut work),
-                    None => [Label::Undecided; MAX_CONSTRAINTS],
-                };
-                return (labels, Outcome::Split(0), work, None);
+            // `slices`: a fresh slab its f64 roots call too coarse is split
+            // in θ without interval work (undecided as far as computed).
+            if own_slabs && o.fresh && ctx.slab_too_coarse(&o.bx) {
+                return (
+                    [Label::Undecided; MAX_CONSTRAINTS],
+                    Outcome::Split(0),
+                    work,
+                    None,
+                );
             }
             let (slab, ends, own) = match o.slab.as_ref() {
                 Some(slab) => (slab.clone(), None, None),
