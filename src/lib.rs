@@ -32,7 +32,8 @@
 //!
 //! A crate depending on detach must compile for a CPU with AVX2/FMA, as
 //! inari requires: copy this repository's `.cargo/config.toml`
-//! (`-Ctarget-cpu=haswell` on x86-64) into the dependent project.
+//! (`-Ctarget-cpu=native -Ctarget-feature=-avx512vl` on x86-64, or
+//! `-Ctarget-cpu=haswell` for a portable binary) into the dependent project.
 
 pub mod area;
 pub mod atlas;
