@@ -693,10 +693,21 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                 let guards = [(lo_free, na + guard), (hi_free, nz - guard)];
                 let mut with_guards = cuts.clone();
                 with_guards.extend(guards.iter().filter(|g| g.0).map(|g| g.1));
-                for mut cuts in [cuts, with_guards] {
-                    cuts.retain(|v| na < *v && *v < nz);
-                    cuts.sort_by(f64::total_cmp);
-                    cuts.dedup();
+                let inside = |mut c: Vec<f64>| {
+                    c.retain(|v| na < *v && *v < nz);
+                    c.sort_by(f64::total_cmp);
+                    c.dedup();
+                    c
+                };
+                let (plain, guarded) = (inside(cuts), inside(with_guards));
+                // Without a guard that adds a cut, the second try would
+                // repeat the first.
+                let tries = if guarded == plain {
+                    vec![plain]
+                } else {
+                    vec![plain, guarded]
+                };
+                for cuts in tries {
                     if cuts.is_empty() {
                         continue;
                     }
