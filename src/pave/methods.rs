@@ -1639,7 +1639,10 @@ fn write_preorder(
 /// the pool costs more (tens of µs per call) than the work.
 const PAR_MIN: usize = 1024;
 /// The same for work of a microsecond or more per item (slabs, processing).
-const PAR_MIN_HEAVY: usize = 64;
+/// The pool's first use in a process also starts its threads (about 0.2 ms
+/// here): from 512 items a level has enough work to pay for it. (At 64, a
+/// coarse paving's whole process was up to a quarter slower than serial.)
+const PAR_MIN_HEAVY: usize = 512;
 
 fn par_map<T: Sync, U: Send>(xs: &[T], min: usize, f: impl Fn(&T) -> U + Sync + Send) -> Vec<U> {
     par_map_range(xs.len(), min, |k| f(&xs[k]))
