@@ -398,7 +398,7 @@ impl Job<'_> {
                 let mom = moments(t0, t1, m);
                 // (θ − m)^n ≥ 0 for the remainder's mean value.
                 let n = N - 1;
-                const { assert!((N - 1) % 2 == 0) };
+                const { assert!((N - 1).is_multiple_of(2)) };
                 let mut s = over.c[n] * mom[n];
                 for (c, mk) in at_m.c.iter().zip(&mom).take(n) {
                     s += *c * *mk;

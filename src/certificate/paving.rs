@@ -41,7 +41,7 @@ pub(crate) struct BitWriter {
 impl BitWriter {
     pub(crate) fn push(&mut self, value: u64, bits: u32) {
         for i in (0..bits).rev() {
-            if self.used % 8 == 0 {
+            if self.used.is_multiple_of(8) {
                 self.bytes.push(0);
             }
             let bit = ((value >> i) & 1) as u8;

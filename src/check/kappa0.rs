@@ -86,16 +86,16 @@ fn verify(
     // Step 2: p'(0) > 0, p'(b) < 0, p'([b, +∞]) < 0.
     let at = |x: Interval| dp.eval(x).0;
     let d0 = at(point(0.0));
-    if !defined(d0) || d0.interval().map_or(true, |i| i.inf() <= 0.0) {
+    if !defined(d0) || d0.interval().is_none_or(|i| i.inf() <= 0.0) {
         return Err(format!("p'(0) is not > 0: computed {}", show(d0)));
     }
     let db = at(point(b));
-    if !defined(db) || db.interval().map_or(true, |i| i.sup() >= 0.0) {
+    if !defined(db) || db.interval().is_none_or(|i| i.sup() >= 0.0) {
         return Err(format!("p'(b) is not < 0: computed {}", show(db)));
     }
     let tail = Interval::try_from((b, f64::INFINITY)).unwrap_or(Interval::EMPTY);
     let dt = at(tail);
-    if !continuous(dt) || dt.interval().map_or(true, |i| i.sup() >= 0.0) {
+    if !continuous(dt) || dt.interval().is_none_or(|i| i.sup() >= 0.0) {
         return Err(format!(
             "p' on [b, +inf] is not continuous and < 0: computed {}",
             show(dt)
@@ -109,7 +109,7 @@ fn verify(
         ("p([b, +inf])", tail),
     ] {
         let v = p.value(x);
-        if !defined(v) || v.interval().map_or(true, |i| i.sup() > 0.0) {
+        if !defined(v) || v.interval().is_none_or(|i| i.sup() > 0.0) {
             return Err(format!("{what} is not <= 0: computed {}", show(v)));
         }
     }

@@ -150,7 +150,7 @@ pub fn check_piece<F: Function>(
             if !defined(fx) {
                 return Err(format!("{at}: f is not defined, computed {}", show(fx)));
             }
-            if fx.interval().map_or(true, |i| i.contains(0.0)) {
+            if fx.interval().is_none_or(|i| i.contains(0.0)) {
                 return Err(format!("{at}: f contains 0, computed {}", show(fx)));
             }
             Ok(None)
