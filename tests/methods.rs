@@ -275,6 +275,15 @@ fn results_do_not_depend_on_the_thread_count() {
             };
             let (one, a1) = run(1);
             let (two, a2) = run(2);
+            if m == Method::Natural {
+                // Every node of a natural paving was an open box of some
+                // level: more than 512 per level on average means at least
+                // one level large enough for the pool (512 boxes).
+                assert!(
+                    one.nodes.len() > 512 * (one.stats.depth as usize + 1),
+                    "{id}: no level reaches the pool"
+                );
+            }
             assert_eq!(one.nodes, two.nodes, "{id} {m}");
             assert_eq!(one.leaves, two.leaves, "{id} {m}");
             assert_eq!(one.stop, two.stop);
