@@ -278,7 +278,8 @@ fn results_do_not_depend_on_the_thread_count() {
             if m == Method::Natural {
                 // Every node of a natural paving was an open box of some
                 // level: more than 512 per level on average means at least
-                // one level large enough for the pool (512 boxes).
+                // one level large enough for the pool (`PAR_MIN_HEAVY` in
+                // src/pave/methods.rs; raise this with it).
                 assert!(
                     one.nodes.len() > 512 * (one.stats.depth as usize + 1),
                     "{id}: no level reaches the pool"
