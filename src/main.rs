@@ -76,7 +76,6 @@ enum PaveCommand {
 }
 
 /// The command line, with only `pave`'s arguments built when it is `pave`.
-#[cfg_attr(test, allow(dead_code))]
 fn parse() -> Command {
     if std::env::args_os().nth(1).is_some_and(|a| a == "pave") {
         let PaveCommand::Pave(a) = PaveCli::parse().command;
@@ -90,7 +89,6 @@ fn parse() -> Command {
     })
 }
 
-#[cfg_attr(test, allow(dead_code))]
 fn run(command: Command) -> CliResult {
     match command {
         Command::Atlas(a) => cli::atlas::run_atlas(&a),
@@ -112,6 +110,13 @@ fn run(command: Command) -> CliResult {
 #[cfg(not(test))]
 #[no_mangle]
 pub extern "C" fn main(_argc: libc::c_int, _argv: *const *const libc::c_char) -> libc::c_int {
+    cli_main()
+}
+
+/// Runs the command line; the exit code. (Dead in test builds, whose
+/// harness has its own `main`.)
+#[cfg_attr(test, allow(dead_code))]
+fn cli_main() -> libc::c_int {
     // SAFETY: sets a signal disposition at start-up, before any thread exists.
     unsafe { libc::signal(libc::SIGPIPE, libc::SIG_IGN) };
     let code = match run(parse()).and_then(|()| cli::stdout_status()) {
