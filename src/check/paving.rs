@@ -367,6 +367,39 @@ fn monotone_bound(
     prog.value(&[DecInterval::new(t1), DecInterval::new(w1)], root)
 }
 
+/// The convex test (FORMAT.md, step 3): evaluate the expression on `t × w`
+/// in nested forward-mode duals seeded in `w` (its second derivative in `w`).
+/// If the value and both derivatives are continuous (`≥ dac`) and the second
+/// derivative has `inf ≥ 0` (for `in`; `sup ≤ 0` for `out`), the expression is
+/// convex (concave) in `w` for every `t`, so its largest (smallest) value on
+/// the box lies on `t × {w0}` or `t × {w1}`; the label holds if it holds on
+/// both segments, each by its natural value or the monotone test.
+fn convex_holds(prog: &Program, root: u32, t: Interval, w: Interval, want_in: bool) -> bool {
+    let td = DecInterval::new(t);
+    let vars = [
+        Num::constant(td),
+        Dual::variable(Dual::variable(DecInterval::new(w))),
+    ];
+    let g: Dual<Dual<DecInterval>> = prog.value(&vars, root);
+    if ![g.v.v, g.v.d, g.d.v, g.d.d].into_iter().all(continuous) {
+        return false;
+    }
+    let Some(d2) = g.d.d.interval() else {
+        return false;
+    };
+    let shape = if want_in {
+        d2.inf() >= 0.0
+    } else {
+        d2.sup() <= 0.0
+    };
+    shape
+        && [w.inf(), w.sup()].into_iter().all(|e| {
+            let we = iv(e, e);
+            holds(prog.value(&[td, DecInterval::new(we)], root), want_in)
+                || holds(monotone_bound(prog, root, t, we, want_in), want_in)
+        })
+}
+
 /// A leaf box `[t0, t1] × [w0, w1]`.
 #[derive(Clone, Copy)]
 struct Cell([f64; 4]);
@@ -440,7 +473,8 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
                         || holds(
                             monotone_bound(&st.prog, st.roots[c], t, w, l == IN),
                             l == IN,
-                        );
+                        )
+                        || convex_holds(&st.prog, st.roots[c], t, w, l == IN);
                     if !ok {
                         return Err(format!(
                             "leaf {leaves} [{:e}, {:e}] x [{:e}, {:e}], constraint {}: \
@@ -590,5 +624,39 @@ mod tests {
         let (prog, root) = compiled("sqrt(t - 2) - w - 1");
         let m = monotone_bound(&prog, root, iv(2.0, 3.0), iv(0.0, 1.0), true);
         assert!(!defined(m));
+    }
+
+    // g = w² + w − 1 − t on [0, 0.01] × [−1.2, 0.6]: convex in w, so by hand
+    // g ≤ max(g(0, −1.2), g(0, 0.6)) = max(−0.76, −0.04) < 0; natural gives
+    // w·w ⊂ [−0.72, 1.44] and fails, and neither ∂g/∂w = 2w + 1 nor fixing
+    // t at 0 helps the monotone test.
+    #[test]
+    fn the_convex_test_proves_what_monotone_cannot() {
+        let (prog, root) = compiled("w*w + w - 1 - t");
+        let (t, w) = (iv(0.0, 0.01), iv(-1.2, 0.6));
+        assert!(!holds(natural(&prog, root, t, w), true));
+        assert!(!holds(monotone_bound(&prog, root, t, w, true), true));
+        assert!(convex_holds(&prog, root, t, w, true));
+        // Concave: 2 − w² − w ≥ min(1.76, 1.04) > 0 on the same box.
+        let (prog, root) = compiled("2 - w*w - w + t");
+        assert!(!holds(natural(&prog, root, t, w), false));
+        assert!(convex_holds(&prog, root, t, w, false));
+    }
+
+    // Each would be accepted by the ends alone: g(t, 0.7) = 0.19 − t > 0; a
+    // concave 0.5 − w² is −0.5 at w = ±1 but 0.5 at 0; a convex w² − 0.5 is
+    // 0.5 at the ends but −0.5 at 0; 0.5 − 2|w| is −1.5 at the ends but 0.5
+    // at its kink, where |w| has no second derivative (it would read 0).
+    #[test]
+    fn the_convex_test_refuses_false_labels() {
+        let t = iv(0.0, 0.01);
+        let (prog, root) = compiled("w*w + w - 1 - t");
+        assert!(!convex_holds(&prog, root, t, iv(-1.2, 0.7), true));
+        let (prog, root) = compiled("0.5 - w*w + 0*t");
+        assert!(!convex_holds(&prog, root, t, iv(-1.0, 1.0), true));
+        let (prog, root) = compiled("w*w - 0.5 + 0*t");
+        assert!(!convex_holds(&prog, root, t, iv(-1.0, 1.0), false));
+        let (prog, root) = compiled("0.5 - 2*abs(w) + 0*t");
+        assert!(!convex_holds(&prog, root, t, iv(-1.0, 1.0), true));
     }
 }

@@ -5,7 +5,9 @@
 //! the proof checker recomputes on that leaf: by the natural interval
 //! extension or, for `contract` and `slices`, by the monotone test
 //! ([`monotone_label`]: where a partial derivative keeps its sign on the
-//! leaf, the extreme values are at that variable's ends). Other enclosures
+//! leaf, the extreme values are at that variable's ends) or the convex test
+//! ([`convex_label`]: where ∂²g/∂θ̇² keeps its sign, the largest (smallest)
+//! value is on one of the two θ̇-edges). Other enclosures
 //! (centred forms, the f64 roots) only *steer*: they say where to split, or
 //! that a box is worth certifying by a few extra splits, never a label.
 //!
@@ -330,6 +332,9 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         for i in self.relevant_own() {
             if let Some(e) = ends.get(i) {
                 labels[i] = monotone_label(e, b);
+                if !labels[i].is_decided() {
+                    labels[i] = convex_label(e, b);
+                }
             }
         }
         self.copy_aliases(&mut labels);
@@ -656,8 +661,15 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             let first = if lo_free || hi_free { 1 } else { 0 };
             // With the monotone test a part fails for its shape (a turning
             // point inside), which shrinking does not mend: two steps only.
+            let t = segs[j].tentative;
             let steps = match ends {
-                Some(_) if qs.iter().any(|q| q.turns_inside(a, z)) => 0,
+                Some(_)
+                    if qs.iter().enumerate().any(|(k, q)| {
+                        q.turns_inside(a, z) && !q.convex_for(t[k] == Some(true))
+                    }) =>
+                {
+                    0
+                }
                 Some(_) => 2,
                 None => SHRINK.len() + 1,
             };
@@ -907,6 +919,41 @@ pub fn monotone_label(e: &SlabEnds, b: &PhaseBox) -> Label {
     Label::Undecided
 }
 
+/// The proof checker's convex test (`proofs/FORMAT.md`, paving step 3) on
+/// `b` for one quadratic constraint: where ∂²g/∂θ̇² = 2c₂ ≥ 0 on the box, g
+/// is convex in θ̇ for every θ, so its largest value lies on one of θ̇'s two
+/// ends (for `≤ 0`, its smallest): the label `in` (`out`) is decided by
+/// both ends, each by its value or the monotone test on that end's segment.
+/// A part of a slab around the quadratic's vertex is thus one leaf.
+pub fn convex_label(e: &SlabEnds, b: &PhaseBox) -> Label {
+    if !e.smooth {
+        return Label::Undecided;
+    }
+    let c2 = e.value.c2;
+    let want = if c2.inf() >= 0.0 {
+        Label::ProvedIn
+    } else if c2.sup() <= 0.0 {
+        Label::ProvedOut
+    } else {
+        return Label::Undecided;
+    };
+    let holds_at = |w: f64| {
+        let seg = with_w(b, w, w);
+        let v = e.value.eval(point(w));
+        let by_value = !v.is_empty()
+            && match want {
+                Label::ProvedIn => v.sup() < 0.0,
+                _ => v.inf() > 0.0,
+            };
+        by_value || monotone_label(e, &seg) == want
+    };
+    if holds_at(b.theta_dot[0]) && holds_at(b.theta_dot[1]) {
+        want
+    } else {
+        Label::Undecided
+    }
+}
+
 /// Steering data of one quadratic: f64 bounds of the coefficients. Over the
 /// coefficient box, `sup q(w) = c₂⁺w² + c₁^± w + c₀⁺` (the sign of w picks
 /// the end of c₁), likewise `inf q`; their sign sets are the tentative
@@ -990,6 +1037,15 @@ impl Steer {
         }
         if let Some([c2, c1, c0]) = self.d_theta {
             out.extend(roots(c2, c1, c0).flat_map(|r| [r - pad, r + pad]));
+        }
+    }
+    /// The convex test can decide a part with this tentative label: c₂ ≥ 0
+    /// (in) or ≤ 0 (out) on the slab.
+    fn convex_for(&self, want_in: bool) -> bool {
+        if want_in {
+            self.c2[0] >= 0.0
+        } else {
+            self.c2[1] <= 0.0
         }
     }
     fn sup_q(&self, w: f64) -> f64 {
