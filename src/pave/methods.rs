@@ -599,7 +599,9 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         work: &mut Work,
     ) -> Option<Vec<Local>> {
         let ends = ends.as_deref();
-        let mut qs = Vec::new();
+        // Sized up front: growing these by pushes was a few % of a coarse
+        // paving's whole process (reallocations of `Seg`s).
+        let mut qs = Vec::with_capacity(MAX_CONSTRAINTS);
         for i in self.relevant_own() {
             let q = self.set.quadratic(slab, i)?;
             qs.push(match ends.and_then(|e| e.get(i)) {
@@ -608,7 +610,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             });
         }
         let [w0, w1] = b.theta_dot;
-        let mut pts: Vec<f64> = Vec::new();
+        let mut pts: Vec<f64> = Vec::with_capacity(8 * MAX_CONSTRAINTS);
         for s in &qs {
             s.breakpoints(&mut pts);
         }
@@ -617,7 +619,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         pts.sort_by(f64::total_cmp);
         pts.dedup();
         // Segments with a tentative label per relevant constraint.
-        let mut segs: Vec<Seg> = Vec::new();
+        let mut segs: Vec<Seg> = Vec::with_capacity(pts.len() + 1);
         let mut lo = w0;
         for &hi in pts.iter().chain(std::iter::once(&w1)) {
             let m = 0.5 * lo + 0.5 * hi;
