@@ -614,19 +614,23 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         work: &mut Work,
     ) -> Option<Vec<Local>> {
         let ends = ends.as_deref();
-        // Sized up front: growing these by pushes was a few % of a coarse
-        // paving's whole process (reallocations of `Seg`s).
-        let mut qs = Vec::with_capacity(MAX_CONSTRAINTS);
+        // Sized up front or on the stack: growing these by pushes, and a
+        // heap allocation for each, were several % of a coarse paving's
+        // whole process.
+        let mut steers = [Steer::NONE; MAX_CONSTRAINTS];
+        let mut k = 0;
         for i in self.relevant_own() {
             let q = self.set.quadratic(slab, i)?;
-            qs.push(match ends.and_then(|e| e.get(i)) {
+            steers[k] = match ends.and_then(|e| e.get(i)) {
                 Some(e) => Steer::from_ends(e)?,
                 None => Steer::new(&q)?,
-            });
+            };
+            k += 1;
         }
+        let qs = &steers[..k];
         let [w0, w1] = b.theta_dot;
         let mut pts: Vec<f64> = Vec::with_capacity(8 * MAX_CONSTRAINTS);
-        for s in &qs {
+        for s in qs {
             s.breakpoints(&mut pts);
         }
         pts.push(0.0);
@@ -700,7 +704,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                 let bx = with_w(b, na, nz);
                 let labels = self.label(slab, ends, &bx, work);
                 if self.decided_mask(&labels) & self.relevant == self.relevant {
-                    done = Some((na, nz, vec![Local::Leaf(labels)]));
+                    done = Some((na, nz, Part::Leaf(labels)));
                     break;
                 }
             }
@@ -715,7 +719,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                 let na = if lo_free { a + d } else { a };
                 let nz = if hi_free { z - d } else { z };
                 let mut cuts: Vec<f64> = Vec::new();
-                for q in &qs {
+                for q in qs {
                     q.turning_cuts((nz - na) / 64.0, &mut cuts);
                 }
                 let guard = (nz - na) / GUARD;
@@ -741,7 +745,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                         continue;
                     }
                     if let Some(t) = self.verified_pieces(slab, ends, b, na, nz, &cuts, work) {
-                        done = Some((na, nz, t));
+                        done = Some((na, nz, Part::Tree(t)));
                         break;
                     }
                 }
@@ -766,7 +770,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                     if let Some(t) =
                         self.certify(&bx, slab, ends, self.relevant, &mut budget, work, false)
                     {
-                        done = Some((na, nz, t));
+                        done = Some((na, nz, Part::Tree(t)));
                     }
                 }
             }
@@ -786,25 +790,27 @@ impl<S: ConstraintSet> Ctx<'_, S> {
             }
         }
         // Merge neighbouring undecided parts (slivers left by the steps).
-        let mut merged: Vec<Seg> = Vec::with_capacity(segs.len());
-        for s in segs {
-            match merged.last_mut() {
-                Some(last) if last.tree.is_none() && s.tree.is_none() => last.hi = s.hi,
-                _ => merged.push(s),
+        segs.dedup_by(|s, last| {
+            let both = last.tree.is_none() && s.tree.is_none();
+            if both {
+                last.hi = s.hi;
             }
-        }
+            both
+        });
+        let merged = segs;
         if merged.len() == 1 && merged[0].tree.is_none() {
             return None;
         }
 
-        let mut out = Vec::new();
+        let mut out = Vec::with_capacity(2 * merged.len() + 4);
         let last = merged.len() - 1;
         for (j, s) in merged.into_iter().enumerate() {
             if j < last {
                 out.push(Local::At(1, s.hi));
             }
             match s.tree {
-                Some(t) => out.extend(t),
+                Some(Part::Leaf(l)) => out.push(Local::Leaf(l)),
+                Some(Part::Tree(t)) => out.extend(t),
                 None => {
                     let bx = with_w(b, s.lo, s.hi);
                     if self.choose_axis(&bx).is_some() {
@@ -823,7 +829,14 @@ struct Seg {
     lo: f64,
     hi: f64,
     tentative: [Option<bool>; MAX_CONSTRAINTS],
-    tree: Option<Vec<Local>>,
+    tree: Option<Part>,
+}
+
+/// A verified part: one leaf (the common case, kept off the heap) or a
+/// subtree.
+enum Part {
+    Leaf(Labels),
+    Tree(Vec<Local>),
 }
 
 fn with_w(b: &PhaseBox, lo: f64, hi: f64) -> PhaseBox {
@@ -975,6 +988,7 @@ pub fn convex_label(e: &SlabEnds, b: &PhaseBox) -> Label {
 /// coefficient box, `sup q(w) = c₂⁺w² + c₁^± w + c₀⁺` (the sign of w picks
 /// the end of c₁), likewise `inf q`; their sign sets are the tentative
 /// certainly-in and certainly-out θ̇-sets. Only used to choose points.
+#[derive(Clone, Copy)]
 struct Steer {
     c2: [f64; 2],
     c1: [f64; 2],
@@ -989,6 +1003,14 @@ struct Steer {
 }
 
 impl Steer {
+    /// A placeholder for unused slots.
+    const NONE: Steer = Steer {
+        c2: [0.0; 2],
+        c1: [0.0; 2],
+        c0: [0.0; 2],
+        ends: None,
+        d_theta: None,
+    };
     fn new(q: &Quadratic<DecInterval>) -> Option<Steer> {
         let b = |x: DecInterval| -> Option<[f64; 2]> {
             let i = x.interval().filter(|_| is_defined(x))?;
