@@ -97,18 +97,44 @@ impl Paving {
     /// Every leaf's area is computed once for all the sets.
     pub fn area_bounds_all(&self, cells: &[CellSpec], uncovered_sup: f64) -> Vec<AreaBounds> {
         use rayon::prelude::*;
-        // Below this the pool's start-up costs more than the sums.
+        // Below this the pool's start-up costs more than the sums: one pass
+        // over the leaves adds each to every set's sums (each still in leaf
+        // order), without a vector of areas to fill.
         if self.leaves.len() < 1 << 16 {
-            let areas: Vec<Interval> = self.leaves.iter().map(|l| l.bx.area()).collect();
-            return cells
-                .iter()
-                .map(|c| self.bounds_with(c, |k| areas[k], uncovered_sup))
-                .collect();
+            return self.bounds_in_one_pass(cells, uncovered_sup);
         }
         let areas: Vec<Interval> = self.leaves.par_iter().map(|l| l.bx.area()).collect();
         cells
             .par_iter()
             .map(|c| self.bounds_with(c, |k| areas[k], uncovered_sup))
+            .collect()
+    }
+
+    /// [`Paving::area_bounds_all`] serially, in one pass over the leaves.
+    fn bounds_in_one_pass(&self, cells: &[CellSpec], uncovered_sup: f64) -> Vec<AreaBounds> {
+        let mut sums = vec![(ZERO, ZERO, 0usize, 0usize); cells.len()];
+        for leaf in &self.leaves {
+            let a = leaf.bx.area();
+            for (c, (inner, outer, ni, no)) in cells.iter().zip(sums.iter_mut()) {
+                if c.proved_in(leaf) {
+                    *inner += a;
+                    *ni += 1;
+                }
+                if !c.proved_out(leaf) {
+                    *outer += a;
+                    *no += 1;
+                }
+            }
+        }
+        cells
+            .iter()
+            .zip(sums)
+            .map(|(c, (inner, outer, ni, no))| {
+                if c.contradictory(&self.same_as) {
+                    return AreaBounds::EMPTY;
+                }
+                AreaBounds::of_sums(inner, outer, ni, no, uncovered_sup)
+            })
             .collect()
     }
 
@@ -126,13 +152,7 @@ impl Paving {
         uncovered_sup: f64,
     ) -> AreaBounds {
         if cell.contradictory(&self.same_as) {
-            return AreaBounds {
-                inner_area: 0.0,
-                outer_area: 0.0,
-                inner_boxes: 0,
-                outer_boxes: 0,
-                proved_empty: true,
-            };
+            return AreaBounds::EMPTY;
         }
         let (mut inner, mut outer) = (ZERO, ZERO);
         let (mut ni, mut no) = (0, 0);
@@ -146,6 +166,22 @@ impl Paving {
                 no += 1;
             }
         }
+        AreaBounds::of_sums(inner, outer, ni, no, uncovered_sup)
+    }
+}
+
+impl AreaBounds {
+    /// A set empty by construction.
+    const EMPTY: AreaBounds = AreaBounds {
+        inner_area: 0.0,
+        outer_area: 0.0,
+        inner_boxes: 0,
+        outer_boxes: 0,
+        proved_empty: true,
+    };
+
+    /// From the sums over proved-in and not-proved-out leaves.
+    fn of_sums(inner: Interval, outer: Interval, ni: usize, no: usize, uncovered_sup: f64) -> Self {
         let extra = Interval::try_from((0.0, uncovered_sup)).unwrap_or(ZERO);
         AreaBounds {
             // `+ 0.0` turns the −0 of an empty sum into +0.
