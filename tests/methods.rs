@@ -362,6 +362,14 @@ fn slices_decide_more_than_natural_with_fewer_leaves() {
     assert!(sl.leaves.len() < nat.leaves.len());
 }
 
+/// The printed Ω₀ (1.11) of Example 1 paved by `slices` for Ω₀ alone.
+fn omega0_by_slices(eps: f64) -> (Scene, Paving) {
+    let scene = Scene::default_of(SceneId::ViscousDisc);
+    let mo = MethodOptions::for_cell(Method::Slices, &standard_cells()[1]);
+    let p = pave(&scene, Variant::Printed, eps, mo);
+    (scene, p)
+}
+
 /// Next to a boundary the natural ∂g/∂θ over a whole out-part of Ω₀'s
 /// slab loses its sign (θ̇ occurs twice), so the part fails the monotone
 /// test; a thin guard piece at the free end keeps the sign. Without guards
@@ -372,13 +380,7 @@ fn slices_decide_more_than_natural_with_fewer_leaves() {
 /// before the convex test, which brings them to 3 213 and 9 017.)
 #[test]
 fn slices_guard_pieces_avoid_re_slabbing_omega0() {
-    let scene = Scene::default_of(SceneId::ViscousDisc);
-    let p = pave(
-        &scene,
-        Variant::Printed,
-        1.0 / 1024.0,
-        MethodOptions::for_cell(Method::Slices, &standard_cells()[1]),
-    );
+    let (scene, p) = omega0_by_slices(1.0 / 1024.0);
     assert!(
         p.stats.slab_evaluations < 6_000,
         "slab evaluations {}",
@@ -400,13 +402,7 @@ fn slices_guard_pieces_avoid_re_slabbing_omega0() {
 /// (`detach pave … --eps 0.00390625` at commit c1e8e30).
 #[test]
 fn the_convex_test_makes_the_in_part_one_leaf() {
-    let scene = Scene::default_of(SceneId::ViscousDisc);
-    let p = pave(
-        &scene,
-        Variant::Printed,
-        1.0 / 256.0,
-        MethodOptions::for_cell(Method::Slices, &standard_cells()[1]),
-    );
+    let (scene, p) = omega0_by_slices(1.0 / 256.0);
     assert!(p.leaves.len() < 1_500, "{} leaves", p.leaves.len());
     let u = undecided(&p, &scene, 1);
     assert!(u < 0.2580, "undecided {u}");
