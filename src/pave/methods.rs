@@ -315,23 +315,13 @@ impl<S: ConstraintSet> Ctx<'_, S> {
 
     /// Labels the checker confirms. Without the slab's end data: natural.
     /// With it: the monotone test on the relevant constraints first (cheaper
-    /// and, next to the boundary, stronger), the natural labels only if one
-    /// is left undecided; other constraints keep what natural gives, if run.
+    /// and, next to the boundary, stronger), then, if `convex`, the convex
+    /// test, the natural labels only if one is left undecided; other
+    /// constraints keep what natural gives, if run. (A part the contraction
+    /// leaves undecided straddles the boundary, where the convex test does
+    /// not decide and costs up to four evaluations: 3–4 % of a coarse
+    /// paving's whole process.)
     fn label(
-        &self,
-        slab: &S::Slab,
-        ends: Option<&[SlabEnds]>,
-        b: &PhaseBox,
-        work: &mut Work,
-    ) -> Labels {
-        self.label_with(slab, ends, b, work, true)
-    }
-
-    /// [`Ctx::label`], the convex test only if `convex`: a part the
-    /// contraction leaves undecided straddles the boundary, where that test
-    /// does not decide and costs up to four evaluations (3–4 % of a coarse
-    /// paving's whole process; pavings identical).
-    fn label_with(
         &self,
         slab: &S::Slab,
         ends: Option<&[SlabEnds]>,
@@ -519,7 +509,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         work: &mut Work,
         theta: bool,
     ) -> Option<Vec<Local>> {
-        let labels = self.label(slab, ends, b, work);
+        let labels = self.label(slab, ends, b, work, true);
         if self.decided_mask(&labels) & wanted == wanted {
             return Some(vec![Local::Leaf(labels)]);
         }
@@ -587,7 +577,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
         let mut t = Vec::with_capacity(2 * cuts.len() + 1);
         let mut from = lo;
         for to in cuts.iter().copied().chain(std::iter::once(hi)) {
-            let labels = self.label(slab, ends, &with_w(b, from, to), work);
+            let labels = self.label(slab, ends, &with_w(b, from, to), work, true);
             if self.decided_mask(&labels) & self.relevant != self.relevant {
                 return None;
             }
@@ -702,7 +692,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                     continue;
                 }
                 let bx = with_w(b, na, nz);
-                let labels = self.label(slab, ends, &bx, work);
+                let labels = self.label(slab, ends, &bx, work, true);
                 if self.decided_mask(&labels) & self.relevant == self.relevant {
                     done = Some((na, nz, Part::Leaf(labels)));
                     break;
@@ -816,7 +806,7 @@ impl<S: ConstraintSet> Ctx<'_, S> {
                     if self.choose_axis(&bx).is_some() {
                         out.push(Local::Open);
                     } else {
-                        out.push(Local::Leaf(self.label_with(slab, ends, &bx, work, false)));
+                        out.push(Local::Leaf(self.label(slab, ends, &bx, work, false)));
                     }
                 }
             }
