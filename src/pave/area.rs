@@ -112,29 +112,17 @@ impl Paving {
 
     /// [`Paving::area_bounds_all`] serially, in one pass over the leaves.
     fn bounds_in_one_pass(&self, cells: &[CellSpec], uncovered_sup: f64) -> Vec<AreaBounds> {
-        let mut sums = vec![(ZERO, ZERO, 0usize, 0usize); cells.len()];
+        let mut sums = vec![Sums::ZERO; cells.len()];
         for leaf in &self.leaves {
             let a = leaf.bx.area();
-            for (c, (inner, outer, ni, no)) in cells.iter().zip(sums.iter_mut()) {
-                if c.proved_in(leaf) {
-                    *inner += a;
-                    *ni += 1;
-                }
-                if !c.proved_out(leaf) {
-                    *outer += a;
-                    *no += 1;
-                }
+            for (c, sum) in cells.iter().zip(sums.iter_mut()) {
+                sum.add(c, leaf, a);
             }
         }
         cells
             .iter()
             .zip(sums)
-            .map(|(c, (inner, outer, ni, no))| {
-                if c.contradictory(&self.same_as) {
-                    return AreaBounds::EMPTY;
-                }
-                AreaBounds::of_sums(inner, outer, ni, no, uncovered_sup)
-            })
+            .map(|(c, sum)| sum.bounds(c.contradictory(&self.same_as), uncovered_sup))
             .collect()
     }
 
@@ -152,43 +140,64 @@ impl Paving {
         uncovered_sup: f64,
     ) -> AreaBounds {
         if cell.contradictory(&self.same_as) {
-            return AreaBounds::EMPTY;
+            return Sums::ZERO.bounds(true, uncovered_sup);
         }
-        let (mut inner, mut outer) = (ZERO, ZERO);
-        let (mut ni, mut no) = (0, 0);
+        let mut sum = Sums::ZERO;
         for (k, leaf) in self.leaves.iter().enumerate() {
-            if cell.proved_in(leaf) {
-                inner += area(k);
-                ni += 1;
-            }
-            if !cell.proved_out(leaf) {
-                outer += area(k);
-                no += 1;
-            }
+            sum.add(cell, leaf, area(k));
         }
-        AreaBounds::of_sums(inner, outer, ni, no, uncovered_sup)
+        sum.bounds(false, uncovered_sup)
     }
 }
 
-impl AreaBounds {
-    /// A set empty by construction.
-    const EMPTY: AreaBounds = AreaBounds {
-        inner_area: 0.0,
-        outer_area: 0.0,
+/// One set's running sums, in leaf order: the areas of the leaves proved in
+/// it and of those not proved out of it, and their counts.
+#[derive(Clone, Copy)]
+struct Sums {
+    inner: Interval,
+    outer: Interval,
+    inner_boxes: usize,
+    outer_boxes: usize,
+}
+
+impl Sums {
+    const ZERO: Sums = Sums {
+        inner: ZERO,
+        outer: ZERO,
         inner_boxes: 0,
         outer_boxes: 0,
-        proved_empty: true,
     };
 
-    /// From the sums over proved-in and not-proved-out leaves.
-    fn of_sums(inner: Interval, outer: Interval, ni: usize, no: usize, uncovered_sup: f64) -> Self {
+    fn add(&mut self, cell: &CellSpec, leaf: &Leaf, area: Interval) {
+        if cell.proved_in(leaf) {
+            self.inner += area;
+            self.inner_boxes += 1;
+        }
+        if !cell.proved_out(leaf) {
+            self.outer += area;
+            self.outer_boxes += 1;
+        }
+    }
+
+    /// The bounds; `proved_empty`: the set is empty by construction, both
+    /// areas exactly 0 whatever the leaves.
+    fn bounds(self, proved_empty: bool, uncovered_sup: f64) -> AreaBounds {
+        if proved_empty {
+            return AreaBounds {
+                inner_area: 0.0,
+                outer_area: 0.0,
+                inner_boxes: 0,
+                outer_boxes: 0,
+                proved_empty: true,
+            };
+        }
         let extra = Interval::try_from((0.0, uncovered_sup)).unwrap_or(ZERO);
         AreaBounds {
             // `+ 0.0` turns the −0 of an empty sum into +0.
-            inner_area: inner.inf() + 0.0,
-            outer_area: (outer + extra).sup(),
-            inner_boxes: ni,
-            outer_boxes: no,
+            inner_area: self.inner.inf() + 0.0,
+            outer_area: (self.outer + extra).sup(),
+            inner_boxes: self.inner_boxes,
+            outer_boxes: self.outer_boxes,
             proved_empty: false,
         }
     }
