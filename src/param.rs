@@ -61,10 +61,18 @@ pub enum ParamError {
     Invalid { name: String, reason: String },
 }
 
-/// Sign and zero-ness of a decimal literal, read from its digits.
+/// A plain decimal literal: its sign and magnitude `0.d₁d₂… × 10^exp`, with
+/// significant digits only (no leading or trailing zeros; none for zero).
 struct Decimal {
     negative: bool,
-    zero: bool,
+    digits: Vec<u8>,
+    exp: i64,
+}
+
+impl Decimal {
+    fn zero(&self) -> bool {
+        self.digits.is_empty()
+    }
 }
 
 fn scan_decimal(text: &str) -> Option<Decimal> {
@@ -78,28 +86,30 @@ fn scan_decimal(text: &str) -> Option<Decimal> {
         Some(i) => (&body[..i], Some(&body[i + 1..])),
         None => (body, None),
     };
+    let mut exp = 0;
     if let Some(e) = exponent {
         let digits = e.strip_prefix(['+', '-']).unwrap_or(e);
         if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) || digits.len() > 6 {
             return None;
         }
+        exp = e.parse().ok()?;
     }
-    let (int, frac) = match mantissa.find('.') {
-        Some(i) => (&mantissa[..i], &mantissa[i + 1..]),
-        None => (mantissa, ""),
-    };
+    let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
     let all_digits = |s: &str| s.bytes().all(|b| b.is_ascii_digit());
     if (int.is_empty() && frac.is_empty()) || !all_digits(int) || !all_digits(frac) {
         return None;
     }
-    let zero = int.bytes().chain(frac.bytes()).all(|b| b == b'0');
-    Some(Decimal { negative, zero })
+    let (digits, exp) = significant(int, frac, exp);
+    Some(Decimal {
+        negative,
+        digits,
+        exp,
+    })
 }
 
-/// Significant digits (no leading or trailing zeros) and the exponent `e` of
-/// a decimal magnitude `0.d₁d₂… × 10^e`; empty digits for zero.
-fn normalized(mantissa: &str, exp: i64) -> (Vec<u8>, i64) {
-    let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+/// The significant digits and exponent `e` of `int.frac × 10^exp` written as
+/// `0.d₁d₂… × 10^e` (digits only, without leading or trailing zeros).
+fn significant(int: &str, frac: &str, exp: i64) -> (Vec<u8>, i64) {
     let all: Vec<u8> = int.bytes().chain(frac.bytes()).collect();
     let lead = all.iter().take_while(|&&b| b == b'0').count();
     let mut digits = all[lead..].to_vec();
@@ -109,47 +119,36 @@ fn normalized(mantissa: &str, exp: i64) -> (Vec<u8>, i64) {
     (digits, exp + int.len() as i64 - lead as i64)
 }
 
-/// Splits plain decimal text (sign stripped) into mantissa and exponent.
-fn magnitude(text: &str) -> Option<(Vec<u8>, i64)> {
-    let (m, e) = match text.find(['e', 'E']) {
-        Some(i) => (&text[..i], text[i + 1..].parse::<i64>().ok()?),
-        None => (text, 0),
-    };
-    Some(normalized(m, e))
-}
-
-/// The tightest interval of doubles around plain decimal text (validated by
-/// [`scan_decimal`]), without MPFR, whose start-up (GMP's processor
-/// dispatch) was a few % of a coarse paving's whole process. Rust's parsing
-/// rounds to the nearest double x; the text compared with x's exact decimal
-/// expansion (at most 767 significant digits) says whether it is x or on
-/// which side of x it lies. Beyond the largest double: an infinite end.
-fn tightest_enclosure(text: &str) -> Option<Interval> {
+/// The tightest interval of doubles around a plain decimal `d` (its `text`,
+/// trimmed), without MPFR, whose start-up (GMP's processor dispatch) was a
+/// few % of a coarse paving's whole process. Rust's parsing rounds to the
+/// nearest double x; the text compared with x's exact decimal expansion (at
+/// most 767 significant digits) says whether it is x or on which side of x
+/// it lies. Beyond the largest double: an infinite end.
+fn tightest_enclosure(d: &Decimal, text: &str) -> Option<Interval> {
     let x: f64 = text.parse().ok()?;
-    let negative = text.starts_with('-');
     if x.is_infinite() {
-        let (lo, hi) = if negative {
+        let (lo, hi) = if d.negative {
             (f64::NEG_INFINITY, f64::MIN)
         } else {
             (f64::MAX, f64::INFINITY)
         };
         return Interval::try_from((lo, hi)).ok();
     }
-    let unsigned = text.trim_start_matches(['+', '-']);
-    let (d, de) = magnitude(unsigned)?;
     let exact = format!("{:.800e}", x.abs());
     let (m, e) = exact.split_once('e')?;
-    let (xd, xe) = normalized(m, e.parse().ok()?);
+    let (int, frac) = m.split_once('.').unwrap_or((m, ""));
+    let (xd, xe) = significant(int, frac, e.parse().ok()?);
     // |text| against |x|: zero first, then exponents, then digits.
-    let order = match (d.is_empty(), xd.is_empty()) {
+    let order = match (d.zero(), xd.is_empty()) {
         (true, true) => std::cmp::Ordering::Equal,
         (true, false) => std::cmp::Ordering::Less,
         (false, true) => std::cmp::Ordering::Greater,
-        (false, false) => de.cmp(&xe).then_with(|| d.cmp(&xd)),
+        (false, false) => d.exp.cmp(&xe).then_with(|| d.digits.cmp(&xd)),
     };
     // The value is x, or lies between x and its neighbour away from (|text| >
     // |x|) or towards (|text| < |x|) zero.
-    let (lo, hi) = match (order, negative) {
+    let (lo, hi) = match (order, d.negative) {
         (std::cmp::Ordering::Equal, _) => (x, x),
         (std::cmp::Ordering::Greater, false) | (std::cmp::Ordering::Less, true) => (x, x.next_up()),
         _ => (x.next_down(), x),
@@ -165,10 +164,10 @@ pub fn enclose_decimal(name: &str, text: &str) -> Result<Interval, ParamError> {
         text: text.to_string(),
     };
     let d = scan_decimal(text).ok_or_else(not_decimal)?;
-    let x = tightest_enclosure(text.trim()).ok_or_else(not_decimal)?;
+    let x = tightest_enclosure(&d, text.trim()).ok_or_else(not_decimal)?;
     if !x.inf().is_finite() || !x.sup().is_finite() {
         // A finite decimal whose magnitude is beyond the largest double.
-        return Err(if d.zero {
+        return Err(if d.zero() {
             not_decimal()
         } else {
             ParamError::TooLarge {
@@ -253,13 +252,13 @@ impl Param {
         let d = scan_decimal(text).expect("checked by enclose_decimal");
         let err_text = text.trim().to_string();
         match spec.sign {
-            Sign::Positive if d.negative || d.zero => {
+            Sign::Positive if d.negative || d.zero() => {
                 return Err(ParamError::NotPositive {
                     name: spec.name.into(),
                     text: err_text,
                 })
             }
-            Sign::NonNegative if d.negative && !d.zero => {
+            Sign::NonNegative if d.negative && !d.zero() => {
                 return Err(ParamError::Negative {
                     name: spec.name.into(),
                     text: err_text,
@@ -463,6 +462,10 @@ mod tests {
         Interval::from_str(&format!("[{text}]")).unwrap()
     }
 
+    fn ours(text: &str) -> Interval {
+        tightest_enclosure(&scan_decimal(text).unwrap(), text).unwrap()
+    }
+
     fn same(a: Interval, b: Interval) -> bool {
         a.inf().to_bits() == b.inf().to_bits() && a.sup().to_bits() == b.sup().to_bits()
     }
@@ -492,7 +495,7 @@ mod tests {
             "0.30000000000000004441",
             "1E+2",
         ] {
-            let ours = tightest_enclosure(t).unwrap();
+            let ours = ours(t);
             assert!(same(ours, by_mpfr(t)), "{t}: {ours:?} vs {:?}", by_mpfr(t));
         }
     }
@@ -513,7 +516,7 @@ mod tests {
             if let Some(e) = exp {
                 t = format!("{t}e{e}");
             }
-            let ours = tightest_enclosure(&t).unwrap();
+            let ours = ours(&t);
             proptest::prop_assert!(same(ours, by_mpfr(&t)), "{}: {:?} vs {:?}", t, ours, by_mpfr(&t));
         }
     }
