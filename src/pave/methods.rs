@@ -958,14 +958,8 @@ pub fn convex_label(e: &SlabEnds, b: &PhaseBox) -> Label {
         return Label::Undecided;
     };
     let holds_at = |w: f64| {
-        let seg = with_w(b, w, w);
-        let v = e.value.eval(point(w));
-        let by_value = !v.is_empty()
-            && match want {
-                Label::ProvedIn => v.sup() < 0.0,
-                _ => v.inf() > 0.0,
-            };
-        by_value || monotone_label(e, &seg) == want
+        let by_value = Label::from_enclosure(DecInterval::new(e.value.eval(point(w))));
+        by_value == want || monotone_label(e, &with_w(b, w, w)) == want
     };
     if holds_at(b.theta_dot[0]) && holds_at(b.theta_dot[1]) {
         want
