@@ -18,6 +18,7 @@ use cli::proofs::{ProveArgs, VerifyArgs};
 use cli::roots::{CriticalCurveArgs, Kappa0Args, RootsArgs, TangencyArgs};
 use cli::stability::StabilityArgs;
 use cli::CliResult;
+use std::ffi::OsString;
 
 /// Certified detachment regions of systems with a unilateral constraint
 /// (A. P. Ivanov, 2008). Without a subcommand: `detach atlas`.
@@ -76,12 +77,12 @@ enum PaveCommand {
 }
 
 /// The command line, with only `pave`'s arguments built when it is `pave`.
-fn parse() -> Command {
-    if std::env::args_os().nth(1).is_some_and(|a| a == "pave") {
-        let PaveCommand::Pave(a) = PaveCli::parse().command;
+fn parse(args: Vec<OsString>) -> Command {
+    if args.get(1).is_some_and(|a| a == "pave") {
+        let PaveCommand::Pave(a) = PaveCli::parse_from(args).command;
         return Command::Pave(a);
     }
-    Cli::parse().command.unwrap_or_else(|| {
+    Cli::parse_from(args).command.unwrap_or_else(|| {
         let Some(c) = Cli::parse_from(["detach", "atlas"]).command else {
             unreachable!("atlas parses")
         };
@@ -109,17 +110,23 @@ fn run(command: Command) -> CliResult {
 
 #[cfg(not(test))]
 #[no_mangle]
-pub extern "C" fn main(_argc: libc::c_int, _argv: *const *const libc::c_char) -> libc::c_int {
-    cli_main()
+pub extern "C" fn main(argc: libc::c_int, argv: *const *const libc::c_char) -> libc::c_int {
+    use std::os::unix::ffi::OsStrExt;
+    let args = (0..usize::try_from(argc).unwrap_or(0))
+        // SAFETY: the C start-up passes `argc` valid NUL-terminated strings.
+        .map(|i| unsafe { std::ffi::CStr::from_ptr(*argv.add(i)) })
+        .map(|a| std::ffi::OsStr::from_bytes(a.to_bytes()).to_owned())
+        .collect();
+    cli_main(args)
 }
 
 /// Runs the command line; the exit code. (Dead in test builds, whose
 /// harness has its own `main`.)
 #[cfg_attr(test, allow(dead_code))]
-fn cli_main() -> libc::c_int {
+fn cli_main(args: Vec<OsString>) -> libc::c_int {
     // SAFETY: sets a signal disposition at start-up, before any thread exists.
     unsafe { libc::signal(libc::SIGPIPE, libc::SIG_IGN) };
-    let code = match run(parse()).and_then(|()| cli::stdout_status()) {
+    let code = match run(parse(args)).and_then(|()| cli::stdout_status()) {
         Ok(()) => 0,
         Err(e) => {
             eprintln!("detach: {}", e.message);
