@@ -108,9 +108,13 @@ fn run(command: Command) -> CliResult {
     }
 }
 
+/// The process entry point, called by the C start-up.
+///
+/// # Safety
+/// `argv` holds `argc` valid NUL-terminated strings, as C's `main` receives.
 #[cfg(not(test))]
 #[no_mangle]
-pub extern "C" fn main(argc: libc::c_int, argv: *const *const libc::c_char) -> libc::c_int {
+pub unsafe extern "C" fn main(argc: libc::c_int, argv: *const *const libc::c_char) -> libc::c_int {
     use std::os::unix::ffi::OsStrExt;
     let args = (0..usize::try_from(argc).unwrap_or(0))
         // SAFETY: the C start-up passes `argc` valid NUL-terminated strings.
