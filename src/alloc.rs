@@ -8,7 +8,8 @@
 //! blocks of up to [`MAX_CACHED`] bytes are kept per thread, by size class,
 //! and move between a thread and the heap [`BATCH`] at a time. All blocks
 //! come from the one heap: a block freed on another thread than its own is
-//! simply cached there.
+//! simply cached there. Blocks that grow past [`MAPPED`] bytes move to
+//! mappings of their own, which grow without copying.
 
 use dlmalloc::{Allocator, Dlmalloc};
 use std::alloc::{GlobalAlloc, Layout};
@@ -26,6 +27,10 @@ const BATCH: u32 = 32;
 /// At most this many blocks per class and thread (32 × 64 × 512 B / 2 =
 /// 0.5 MiB at most, far less in practice).
 const DEPTH: u32 = 2 * BATCH;
+/// Blocks growing to this size or more move to a mapping of their own
+/// (see [`Maps`]).
+const MAPPED: usize = 256 << 10;
+const PAGE: usize = 4096;
 
 /// The global allocator (see the module documentation).
 pub struct CachedDlmalloc;
@@ -41,15 +46,9 @@ struct Retain;
 // failure, which the trait allows (the memory stays with the heap).
 unsafe impl Allocator for Retain {
     fn alloc(&self, size: usize) -> (*mut u8, usize, u32) {
-        let prot = libc::PROT_READ | libc::PROT_WRITE;
-        let flags = libc::MAP_PRIVATE | libc::MAP_ANONYMOUS;
         // SAFETY: a new anonymous mapping aliases nothing.
-        let p = unsafe { libc::mmap(ptr::null_mut(), size, prot, flags, -1, 0) };
-        if p == libc::MAP_FAILED {
-            (ptr::null_mut(), 0, 0)
-        } else {
-            (p.cast(), size, 0)
-        }
+        let p = unsafe { map(size) };
+        (p, if p.is_null() { 0 } else { size }, 0)
     }
     fn remap(&self, p: *mut u8, oldsize: usize, newsize: usize, can_move: bool) -> *mut u8 {
         let flags = if can_move { libc::MREMAP_MAYMOVE } else { 0 };
@@ -138,12 +137,52 @@ impl FreeList {
     }
 }
 
-unsafe impl GlobalAlloc for CachedDlmalloc {
-    #[inline]
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let Some(c) = class(&layout) else {
-            return heap().0.malloc(layout.size(), layout.align());
-        };
+/// Blocks that grew to [`MAPPED`] bytes or more by `realloc`: each its own
+/// mapping, so that growing further is `mremap`, which copies nothing. (From
+/// dlmalloc's heap a growing tree was copied at every doubling, serially,
+/// and two threads gained less.) Allocated at that size directly, a block
+/// stays in the heap, whose freed memory the next paving level reuses
+/// without faulting pages in afresh. As glibc's malloc, which also maps
+/// large blocks but raises its threshold to the size of those freed.
+struct Maps {
+    /// Start and length of each mapping; length 0 marks a free slot.
+    at: [(usize, usize); MAPS],
+}
+
+/// At most this many mappings at once; a block growing past [`MAPPED`]
+/// when all are taken stays in the heap (copied as it grows).
+const MAPS: usize = 64;
+
+static MAPPINGS: Mutex<Maps> = Mutex::new(Maps { at: [(0, 0); MAPS] });
+
+fn mappings() -> MutexGuard<'static, Maps> {
+    MAPPINGS.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+impl Maps {
+    fn find(&self, block: *mut u8) -> Option<usize> {
+        self.at
+            .iter()
+            .position(|&(p, n)| n != 0 && p == block as usize)
+    }
+}
+
+/// A fresh zeroed mapping of `size` bytes, or null.
+unsafe fn map(size: usize) -> *mut u8 {
+    let prot = libc::PROT_READ | libc::PROT_WRITE;
+    let flags = libc::MAP_PRIVATE | libc::MAP_ANONYMOUS;
+    let p = libc::mmap(ptr::null_mut(), size, prot, flags, -1, 0);
+    if p == libc::MAP_FAILED {
+        ptr::null_mut()
+    } else {
+        p.cast()
+    }
+}
+
+impl CachedDlmalloc {
+    /// A block of class `c`, from this thread's cache (refilled from the
+    /// heap when empty).
+    unsafe fn take(c: usize) -> *mut u8 {
         CACHE.with(|cache| {
             // SAFETY: only this thread touches its cache, and not
             // reentrantly (nothing below allocates through it).
@@ -165,13 +204,11 @@ unsafe impl GlobalAlloc for CachedDlmalloc {
         })
     }
 
-    #[inline]
-    unsafe fn dealloc(&self, block: *mut u8, layout: Layout) {
-        let Some(c) = class(&layout) else {
-            return heap().0.free(block, layout.size(), layout.align());
-        };
+    /// Returns a block of class `c` to this thread's cache (spilling to the
+    /// heap when full).
+    unsafe fn give(block: *mut u8, c: usize) {
         CACHE.with(|cache| {
-            // SAFETY: as in `alloc`; a block is at least one word (GRAIN
+            // SAFETY: as in `take`; a block is at least one word (GRAIN
             // bytes) and aligned to GRAIN.
             let list = &mut (*cache.0.get())[c];
             list.push(block);
@@ -184,12 +221,100 @@ unsafe impl GlobalAlloc for CachedDlmalloc {
         })
     }
 
+    /// Resizes a block that is one of [`MAPPINGS`], if it is one: `None`
+    /// if it is not, else the new block (null on failure, the old one kept).
+    unsafe fn resize_mapped(&self, block: *mut u8, layout: Layout, size: usize) -> Option<*mut u8> {
+        if layout.size() < MAPPED {
+            return None;
+        }
+        let mut maps = mappings();
+        let k = maps.find(block)?;
+        if size >= MAPPED {
+            let q = libc::mremap(block.cast(), layout.size(), size, libc::MREMAP_MAYMOVE);
+            if q == libc::MAP_FAILED {
+                return Some(ptr::null_mut());
+            }
+            maps.at[k] = (q as usize, size);
+            return Some(q.cast());
+        }
+        // Shrunk below the threshold: back to the heap, so that every
+        // mapping is at least MAPPED bytes (what `dealloc` relies on).
+        drop(maps);
+        let new = Layout::from_size_align_unchecked(size, layout.align());
+        let q = self.alloc(new);
+        if !q.is_null() {
+            ptr::copy_nonoverlapping(block, q, size);
+            self.dealloc(block, layout);
+        }
+        Some(q)
+    }
+
+    /// Moves a block growing to `size` ≥ [`MAPPED`] into a mapping of its
+    /// own, if a slot is free; `None` otherwise.
+    unsafe fn grow_into_mapping(
+        &self,
+        block: *mut u8,
+        layout: Layout,
+        size: usize,
+    ) -> Option<*mut u8> {
+        if size < MAPPED || layout.align() > PAGE {
+            return None;
+        }
+        let mut maps = mappings();
+        let k = maps.at.iter().position(|&(_, n)| n == 0)?;
+        let q = map(size);
+        if q.is_null() {
+            return None;
+        }
+        maps.at[k] = (q as usize, size);
+        drop(maps);
+        ptr::copy_nonoverlapping(block, q, layout.size());
+        self.dealloc(block, layout);
+        Some(q)
+    }
+}
+
+unsafe impl GlobalAlloc for CachedDlmalloc {
+    #[inline]
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        match class(&layout) {
+            Some(c) => Self::take(c),
+            None => heap().0.malloc(layout.size(), layout.align()),
+        }
+    }
+
+    #[inline]
+    unsafe fn dealloc(&self, block: *mut u8, layout: Layout) {
+        if let Some(c) = class(&layout) {
+            return Self::give(block, c);
+        }
+        if layout.size() >= MAPPED {
+            let mut maps = mappings();
+            if let Some(k) = maps.find(block) {
+                maps.at[k] = (0, 0);
+                drop(maps);
+                // SAFETY: one of this allocator's mappings, of this size.
+                libc::munmap(block.cast(), layout.size());
+                return;
+            }
+        }
+        heap().0.free(block, layout.size(), layout.align())
+    }
+
     #[inline]
     unsafe fn realloc(&self, block: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if let Some(q) = self.resize_mapped(block, layout, new_size) {
+            return q;
+        }
+        if new_size > layout.size() {
+            if let Some(q) = self.grow_into_mapping(block, layout, new_size) {
+                return q;
+            }
+        }
         // SAFETY: the caller guarantees `new_size` is valid for the alignment.
         let new = Layout::from_size_align_unchecked(new_size, layout.align());
         match (class(&layout), class(&new)) {
-            // Neither is cached: dlmalloc resizes in place when it can.
+            // dlmalloc resizes in place when it can.
             (None, None) => heap()
                 .0
                 .realloc(block, layout.size(), layout.align(), new_size),
@@ -287,6 +412,42 @@ mod tests {
         for (p, n) in handoff {
             let l = Layout::from_size_align(n, 8).unwrap();
             unsafe { a.dealloc(p as *mut u8, l) };
+        }
+    }
+
+    /// Large blocks: zeroed when asked, contents kept when they grow or
+    /// shrink across the mapped/heap/cached boundaries, mappings released.
+    #[test]
+    fn large_blocks_are_zeroed_and_keep_their_contents_when_resized() {
+        let a = &CachedDlmalloc;
+        let l = |n| Layout::from_size_align(n, 8).unwrap();
+        let mapped = || mappings().at.iter().filter(|m| m.1 != 0).count();
+        // Sizes through every kind and back: 3 MiB, 300 KiB, 600 B, 40 B, 1 MiB.
+        let sizes = [3 << 20, 300 << 10, 600, 40, 1 << 20, 5 << 20];
+        // SAFETY: every pointer is used within the size it was given.
+        unsafe {
+            let mut n = MAPPED + 5;
+            let mut p = a.alloc_zeroed(l(n));
+            assert!(!p.is_null());
+            assert!(std::slice::from_raw_parts(p, n).iter().all(|&x| x == 0));
+            let before = mapped();
+            for (k, &m) in sizes.iter().enumerate() {
+                for i in 0..n {
+                    *p.add(i) = (i * 7 + k) as u8;
+                }
+                let q = a.realloc(p, l(n), m);
+                assert!(!q.is_null());
+                for i in 0..n.min(m) {
+                    assert_eq!(*q.add(i), (i * 7 + k) as u8, "byte {i} after {n} -> {m}");
+                }
+                (p, n) = (q, m);
+            }
+            // Grown from 1 MiB to 5 MiB: a mapping of its own (other tests
+            // may hold mappings too, hence at least).
+            assert!(mapped() > before.saturating_sub(1));
+            assert!(mappings().find(p).is_some(), "a grown block is mapped");
+            a.dealloc(p, l(n));
+            assert!(mappings().find(p).is_none(), "its slot is released");
         }
     }
 }
