@@ -51,14 +51,8 @@ unsafe impl Allocator for Retain {
         (p, if p.is_null() { 0 } else { size }, 0)
     }
     fn remap(&self, p: *mut u8, oldsize: usize, newsize: usize, can_move: bool) -> *mut u8 {
-        let flags = if can_move { libc::MREMAP_MAYMOVE } else { 0 };
         // SAFETY: `p` and `oldsize` describe one of this allocator's mappings.
-        let q = unsafe { libc::mremap(p.cast(), oldsize, newsize, flags) };
-        if q == libc::MAP_FAILED {
-            ptr::null_mut()
-        } else {
-            q.cast()
-        }
+        unsafe { remap(p, oldsize, newsize, can_move) }
     }
     fn free_part(&self, _: *mut u8, _: usize, _: usize) -> bool {
         false
@@ -73,7 +67,7 @@ unsafe impl Allocator for Retain {
         true
     }
     fn page_size(&self) -> usize {
-        4096
+        PAGE
     }
 }
 
@@ -171,7 +165,17 @@ impl Maps {
 unsafe fn map(size: usize) -> *mut u8 {
     let prot = libc::PROT_READ | libc::PROT_WRITE;
     let flags = libc::MAP_PRIVATE | libc::MAP_ANONYMOUS;
-    let p = libc::mmap(ptr::null_mut(), size, prot, flags, -1, 0);
+    or_null(libc::mmap(ptr::null_mut(), size, prot, flags, -1, 0))
+}
+
+/// The mapping `p` of `old` bytes resized to `new` (moved if `can_move`),
+/// or null (`p` unchanged).
+unsafe fn remap(p: *mut u8, old: usize, new: usize, can_move: bool) -> *mut u8 {
+    let flags = if can_move { libc::MREMAP_MAYMOVE } else { 0 };
+    or_null(libc::mremap(p.cast(), old, new, flags))
+}
+
+fn or_null(p: *mut libc::c_void) -> *mut u8 {
     if p == libc::MAP_FAILED {
         ptr::null_mut()
     } else {
@@ -230,23 +234,28 @@ impl CachedDlmalloc {
         let mut maps = mappings();
         let k = maps.find(block)?;
         if size >= MAPPED {
-            let q = libc::mremap(block.cast(), layout.size(), size, libc::MREMAP_MAYMOVE);
-            if q == libc::MAP_FAILED {
-                return Some(ptr::null_mut());
+            let q = remap(block, layout.size(), size, true);
+            if !q.is_null() {
+                maps.at[k] = (q as usize, size);
             }
-            maps.at[k] = (q as usize, size);
-            return Some(q.cast());
+            return Some(q);
         }
         // Shrunk below the threshold: back to the heap, so that every
         // mapping is at least MAPPED bytes (what `dealloc` relies on).
         drop(maps);
-        let new = Layout::from_size_align_unchecked(size, layout.align());
-        let q = self.alloc(new);
+        Some(self.moved(block, layout, size))
+    }
+
+    /// `block` copied into a new allocation of `size` bytes and freed; null
+    /// (the block kept) if none is available.
+    unsafe fn moved(&self, block: *mut u8, layout: Layout, size: usize) -> *mut u8 {
+        // SAFETY: the caller guarantees `size` is valid for the alignment.
+        let q = self.alloc(Layout::from_size_align_unchecked(size, layout.align()));
         if !q.is_null() {
-            ptr::copy_nonoverlapping(block, q, size);
+            ptr::copy_nonoverlapping(block, q, layout.size().min(size));
             self.dealloc(block, layout);
         }
-        Some(q)
+        q
     }
 
     /// Moves a block growing to `size` ≥ [`MAPPED`] into a mapping of its
@@ -320,14 +329,7 @@ unsafe impl GlobalAlloc for CachedDlmalloc {
                 .realloc(block, layout.size(), layout.align(), new_size),
             // Same class: the block already has room.
             (Some(a), Some(b)) if a == b => block,
-            _ => {
-                let moved = self.alloc(new);
-                if !moved.is_null() {
-                    ptr::copy_nonoverlapping(block, moved, layout.size().min(new_size));
-                    self.dealloc(block, layout);
-                }
-                moved
-            }
+            _ => self.moved(block, layout, new_size),
         }
     }
 }
