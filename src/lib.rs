@@ -34,15 +34,6 @@
 //! inari requires: copy this repository's `.cargo/config.toml`
 //! (`-Ctarget-cpu=native -Ctarget-feature=-avx512vl` on x86-64, or
 //! `-Ctarget-cpu=haswell` for a portable binary) into the dependent project.
-//! Its build target (static musl at a fixed address) only shortens start-up
-//! and is optional; built for musl, this crate sets the global allocator
-//! (dlmalloc with per-thread caches, `src/alloc.rs`).
-
-#[cfg(target_env = "musl")]
-mod alloc;
-#[cfg(target_env = "musl")]
-#[global_allocator]
-static ALLOCATOR: alloc::CachedDlmalloc = alloc::CachedDlmalloc;
 
 pub mod area;
 pub mod atlas;

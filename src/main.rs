@@ -1,12 +1,4 @@
 //! `detach`: certified detachment-region atlases and root bounds.
-//!
-//! The C `main` is the entry point (`no_main`): Rust's runtime start-up finds
-//! the main thread's stack through `/proc/self/maps` and installs
-//! stack-overflow handlers, about 70 µs of every run, which is much of a
-//! coarse paving's whole-process time. Without it a stack overflow is a plain
-//! SIGSEGV; SIGPIPE is ignored here as Rust's start-up would (see `outln!`).
-// (The test harness brings its own `main`.)
-#![cfg_attr(not(test), no_main)]
 
 mod cli;
 
@@ -18,7 +10,6 @@ use cli::proofs::{ProveArgs, VerifyArgs};
 use cli::roots::{CriticalCurveArgs, Kappa0Args, RootsArgs, TangencyArgs};
 use cli::stability::StabilityArgs;
 use cli::CliResult;
-use std::ffi::OsString;
 
 /// Certified detachment regions of systems with a unilateral constraint
 /// (A. P. Ivanov, 2008). Without a subcommand: `detach atlas`.
@@ -33,7 +24,7 @@ struct Cli {
 enum Command {
     /// Pave all scenes and write the certified atlas (SVG, PNG, summary.json).
     Atlas(AtlasArgs),
-    #[command(about = PAVE_ABOUT)]
+    /// Pave one scene and print its area bounds (table or --json).
     Pave(PaveArgs),
     /// Certified areas of Ω, Ω₀ and the four cells by quadrature over θ.
     Area(AreaArgs),
@@ -59,30 +50,9 @@ enum Command {
     CheckPaper(cli::paper::CheckPaperArgs),
 }
 
-const PAVE_ABOUT: &str = "Pave one scene and print its area bounds (table or --json)";
-
-/// `detach pave …` alone: clap builds the arguments of every subcommand it
-/// is given, about 0.1 ms of a run, and `pave` is what a benchmark spawns.
-#[derive(Parser, Debug)]
-#[command(name = "detach", version = detach::LONG_VERSION)]
-struct PaveCli {
-    #[command(subcommand)]
-    command: PaveCommand,
-}
-
-#[derive(Subcommand, Debug)]
-enum PaveCommand {
-    #[command(about = PAVE_ABOUT)]
-    Pave(PaveArgs),
-}
-
-/// The command line, with only `pave`'s arguments built when it is `pave`.
-fn parse(args: Vec<OsString>) -> Command {
-    if args.get(1).is_some_and(|a| a == "pave") {
-        let PaveCommand::Pave(a) = PaveCli::parse_from(args).command;
-        return Command::Pave(a);
-    }
-    Cli::parse_from(args).command.unwrap_or_else(|| {
+/// The command line; `detach` alone runs `detach atlas`.
+fn parse() -> Command {
+    Cli::parse().command.unwrap_or_else(|| {
         let Some(c) = Cli::parse_from(["detach", "atlas"]).command else {
             unreachable!("atlas parses")
         };
@@ -108,82 +78,12 @@ fn run(command: Command) -> CliResult {
     }
 }
 
-/// The process entry point, called by the C start-up.
-///
-/// # Safety
-/// `argv` holds `argc` valid NUL-terminated strings, as C's `main` receives.
-#[cfg(not(test))]
-#[no_mangle]
-pub unsafe extern "C" fn main(argc: libc::c_int, argv: *const *const libc::c_char) -> libc::c_int {
-    use std::os::unix::ffi::OsStrExt;
-    let args = (0..usize::try_from(argc).unwrap_or(0))
-        // SAFETY: the C start-up passes `argc` valid NUL-terminated strings.
-        .map(|i| unsafe { std::ffi::CStr::from_ptr(*argv.add(i)) })
-        .map(|a| std::ffi::OsStr::from_bytes(a.to_bytes()).to_owned())
-        .collect();
-    cli_main(args)
-}
-
-/// Runs the command line; the exit code. (Dead in test builds, whose
-/// harness has its own `main`.)
-#[cfg_attr(test, allow(dead_code))]
-fn cli_main(args: Vec<OsString>) -> libc::c_int {
-    // SAFETY: sets a signal disposition at start-up, before any thread exists.
-    unsafe { libc::signal(libc::SIGPIPE, libc::SIG_IGN) };
-    let code = match run(parse(args)).and_then(|()| cli::stdout_status()) {
-        Ok(()) => 0,
+fn main() -> std::process::ExitCode {
+    match run(parse()).and_then(|()| cli::stdout_status()) {
+        Ok(()) => std::process::ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("detach: {}", e.message);
-            e.code
-        }
-    };
-    // Flushes stdout (the runtime's clean-up) and exits.
-    std::process::exit(code)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// What clap prints or parses for a `pave` command line, by the full
-    /// command and by `pave` alone.
-    fn both(args: &[&str]) -> (String, String) {
-        let line = || std::iter::once("detach").chain(args.iter().copied());
-        let full = match Cli::try_parse_from(line()) {
-            Ok(c) => format!("{:?}", c.command),
-            Err(e) => e.render().to_string(),
-        };
-        let alone = match PaveCli::try_parse_from(line()) {
-            Ok(PaveCli {
-                command: PaveCommand::Pave(a),
-            }) => format!("{:?}", Some(Command::Pave(a))),
-            Err(e) => e.render().to_string(),
-        };
-        (full, alone)
-    }
-
-    #[test]
-    fn pave_alone_parses_and_helps_as_the_full_command() {
-        for args in [
-            &["pave", "--help"][..],
-            &["pave", "-h"],
-            &["pave"],
-            &["pave", "--bogus"],
-            &["pave", "--scene"],
-            &["pave", "--scene", "viscous-disc", "--method", "foo"],
-            &["pave", "--scene", "ice-disc", "--eps", "0.1", "--json"],
-            &[
-                "pave",
-                "--scene",
-                "smooth-disc",
-                "--param",
-                "a=2",
-                "--theta=-1:2",
-                "x",
-            ],
-        ] {
-            let (full, alone) = both(args);
-            assert_eq!(full, alone, "{args:?}");
+            std::process::ExitCode::from(u8::try_from(e.code).unwrap_or(1))
         }
     }
 }
