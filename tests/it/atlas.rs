@@ -1,6 +1,6 @@
 //! Atlas pictures: files written, and the rasteriser never overclaims.
 
-use detach::atlas::{
+use detach::figures::{
     draw_atlas, even_odd_area, inside_even_odd, merge_rects, plot_area_pixels, rasterize,
     undefined_hatch, vector_regions, AtlasStyle, Class, PictureInfo, Raster, Tracing,
 };

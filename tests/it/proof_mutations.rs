@@ -122,7 +122,7 @@ fn base(
 
 fn statement_of(
     scene: &Scene,
-    params: &detach::param::ParamSet,
+    params: &detach::number::param::ParamSet,
     variant: Variant,
     window: [[&str; 2]; 2],
     paving: &Paving,

@@ -2,7 +2,7 @@
 //! tan-half-angle polynomial, the θ → π − θ symmetry, f64 scans.
 
 use detach::inari::{const_interval, Interval};
-use detach::param::enclose_decimal;
+use detach::number::param::enclose_decimal;
 use detach::roots::equations::{Eq29, Eq29TanHalf, PotentialSlope};
 use detach::roots::isolate::point;
 use detach::roots::{

@@ -131,7 +131,7 @@ fn identical_constraint_texts_make_opposite_cells_exactly_empty() {
 fn critical_band_agrees_with_the_isolator() {
     // Independent: (2.9) solved by the θ-isolator just below `lower` (two
     // roots) and just above `upper` (none), at both ends of a few α-boxes.
-    use detach::param::enclose_decimal;
+    use detach::number::param::enclose_decimal;
     use detach::roots::{solve_2_9, Budget};
     let band = prove_named("critical-band").unwrap();
     let cells = band["statement"]["cells"].as_array().unwrap();

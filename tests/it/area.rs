@@ -1,8 +1,8 @@
-//! Certified areas by quadrature (`detach::area`) against independent
+//! Certified areas by quadrature (`detach::quadrature`) against independent
 //! references, the paving's bounds, and the identities between cells.
 
-use detach::area::{cell_area, AreaError, AreaOptions, CELLS};
 use detach::pave::{pave_scene, standard_cells, PaveOptions};
+use detach::quadrature::{cell_area, AreaError, AreaOptions, CELLS};
 use detach::scene::{Scene, SceneId, Variant};
 use inari::Interval;
 

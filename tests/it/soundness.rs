@@ -10,7 +10,7 @@ use detach::pave::{pave_scene_method, Label, Method, MethodOptions, PaveOptions,
 use detach::scene::{Scene, SceneId, Variant};
 use rug::Float;
 
-mod common;
+use crate::common;
 use common::Rng;
 
 const PREC: u32 = 200;
@@ -339,7 +339,7 @@ fn no_false_certificate_on_defaults_and_stressed_parameters() {
 }
 
 #[test]
-#[ignore = "soak: finer pavings, more leaves (cargo test --release -- --ignored)"]
+#[ignore = "soak: finer pavings, more leaves (cargo test --release --test it soundness -- --ignored)"]
 fn no_false_certificate_soak() {
     let checked = run(1.0 / 512.0, 2000);
     eprintln!("soundness soak: {checked} labels re-checked at 200 bits");

@@ -99,8 +99,8 @@ fn stability_rejects_bad_eps_with_exit_2() {
 
 #[test]
 fn heat_grid_is_pale_only_where_every_leaf_is_decided() {
-    use detach::atlas::stability::heat_grid;
-    use detach::atlas::Class;
+    use detach::figures::stability::heat_grid;
+    use detach::figures::Class;
     use detach::pave::{run_method, Method, PaveOptions};
     use detach::scene::{Scene, SceneId, Variant};
     let scene = Scene::default_of(SceneId::SmoothDisc);

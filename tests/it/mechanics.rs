@@ -5,7 +5,7 @@
 //! along the free motion (nested dual numbers), and energy balances along the
 //! equations of motion.
 
-use detach::scalar::{Dual, Scalar};
+use detach::number::scalar::{Dual, Scalar};
 use detach::scene::{Angle, IceDisc, Scene, SceneId, SmoothDisc, Variant, ViscousDisc};
 use nalgebra::{Matrix3, Matrix4, Vector3, Vector4};
 use proptest::prelude::*;

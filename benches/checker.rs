@@ -1,4 +1,4 @@
-//! Per-leaf checking time on a large paving (run with `--ignored --nocapture`).
+//! Per-leaf checking time on a large paving: `cargo bench --bench checker`.
 //! The labels are found with the checker's own evaluator; the point here is
 //! timing, the verdicts are tested elsewhere.
 
@@ -93,9 +93,7 @@ fn b64(bytes: &[u8]) -> String {
     s
 }
 
-#[test]
-#[ignore]
-fn per_leaf_time() {
+fn main() {
     for only_t in [false, true] {
         time(only_t);
     }

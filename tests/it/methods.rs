@@ -12,7 +12,7 @@ use detach::scene::{Angle, Scene, SceneId, Variant};
 use inari::{DecInterval, Interval};
 use rug::Rational;
 
-mod common;
+use crate::common;
 use common::Rng;
 
 const VARIANTS: [Variant; 2] = [Variant::Derived, Variant::Printed];
@@ -45,7 +45,7 @@ fn checked_proof(
     id: SceneId,
     v: Variant,
     scene: &Scene,
-    params: &detach::param::ParamSet,
+    params: &detach::number::param::ParamSet,
     p: &Paving,
 ) -> CheckReport {
     let proof = paving_proof(

@@ -1,10 +1,10 @@
-//! The correctly rounded interval functions of `detach::elementary` against
+//! The correctly rounded interval functions of `detach::number::elementary` against
 //! `inari`'s (MPFR, directed rounding): each of ours must contain inari's
 //! tight enclosure of the same range (which contains the true range) and be at
 //! most a few ulps wider, on random and adversarial intervals; decorations
 //! must agree.
 
-use detach::elementary::{self as el, dec_cos, dec_ln, dec_sin, dec_tan};
+use detach::number::elementary::{self as el, dec_cos, dec_ln, dec_sin, dec_tan};
 use inari::{DecInterval, Interval};
 
 fn iv(a: f64, b: f64) -> Interval {
@@ -165,7 +165,7 @@ fn slab_constraints_enclose_the_same_sets_as_inari() {
                 let a = r.range(d[0][0], d[0][1]);
                 let b = (a + r.unit() * 0.1).min(d[0][1]);
                 let th = iv(a, b);
-                let ours = el::slab_constraints(&s, v, th);
+                let ours = detach::scene::slab::constraints_on(&s, v, th);
                 let theirs = s.constraints_on(v, th);
                 for (o, t) in [
                     (ours.omega.c0, theirs.omega.c0),

@@ -10,7 +10,7 @@
 //!   unless the case sets one; the pools' valid counts are small).
 //!
 //! `cargo test --test fuzz_cli` runs [`CASES`] cases; the ignored soak runs
-//! [`SOAK_CASES`] (`cargo test --test fuzz_cli -- --ignored`).
+//! [`SOAK_CASES`] (`cargo test --release --test it fuzz_cli -- --ignored`).
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
@@ -476,7 +476,7 @@ fn the_command_line_survives_fuzzing() {
 }
 
 #[test]
-#[ignore = "soak: thousands of processes (cargo test --test fuzz_cli -- --ignored)"]
+#[ignore = "soak: thousands of processes (cargo test --release --test it fuzz_cli -- --ignored)"]
 fn the_command_line_survives_a_soak() {
     let n = fuzz(SOAK_CASES);
     eprintln!("fuzz_cli soak: {n} command lines, all clean");
@@ -601,7 +601,7 @@ proptest! {
             "\\PC{0,12}",
         ]
     ) {
-        let r = detach::param::enclose_decimal("x", &text);
+        let r = detach::number::param::enclose_decimal("x", &text);
         match (r, exact_rational(&text)) {
             (Ok(x), Some(q)) => {
                 let lo = rug::Rational::from_f64(x.inf()).unwrap();
@@ -617,7 +617,7 @@ proptest! {
                     "{text}: not tight: [{:e}, {:e}]", x.inf(), x.sup()
                 );
             }
-            (Err(detach::param::ParamError::TooLarge { .. }), Some(q)) => {
+            (Err(detach::number::param::ParamError::TooLarge { .. }), Some(q)) => {
                 let max = rug::Rational::from_f64(f64::MAX).unwrap();
                 prop_assert!(q.clone().abs() > max, "{text} refused as too large");
             }

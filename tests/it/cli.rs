@@ -1,7 +1,7 @@
 //! The command line: bad input gets one clear line and exit code 2; good input
 //! gives the documented JSON.
 
-mod common;
+use crate::common;
 
 use common::detach;
 

@@ -1,0 +1,28 @@
+//! The integration tests, one module per capability, in one binary (one
+//! link of the library and GMP instead of one per file).
+
+mod common;
+
+mod area;
+mod atlas;
+mod check_expr;
+mod check_fuzz;
+mod check_proofs;
+mod claims;
+mod claims_cli;
+mod cli;
+mod elementary;
+mod findings;
+mod fuzz_cli;
+mod hardening;
+mod inclusion;
+mod mechanics;
+mod methods;
+mod paving;
+mod peers;
+mod proof_mutations;
+mod proofs;
+mod reference;
+mod roots;
+mod soundness;
+mod stability;
