@@ -5,7 +5,6 @@ mod cli;
 use clap::{Parser, Subcommand};
 use cli::area::AreaArgs;
 use cli::atlas::{AtlasArgs, PaveArgs, ScenesArgs};
-use cli::methods::MethodsArgs;
 use cli::proofs::{ProveArgs, VerifyArgs};
 use cli::roots::{CriticalCurveArgs, Kappa0Args, RootsArgs, TangencyArgs};
 use cli::stability::StabilityArgs;
@@ -28,8 +27,6 @@ enum Command {
     Pave(PaveArgs),
     /// Certified areas of Ω, Ω₀ and the four cells by quadrature over θ.
     Area(AreaArgs),
-    /// Run every paving method over a range of ε: table, JSON, speed–accuracy chart.
-    Methods(MethodsArgs),
     /// Where each paving method fails: maps per scene and a stress-case table.
     Stability(StabilityArgs),
     /// List the scenes, their parameters, defaults, domains and variants.
@@ -65,7 +62,6 @@ fn run(command: Command) -> CliResult {
         Command::Atlas(a) => cli::atlas::run_atlas(&a),
         Command::Pave(a) => cli::atlas::run_pave(&a),
         Command::Area(a) => cli::area::run_area(&a),
-        Command::Methods(a) => cli::methods::run_methods(&a),
         Command::Stability(a) => cli::stability::run_stability(&a),
         Command::Scenes(a) => cli::atlas::run_scenes(&a),
         Command::Roots(a) => cli::roots::run_roots(&a),

@@ -11,7 +11,6 @@ macro_rules! outln {
 
 pub mod area;
 pub mod atlas;
-pub mod methods;
 pub mod paper;
 pub mod proofs;
 pub mod roots;
@@ -19,6 +18,7 @@ pub mod stability;
 
 use std::fmt;
 use std::io::Write;
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 
@@ -78,3 +78,48 @@ impl CliError {
 }
 
 pub type CliResult = Result<(), CliError>;
+
+/// The machine a measurement ran on: `uname -a`, cores, threads, load.
+pub fn machine() -> serde_json::Value {
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    let uname = std::process::Command::new("uname")
+        .arg("-a")
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+        .unwrap_or_default();
+    serde_json::json!({
+        "uname": uname,
+        "nproc": std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1),
+        "threads": rayon::current_num_threads(),
+        "loadavg": load.split_whitespace().take(3).collect::<Vec<_>>().join(" "),
+    })
+}
+
+/// Checks a proof with the independent checker, writes it, and returns
+/// (bytes, checker seconds, units checked).
+pub fn write_checked(
+    path: &Path,
+    proof: &serde_json::Value,
+) -> Result<(usize, f64, String), CliError> {
+    let bytes = detach::certificate::to_bytes(proof);
+    let report = detach::check::check_bytes(&bytes).map_err(|e| {
+        CliError::runtime(format!(
+            "{}: the checker cannot read it: {e}",
+            path.display()
+        ))
+    })?;
+    if let detach::check::Verdict::Invalid(why) = &report.verdict {
+        return Err(CliError::runtime(format!(
+            "{}: the checker rejects it: {why}",
+            path.display()
+        )));
+    }
+    // Written only once the checker accepts it.
+    std::fs::write(path, &bytes)
+        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
+    Ok((
+        bytes.len(),
+        report.seconds,
+        format!("{} {}", report.checked, report.unit),
+    ))
+}

@@ -3,9 +3,9 @@
 //! every method on stress cases (what each decides, at what cost, where it
 //! stalls).
 
-use super::methods::machine;
+use super::machine;
 use super::{CliError, CliResult};
-use detach::atlas::stability::{draw_stability_map, StabilityPanel};
+use detach::figures::stability::{draw_stability_map, StabilityPanel};
 use detach::pave::{run_method, Label, Method, PaveOptions, Paving, StopReason};
 use detach::scene::{Domain, Scene, SceneId, Variant, PI};
 use serde::Serialize;
@@ -20,7 +20,7 @@ pub struct StabilityArgs {
     #[arg(long, default_value_t = 1.0 / 256.0, allow_negative_numbers = true)]
     pub eps: f64,
     /// Most leaves per paving.
-    #[arg(long, default_value_t = 4_000_000, value_parser = detach::param::parse_count)]
+    #[arg(long, default_value_t = 4_000_000, value_parser = detach::number::param::parse_count)]
     pub max_boxes: usize,
     /// Print the JSON document instead of the table.
     #[arg(long)]
