@@ -1,8 +1,8 @@
-//! Correctly rounded interval trigonometry (`detach::elementary`, CORE-MATH)
+//! Correctly rounded interval trigonometry (`detach::number::elementary`, CORE-MATH)
 //! against `inari`'s (MPFR), one call each, and a whole θ-slab of every scene.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use detach::elementary;
+use detach::number::elementary;
 use detach::scene::{Scene, SceneId, Variant};
 use inari::Interval;
 use std::hint::black_box;
@@ -42,7 +42,7 @@ fn slabs(c: &mut Criterion) {
             b.iter(|| s.constraints_on(Variant::Derived, black_box(th)))
         });
         g.bench_function(BenchmarkId::new("core-math", id.name()), |b| {
-            b.iter(|| elementary::slab_constraints(&s, Variant::Derived, black_box(th)))
+            b.iter(|| detach::scene::slab::constraints_on(&s, Variant::Derived, black_box(th)))
         });
     }
     g.finish();

@@ -2,7 +2,7 @@
 //! intervals (the ratio is what matters).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use detach::param::enclose_window_end;
+use detach::number::param::enclose_window_end;
 use detach::pave::{
     pave_scene, pave_scene_method, standard_cells, Method, MethodOptions, PaveOptions, Paving,
 };

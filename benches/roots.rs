@@ -2,7 +2,7 @@
 //! and the κ₀ proof.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use detach::param::enclose_decimal;
+use detach::number::param::enclose_decimal;
 use detach::roots::{prove_kappa0, solve_2_9, Budget};
 use std::hint::black_box;
 

@@ -4,7 +4,7 @@
 //! e.g. `-- smooth-disc derived 10` paves with eps = 2^-10. With no scene,
 //! every scene is drawn in the derived variant.
 
-use detach::atlas::{draw_atlas, plot_area_pixels, AtlasStyle, PictureInfo};
+use detach::figures::{draw_atlas, plot_area_pixels, AtlasStyle, PictureInfo};
 use detach::pave::{pave_scene, PaveOptions};
 use detach::scene::{Scene, SceneId, Variant};
 use std::path::Path;

@@ -35,16 +35,14 @@
 //! (`-Ctarget-cpu=native -Ctarget-feature=-avx512vl` on x86-64, or
 //! `-Ctarget-cpu=haswell` for a portable binary) into the dependent project.
 
-pub mod area;
-pub mod atlas;
 pub mod certificate;
 pub mod check;
 pub mod claims;
-pub mod elementary;
-pub mod param;
+pub mod figures;
+pub mod number;
 pub mod pave;
+pub mod quadrature;
 pub mod roots;
-pub mod scalar;
 pub mod scene;
 
 pub use inari;

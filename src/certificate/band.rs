@@ -10,10 +10,10 @@
 
 use super::numbers::{decimal, hex, Round};
 use super::roots::{build_pieces, Piece, PieceKind};
+use crate::number::scalar::Scalar;
 use crate::roots::critical::{band_cell, g};
 use crate::roots::isolate::point;
 use crate::roots::RealFn;
-use crate::scalar::Scalar;
 use inari::Interval;
 use serde_json::{json, Value};
 
@@ -74,7 +74,7 @@ fn cell(a0: f64, a1: f64) -> (Value, Value) {
     );
     let (mut points, lower_ok) = (Vec::new(), band.lower > 0.0);
     if lower_ok {
-        let k = crate::param::enclose_decimal("lower", &lower).expect("decimal we wrote");
+        let k = crate::number::param::enclose_decimal("lower", &lower).expect("decimal we wrote");
         let p = Poly {
             alpha,
             kappa: iv(0.0, k.sup()),
@@ -90,7 +90,7 @@ fn cell(a0: f64, a1: f64) -> (Value, Value) {
     }
     // Upper: P > 0 on [0, ∞) for every κ ≥ upper.
     let upper = decimal(band.upper + slack, 10, Round::Up);
-    let u = crate::param::enclose_decimal("upper", &upper).expect("decimal we wrote");
+    let u = crate::number::param::enclose_decimal("upper", &upper).expect("decimal we wrote");
     let pieces: Vec<Piece> = build_pieces(
         &Poly {
             alpha,

@@ -11,11 +11,11 @@
 
 use super::paving::{paving_proof, PavingStatement};
 use super::roots::{build_pieces, kappa0_proof, roots_proof, RootsStatement};
-use crate::param::{enclose_decimal, ParamSet};
+use crate::number::param::{enclose_decimal, ParamSet};
+use crate::number::scalar::Scalar;
 use crate::pave::{pave_scene, PaveOptions};
 use crate::roots::isolate::Budget;
 use crate::roots::{prove_kappa0, solve_2_10, solve_2_12, solve_2_9, RealFn};
-use crate::scalar::Scalar;
 use crate::scene::{Scene, SceneId, SmoothDisc, Variant};
 use inari::Interval;
 use serde_json::Value;
@@ -212,7 +212,7 @@ pub fn roots_2_12(params: &ParamSet) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::atlas::{plot_area_pixels, AtlasStyle};
+    use crate::figures::{plot_area_pixels, AtlasStyle};
 
     #[test]
     fn atlas_eps_is_the_atlas_default() {
@@ -250,5 +250,49 @@ mod tests {
             }
             assert!(prove_named("nope").is_err());
         }
+    }
+}
+
+/// What a `roots` run asks a proof of: the equation and the values it was
+/// given (decimal text; `overrides` are a scene's `NAME=VALUE` parameters).
+#[derive(Debug, Clone, Copy)]
+pub struct RootsRequest<'a> {
+    pub equation: &'a str,
+    pub kappa: Option<&'a str>,
+    pub alpha: Option<&'a str>,
+    pub scene: Option<&'a str>,
+    pub overrides: &'a [(String, String)],
+}
+
+/// The proof file of a `roots` run: (2.9) with κ and α, (2.10) with κ, or
+/// (2.12) of the smooth disc or the disc on ice; an error names what is
+/// missing or why no proof exists for the request.
+pub fn requested_roots_proof(r: &RootsRequest) -> Result<Value, String> {
+    let eq = r
+        .equation
+        .trim()
+        .trim_start_matches('(')
+        .trim_end_matches(')');
+    fn need<'s>(flag: Option<&'s str>, name: &str, eq: &str) -> Result<&'s str, String> {
+        flag.map(str::trim)
+            .ok_or_else(|| format!("--proof for ({eq}) needs --{name}"))
+    }
+    match eq {
+        "2.9" if r.scene.is_none() => {
+            roots_2_9(need(r.kappa, "kappa", eq)?, need(r.alpha, "alpha", eq)?)
+        }
+        "2.10" => roots_2_10(need(r.kappa, "kappa", eq)?),
+        "2.12" => {
+            let id: SceneId = need(r.scene, "scene", eq)?.parse()?;
+            if !matches!(id, SceneId::SmoothDisc | SceneId::IceDisc) {
+                return Err("(2.12) needs --scene smooth-disc or ice-disc".into());
+            }
+            let (_, params) = Scene::build(id, r.overrides).map_err(|e| e.to_string())?;
+            Ok(roots_2_12(&params))
+        }
+        _ => Err(format!(
+            "proof files exist for (2.9) with --kappa/--alpha, (2.10) and (2.12); not for ({eq}){}",
+            if eq == "2.9" { " with --scene" } else { "" }
+        )),
     }
 }

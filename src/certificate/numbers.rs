@@ -1,7 +1,7 @@
 //! How numbers are written into proof files: exact doubles as hexadecimal
 //! floats, claimed bounds as short decimals rounded outward.
 
-use crate::param::enclose_decimal;
+use crate::number::param::enclose_decimal;
 
 /// The exact C99 hexadecimal form of a double (`0x1.8p+1` = 3); `inf`/`-inf`.
 pub fn hex(x: f64) -> String {

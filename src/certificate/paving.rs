@@ -3,7 +3,7 @@
 //! the tree in the compact `tree/1` encoding.
 
 use super::numbers::{decimal, hex, Round};
-use crate::param::ParamSet;
+use crate::number::param::ParamSet;
 use crate::pave::{CellSpec, Label, Node, Paving};
 use crate::scene::{Domain, SceneId, Variant, REGION_NAMES};
 use serde_json::{json, Map, Value};

@@ -8,9 +8,9 @@
 //! weakens accordingly; nothing is dropped.
 
 use super::numbers::{decimal, hex, Round};
+use crate::number::scalar::{is_defined, Dual, Scalar};
 use crate::roots::isolate::{point, split_point, RootEnclosure};
 use crate::roots::RealFn;
-use crate::scalar::{is_defined, Dual, Scalar};
 use inari::{DecInterval, Decoration, Interval};
 use serde_json::{json, Map, Value};
 

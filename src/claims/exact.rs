@@ -16,7 +16,7 @@
 //! agreement at `n` independent points leaves a probability at most
 //! `(200/2³⁰)ⁿ` that the formulas differ (n = 8: below 10⁻⁵³).
 
-use crate::scalar::{Dual, Scalar};
+use crate::number::scalar::{Dual, Scalar};
 use crate::scene::Angle;
 use inari::Interval;
 use rug::Rational;

@@ -15,8 +15,8 @@ use super::exact::{
 };
 use super::witness::{find_difference, find_leaf, labels_on, window};
 use super::{dec, enc, Claim, Outcome, Strength, Verdict};
+use crate::number::scalar::{Dual, Scalar};
 use crate::pave::Label;
-use crate::scalar::{Dual, Scalar};
 use crate::scene::Angle;
 use inari::{DecInterval, Interval};
 use serde_json::json;

@@ -459,7 +459,7 @@ pub fn draw(id: &str, dir: &Path, mark: Option<PhaseBox>) -> Result<(), String> 
     let Some(fig) = spec(id, mark) else {
         return Ok(());
     };
-    crate::roots::plot::register_font();
+    crate::figures::roots::register_font();
     let fdir = dir.join("figures");
     std::fs::create_dir_all(&fdir).map_err(|e| format!("{}: {e}", fdir.display()))?;
     let stem = id.replace('.', "_");

@@ -23,9 +23,9 @@ use super::smooth::{
 };
 use super::witness::{find_difference, window};
 use super::{dec, enc, Claim, Outcome, Strength, Verdict};
+use crate::number::scalar::{Dual, Scalar};
 use crate::roots::isolate::{isolate, point, RealFn};
 use crate::roots::{solve_3_3, Budget};
-use crate::scalar::{Dual, Scalar};
 use crate::scene::{Angle, IceDisc, Scene, SceneId};
 use inari::{DecInterval, Interval};
 use serde_json::json;

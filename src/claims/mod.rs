@@ -10,7 +10,7 @@
 //! deliberately wrong variant of the formula or parameters (documented at the
 //! check), so tests can show that the check can come out the other way.
 //!
-//! * [`exact`]: rationals behind the [`Scalar`](crate::scalar::Scalar) trait,
+//! * [`exact`]: rationals behind the [`Scalar`](crate::number::scalar::Scalar) trait,
 //!   identity tests (Schwartz–Zippel), small exact linear solves.
 //! * [`witness`]: certified region differences found with the paver.
 //! * [`example1`], [`smooth`], [`ice`]: the checks of §1, §2, §3.
@@ -227,7 +227,7 @@ pub fn check(id: &str, mutant: bool) -> Result<ClaimResult, UnknownClaim> {
 
 /// Decimal text to an enclosure (panics on bad text: only constants here).
 pub(crate) fn dec(text: &str) -> inari::Interval {
-    crate::param::enclose_decimal("claim parameter", text).expect("valid decimal")
+    crate::number::param::enclose_decimal("claim parameter", text).expect("valid decimal")
 }
 
 /// `[inf, sup]` of an enclosure for a witness.

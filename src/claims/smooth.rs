@@ -12,11 +12,11 @@ use super::exact::{
     RationalPath, Rng, Sample, Q,
 };
 use super::{enc, Claim, Outcome, Strength, Verdict};
+use crate::number::scalar::{Dual, Scalar};
 use crate::roots::critical::{band_cell, g as g_crit};
 use crate::roots::equations::kappa_alpha;
 use crate::roots::isolate::{point, RealFn};
 use crate::roots::{prove_kappa0, solve_2_10, solve_2_9, Budget, EquationRoots};
-use crate::scalar::{Dual, Scalar};
 use crate::scene::{Scene, SceneId, SmoothDisc};
 use inari::Interval;
 use serde_json::json;

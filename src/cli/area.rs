@@ -1,8 +1,8 @@
 //! `detach area`: certified areas of regions and cells by quadrature over θ.
 
 use super::{CliError, CliResult};
-use detach::area::{cell_area, AreaOptions, CELLS};
-use detach::param::parse_assignment;
+use detach::number::param::parse_assignment;
+use detach::quadrature::{cell_area, AreaOptions, CELLS};
 use detach::scene::{Scene, SceneId, Variant, REGION_LABELS, REGION_NAMES};
 use serde::Serialize;
 use std::time::Instant;
@@ -26,7 +26,7 @@ pub struct AreaArgs {
     #[arg(long = "param", value_name = "NAME=VALUE")]
     pub params: Vec<String>,
     /// Most θ-pieces per region (an integer, `1e6` form accepted).
-    #[arg(long, default_value_t = 1 << 20, value_parser = detach::param::parse_count)]
+    #[arg(long, default_value_t = 1 << 20, value_parser = detach::number::param::parse_count)]
     pub max_pieces: usize,
     /// Print the result as JSON instead of a table.
     #[arg(long)]

@@ -1,13 +1,14 @@
 //! `detach atlas`, `detach pave`, `detach scenes`.
 
 use super::{CliError, CliResult};
-use detach::atlas::{
+use detach::figures::{
     draw_atlas_files, parse_size, plot_area_pixels, AtlasStyle, Formats, PictureInfo, MIN_HEIGHT,
     MIN_WIDTH,
 };
-use detach::param::{parse_assignment, ParamSet};
+use detach::number::param::{parse_assignment, ParamSet};
 use detach::pave::{
-    pave_scene_method, standard_cells, AreaBounds, Method, MethodOptions, PaveOptions, Paving,
+    pave_scene_method, standard_cell_bounds, standard_cells, Emptiness, Method, MethodOptions,
+    PaveOptions, Paving,
 };
 use detach::scene::{Domain, Scene, SceneId, Variant, REGION_LABELS, REGION_NAMES};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -31,7 +32,7 @@ pub struct PaveFlags {
     pub eps: Option<f64>,
     /// Most leaves per paving (an integer, `1e6` form accepted); when reached
     /// the result is coarser but valid.
-    #[arg(long, default_value_t = 4_000_000, value_parser = detach::param::parse_count, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 4_000_000, value_parser = detach::number::param::parse_count, allow_negative_numbers = true)]
     pub max_boxes: usize,
     /// Paving method: natural, centred, contract or slices. Every method's
     /// labels are re-decided by the proof checker (natural evaluation, or its
@@ -246,33 +247,21 @@ fn summarise(
     elapsed_s: f64,
 ) -> PaveReport {
     let uncovered = domain.uncovered_area_sup();
-    // Ω̄∩Ω₀ (index 4) is empty when the scene proves Ω₀ ⊂ Ω.
-    let inside = scene.omega0_inside_omega(variant);
-    let regions = paving
-        .area_bounds_all(&standard_cells(), uncovered)
+    let regions = standard_cell_bounds(paving, scene, variant, uncovered)
         .into_iter()
         .enumerate()
-        .map(|(i, b): (usize, AreaBounds)| {
-            let implied = inside && i == 4;
-            RegionReport {
-                name: REGION_NAMES[i],
-                label: REGION_LABELS[i],
-                inner_area: b.inner_area,
-                outer_area: if implied { 0.0 } else { b.outer_area },
-                undecided_area: if implied { 0.0 } else { b.undecided_area() },
-                empty: if b.proved_empty {
-                    Some("omega0 = omega")
-                } else if implied {
-                    Some("omega0 inside omega")
-                } else {
-                    None
-                },
-                boxes: BoxCounts {
-                    inner: b.inner_boxes,
-                    outer: if implied { 0 } else { b.outer_boxes },
-                    undecided: if implied { 0 } else { b.undecided_boxes() },
-                },
-            }
+        .map(|(i, (b, empty))| RegionReport {
+            name: REGION_NAMES[i],
+            label: REGION_LABELS[i],
+            inner_area: b.inner_area,
+            outer_area: b.outer_area,
+            undecided_area: b.undecided_area(),
+            empty: empty.map(Emptiness::describe),
+            boxes: BoxCounts {
+                inner: b.inner_boxes,
+                outer: b.outer_boxes,
+                undecided: b.undecided_boxes(),
+            },
         })
         .collect();
     let (undefined_area, warnings) = undefined_warnings(paving);
@@ -341,7 +330,7 @@ fn undefined_warnings(paving: &Paving) -> (f64, Vec<String>) {
                 paving.leaves.len()
             )
         };
-        let n = detach::param::short_num;
+        let n = detach::number::param::short_num;
         warnings.push(format!(
             "{what}, in θ ∈ [{}, {}], θ̇ ∈ [{}, {}]: the enclosures under- or \
              overflowed the double range there (or a formula is singular), so the area \
@@ -692,7 +681,7 @@ pub fn run_scenes(args: &ScenesArgs) -> CliResult {
     struct SceneInfo {
         name: &'static str,
         title: &'static str,
-        params: &'static [detach::param::ParamSpec],
+        params: &'static [detach::number::param::ParamSpec],
         domain: DomainText,
         variants: [Variant; 2],
     }

@@ -1,12 +1,12 @@
 //! `detach prove` and `detach verify`: proof files and their independent check.
 
-use super::{CliError, CliResult};
-use detach::certificate::catalog::{file_name, roots_2_10, roots_2_12, roots_2_9};
-use detach::certificate::{paving_proof, prove_named, to_bytes, PavingStatement, HEADLINE};
+use super::{write_checked, CliError, CliResult};
+use detach::certificate::catalog::file_name;
+use detach::certificate::{paving_proof, prove_named, PavingStatement, HEADLINE};
 use detach::check::{check_bytes, Verdict};
-use detach::param::{parse_assignment, ParamSet};
+use detach::number::param::ParamSet;
 use detach::pave::Paving;
-use detach::scene::{Domain, Scene, SceneId, Variant};
+use detach::scene::{Domain, Scene, Variant};
 use sha2::{Digest, Sha256};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -37,34 +37,6 @@ fn hex_digest(bytes: &[u8]) -> String {
         .iter()
         .map(|b| format!("{b:02x}"))
         .collect()
-}
-
-/// Writes a proof file, checks it with the independent checker, and returns
-/// (bytes, checker seconds, units checked).
-pub fn write_checked(
-    path: &Path,
-    proof: &serde_json::Value,
-) -> Result<(usize, f64, String), CliError> {
-    let bytes = to_bytes(proof);
-    std::fs::write(path, &bytes)
-        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
-    let report = check_bytes(&bytes).map_err(|e| {
-        CliError::runtime(format!(
-            "{}: the checker cannot read it: {e}",
-            path.display()
-        ))
-    })?;
-    if let Verdict::Invalid(why) = &report.verdict {
-        return Err(CliError::runtime(format!(
-            "{}: the checker rejects it: {why}",
-            path.display()
-        )));
-    }
-    Ok((
-        bytes.len(),
-        report.seconds,
-        format!("{} {}", report.checked, report.unit),
-    ))
 }
 
 /// The manifest of every `.json` file in `dir`, in `sha256sum` format.
@@ -267,57 +239,6 @@ pub fn write_paving_proof(
         },
         paving,
     );
-    let (bytes, _, units) = write_checked(path, &proof)?;
-    eprintln!(
-        "wrote {} ({bytes} B, {units}, checked VALID)",
-        path.display()
-    );
-    Ok(())
-}
-
-/// `roots --proof FILE`: the roots of this run as a proof file.
-pub fn write_roots_proof(path: &Path, args: &super::roots::RootsArgs) -> CliResult {
-    fn need<'a>(flag: &'a Option<String>, name: &str, eq: &str) -> Result<&'a str, CliError> {
-        flag.as_deref()
-            .map(str::trim)
-            .ok_or_else(|| CliError::usage(format!("--proof for ({eq}) needs --{name}")))
-    }
-    let eq = args
-        .equation
-        .trim()
-        .trim_start_matches('(')
-        .trim_end_matches(')');
-    let proof = match eq {
-        "2.9" if args.scene.is_none() => roots_2_9(
-            need(&args.kappa, "kappa", eq)?,
-            need(&args.alpha, "alpha", eq)?,
-        ),
-        "2.10" => roots_2_10(need(&args.kappa, "kappa", eq)?),
-        "2.12" => {
-            let id: SceneId = need(&args.scene, "scene", eq)?
-                .parse()
-                .map_err(CliError::usage)?;
-            if !matches!(id, SceneId::SmoothDisc | SceneId::IceDisc) {
-                return Err(CliError::usage(
-                    "(2.12) needs --scene smooth-disc or ice-disc",
-                ));
-            }
-            let overrides = args
-                .params
-                .iter()
-                .map(|t| parse_assignment(t).map_err(CliError::usage))
-                .collect::<Result<Vec<_>, _>>()?;
-            let (_, params) = Scene::build(id, &overrides).map_err(CliError::usage)?;
-            Ok(roots_2_12(&params))
-        }
-        _ => {
-            return Err(CliError::usage(format!(
-            "proof files exist for (2.9) with --kappa/--alpha, (2.10) and (2.12); not for ({eq}){}",
-            if eq == "2.9" { " with --scene" } else { "" }
-        )))
-        }
-    }
-    .map_err(CliError::usage)?;
     let (bytes, _, units) = write_checked(path, &proof)?;
     eprintln!(
         "wrote {} ({bytes} B, {units}, checked VALID)",

@@ -1,11 +1,12 @@
 //! `detach roots`, `detach kappa0`, `detach critical-curve`, `detach tangency`.
 
 use super::{CliError, CliResult};
-use detach::param::{enclose_decimal, parse_assignment, ParamSet};
+use detach::certificate::catalog::{requested_roots_proof, RootsRequest};
+use detach::figures::roots::{plot_critical_with, plot_tangency_with};
+use detach::number::param::{enclose_decimal, parse_assignment, ParamSet};
 use detach::roots::critical::critical_curve;
 use detach::roots::equations::kappa_alpha;
 use detach::roots::kappa0::{Bound, Verdict};
-use detach::roots::plot::{plot_critical_with, plot_tangency_with};
 use detach::roots::tangency::{tangency_scan, Outcome};
 use detach::roots::{
     prove_kappa0, solve_2_10, solve_2_12, solve_2_9, solve_3_3, Budget, EquationId, EquationRoots,
@@ -36,7 +37,7 @@ pub struct RootsArgs {
     #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
     pub params: Vec<String>,
     /// Most function evaluations.
-    #[arg(long, default_value_t = 200_000, value_parser = detach::param::parse_count, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 200_000, value_parser = detach::number::param::parse_count, allow_negative_numbers = true)]
     pub max_evaluations: usize,
     /// Print JSON instead of a table.
     #[arg(long)]
@@ -61,10 +62,10 @@ pub struct CriticalCurveArgs {
     #[arg(long, default_value = "out/critical-curve")]
     pub out: PathBuf,
     /// Number of α-boxes of [0, 1] (a power of two).
-    #[arg(long, default_value_t = 128, value_parser = detach::param::parse_count, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 128, value_parser = detach::number::param::parse_count, allow_negative_numbers = true)]
     pub alpha_boxes: usize,
     /// Number of κ-boxes of (0, κ_max] (a power of two).
-    #[arg(long, default_value_t = 128, value_parser = detach::param::parse_count, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 128, value_parser = detach::number::param::parse_count, allow_negative_numbers = true)]
     pub kappa_boxes: usize,
     /// Top of the κ range (decimal; the grid uses the double below it).
     #[arg(long, default_value = "0.25", allow_hyphen_values = true)]
@@ -89,18 +90,18 @@ pub struct FigureFlags {
 }
 
 impl FigureFlags {
-    fn options(&self) -> Result<detach::roots::plot::FigureOptions, CliError> {
+    fn options(&self) -> Result<detach::figures::roots::FigureOptions, CliError> {
         let size = self
             .size
             .as_deref()
             .map(|s| {
-                detach::atlas::parse_size(s, detach::roots::plot::MIN_SIZE)
+                detach::figures::parse_size(s, detach::figures::roots::MIN_SIZE)
                     .map_err(|e| CliError::usage(format!("--size: {e}")))
             })
             .transpose()?;
-        let formats = detach::atlas::Formats::parse(&self.format)
+        let formats = detach::figures::Formats::parse(&self.format)
             .map_err(|e| CliError::usage(format!("--format: {e}")))?;
-        Ok(detach::roots::plot::FigureOptions { size, formats })
+        Ok(detach::figures::roots::FigureOptions { size, formats })
     }
 }
 
@@ -319,6 +320,29 @@ impl RootsOutputParts {
     }
 }
 
+/// `roots --proof FILE`: the roots of this run as a checked proof file.
+fn write_roots_proof(path: &std::path::Path, args: &RootsArgs) -> CliResult {
+    let overrides = args
+        .params
+        .iter()
+        .map(|t| detach::number::param::parse_assignment(t).map_err(CliError::usage))
+        .collect::<Result<Vec<_>, _>>()?;
+    let proof = requested_roots_proof(&RootsRequest {
+        equation: &args.equation,
+        kappa: args.kappa.as_deref(),
+        alpha: args.alpha.as_deref(),
+        scene: args.scene.as_deref(),
+        overrides: &overrides,
+    })
+    .map_err(CliError::usage)?;
+    let (bytes, _, units) = super::write_checked(path, &proof)?;
+    eprintln!(
+        "wrote {} ({bytes} B, {units}, checked VALID)",
+        path.display()
+    );
+    Ok(())
+}
+
 /// `[lo, hi]` in exponent form, `-0` printed as `0`.
 fn fmt_enc(b: [f64; 2]) -> String {
     format!("[{:e}, {:e}]", b[0] + 0.0, b[1] + 0.0)
@@ -340,7 +364,7 @@ fn roots_arguments(args: &RootsArgs) -> serde_json::Value {
 pub fn run_roots(args: &RootsArgs) -> CliResult {
     let (result, parts) = solve(args)?;
     if let Some(path) = &args.proof {
-        super::proofs::write_roots_proof(path, args)?;
+        write_roots_proof(path, args)?;
     }
     if args.json {
         let out = RootsOutput {
@@ -564,7 +588,7 @@ pub fn run_critical_curve(args: &CriticalCurveArgs) -> CliResult {
         }
         outln!(
             "atlas (α, κ) ∈ [0, 1] × (0, {}]: {} no root, {} exactly two simple roots, {} undecided",
-            detach::param::short_num(cc.kappa_max),
+            detach::number::param::short_num(cc.kappa_max),
             cc.counts.no_root, cc.counts.two_simple_roots, cc.counts.undecided
         );
         for f in files {

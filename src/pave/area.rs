@@ -49,8 +49,53 @@ impl CellSpec {
     }
 }
 
-/// Region and the four cells for two constraints (Ω, Ω₀), in the order of
+/// The two regions and the four cells of the partition, by name; their
+/// index is their place in [`standard_cells`] and
 /// [`crate::scene::REGION_NAMES`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Cell {
+    /// Ω: no detachment.
+    Omega = 0,
+    /// Ω₀: the contact reaction keeps its sign.
+    Omega0 = 1,
+    /// Ω∩Ω₀.
+    OmegaAndOmega0 = 2,
+    /// Ω̄∩Ω̄₀.
+    NeitherOmegaNorOmega0 = 3,
+    /// Ω̄∩Ω₀.
+    Omega0NotOmega = 4,
+    /// Ω∩Ω̄₀.
+    OmegaNotOmega0 = 5,
+}
+
+impl Cell {
+    pub const ALL: [Cell; 6] = [
+        Cell::Omega,
+        Cell::Omega0,
+        Cell::OmegaAndOmega0,
+        Cell::NeitherOmegaNorOmega0,
+        Cell::Omega0NotOmega,
+        Cell::OmegaNotOmega0,
+    ];
+    pub fn index(self) -> usize {
+        self as usize
+    }
+    /// Its literals on (Ω, Ω₀).
+    pub fn spec(self) -> CellSpec {
+        standard_cells()[self.index()]
+    }
+    /// `omega`, `omega0`, … as in output files.
+    pub fn name(self) -> &'static str {
+        crate::scene::REGION_NAMES[self.index()]
+    }
+    /// `Ω`, `Ω₀`, `Ω∩Ω₀`, …
+    pub fn label(self) -> &'static str {
+        crate::scene::REGION_LABELS[self.index()]
+    }
+}
+
+/// Region and the four cells for two constraints (Ω, Ω₀), in the order of
+/// [`Cell`] and [`crate::scene::REGION_NAMES`].
 pub fn standard_cells() -> [CellSpec; 6] {
     let (t, f) = (Some(true), Some(false));
     [
@@ -201,4 +246,50 @@ impl Sums {
             proved_empty: false,
         }
     }
+}
+
+/// Why a cell is empty whatever the leaves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Emptiness {
+    /// Ω₀ is Ω by construction (the same function: an ideal constraint).
+    Omega0IsOmega,
+    /// Ω₀ ⊂ Ω is proved for these parameters.
+    Omega0InsideOmega,
+}
+
+impl Emptiness {
+    pub fn describe(self) -> &'static str {
+        match self {
+            Emptiness::Omega0IsOmega => "omega0 = omega",
+            Emptiness::Omega0InsideOmega => "omega0 inside omega",
+        }
+    }
+}
+
+/// Area bounds of Ω, Ω₀ and the four cells ([`Cell`] order) of a scene's
+/// paving, with what the scene proves applied: a cell empty by construction
+/// has both bounds 0, and Ω̄∩Ω₀ has outer bound 0 when Ω₀ ⊂ Ω is proved.
+pub fn standard_cell_bounds(
+    paving: &Paving,
+    scene: &crate::scene::Scene,
+    variant: crate::scene::Variant,
+    uncovered_sup: f64,
+) -> [(AreaBounds, Option<Emptiness>); 6] {
+    let inside = scene.omega0_inside_omega(variant);
+    let bounds = paving.area_bounds_all(&standard_cells(), uncovered_sup);
+    std::array::from_fn(|i| {
+        let b = bounds[i];
+        if b.proved_empty {
+            (b, Some(Emptiness::Omega0IsOmega))
+        } else if inside && i == Cell::Omega0NotOmega.index() {
+            let b = AreaBounds {
+                outer_area: b.inner_area,
+                outer_boxes: b.inner_boxes,
+                ..b
+            };
+            (b, Some(Emptiness::Omega0InsideOmega))
+        } else {
+            (b, None)
+        }
+    })
 }

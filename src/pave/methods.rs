@@ -28,7 +28,7 @@ use super::{
     CellSpec, ConstraintSet, Label, Leaf, Node, PaveError, PaveOptions, PaveStats, Paving,
     PerConstraint, PhaseBox, SlabEnds, StopReason, MAX_CONSTRAINTS,
 };
-use crate::scalar::{is_defined, Dual};
+use crate::number::scalar::{is_defined, Dual};
 use crate::scene::Quadratic;
 use inari::{DecInterval, Interval};
 use rayon::prelude::*;

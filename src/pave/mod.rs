@@ -13,12 +13,12 @@ pub mod area;
 pub mod export;
 pub mod methods;
 
-use crate::scalar::{is_continuous, is_defined};
+use crate::number::scalar::{is_continuous, is_defined};
 use crate::scene::{Angle, Constraints, Domain, Quadratic, Scene, Variant};
 use inari::{DecInterval, Interval};
 use serde::Serialize;
 
-pub use area::{standard_cells, AreaBounds, CellSpec};
+pub use area::{standard_cell_bounds, standard_cells, AreaBounds, Cell, CellSpec, Emptiness};
 pub use methods::{monotone_label, pave_with, run_method, Method, MethodOptions, MethodRun};
 
 /// Most constraints one paving can carry.
@@ -262,7 +262,7 @@ pub struct SlabEnds {
 
 impl SlabEnds {
     pub fn new(
-        dual: Quadratic<crate::scalar::DualTheta<DecInterval>>,
+        dual: Quadratic<crate::number::scalar::DualTheta<DecInterval>>,
         ends: [Quadratic<DecInterval>; 2],
     ) -> SlabEnds {
         let value = dual.map(|d| d.value);
@@ -292,10 +292,10 @@ impl ConstraintSet for SceneConstraints<'_> {
         vec!["omega".into(), "omega0".into()]
     }
     /// The θ-slab coefficients with correctly rounded trigonometry widened by
-    /// an ulp ([`crate::elementary`]): enclosures at most a few ulp wider than
+    /// an ulp ([`crate::number::elementary`]): enclosures at most a few ulp wider than
     /// inari's, so a checker evaluating with inari confirms every label.
     fn slab(&self, theta: Interval) -> Self::Slab {
-        crate::elementary::slab_constraints(self.scene, self.variant, theta)
+        crate::scene::slab::constraints_on(self.scene, self.variant, theta)
     }
     fn enclose(&self, c: &Self::Slab, theta_dot: Interval) -> PerConstraint<DecInterval> {
         let w = DecInterval::new(theta_dot);
@@ -326,7 +326,7 @@ impl ConstraintSet for SceneConstraints<'_> {
     /// The dual slab's values are the slab itself (the same operations on
     /// the same enclosures), so the natural slab comes free.
     fn slab_and_ends(&self, theta: Interval) -> (Self::Slab, Option<PerConstraint<SlabEnds>>) {
-        let d = crate::elementary::slab_dual_constraints(self.scene, self.variant, theta);
+        let d = crate::scene::slab::dual_constraints_on(self.scene, self.variant, theta);
         let slab = d.map(|x| x.value);
         let end = |x: f64| Interval::try_from((x, x)).ok().map(|p| self.slab(p));
         let ends = end(theta.inf()).zip(end(theta.sup())).and_then(|(lo, hi)| {
@@ -338,7 +338,7 @@ impl ConstraintSet for SceneConstraints<'_> {
         (slab, ends)
     }
     fn centred_coefficients(&self, theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {
-        use crate::scalar::DualTheta;
+        use crate::number::scalar::DualTheta;
         use crate::scene::Angle;
         let t = DecInterval::new(theta);
         let m = Interval::try_from((theta.mid(), theta.mid())).ok()?;

@@ -27,7 +27,7 @@
 
 use super::isolate::point;
 use super::kappa0::{prove_kappa0, Bound};
-use crate::scalar::{Dual, Scalar};
+use crate::number::scalar::{Dual, Scalar};
 use inari::{const_interval, Interval};
 use serde::Serialize;
 

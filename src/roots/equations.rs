@@ -6,7 +6,7 @@
 
 use super::isolate::{isolate, point, Budget, RootEnclosure, RootStatus, Stats, UndecidedReason};
 use super::{RealFn, RootsError};
-use crate::scalar::Scalar;
+use crate::number::scalar::Scalar;
 use crate::scene::{Angle, IceDisc, Model, SmoothDisc, Variant};
 use inari::{const_interval, Interval};
 use serde::Serialize;
@@ -485,7 +485,7 @@ fn solve_scene_on_theta<F: RealFn>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::param::enclose_decimal;
+    use crate::number::param::enclose_decimal;
     use crate::scene::{Scene, SceneId};
 
     fn dec(t: &str) -> Interval {

@@ -24,7 +24,7 @@
 //! returned enclosures together with the proved root-free parts always cover
 //! `[lo, hi]`, also when the budget runs out.
 
-use crate::scalar::{is_continuous, is_defined, Dual, Scalar};
+use crate::number::scalar::{is_continuous, is_defined, Dual, Scalar};
 use inari::{DecInterval, Interval};
 use serde::Serialize;
 

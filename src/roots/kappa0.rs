@@ -13,7 +13,7 @@
 //! Each step is kept as data ([`ProofStep`]) with the enclosures it rests on.
 
 use super::isolate::{isolate, point, ulps_between, Budget, RealFn, Stats};
-use crate::scalar::Scalar;
+use crate::number::scalar::Scalar;
 use inari::{const_interval, Interval};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -320,7 +320,7 @@ impl std::fmt::Display for Kappa0Class {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::param::enclose_decimal;
+    use crate::number::param::enclose_decimal;
 
     #[test]
     fn kappa0_is_proved_and_a_few_ulp_wide() {

@@ -19,7 +19,6 @@ pub mod critical;
 pub mod equations;
 pub mod isolate;
 pub mod kappa0;
-pub mod plot;
 pub mod tangency;
 
 pub use equations::{
@@ -50,5 +49,5 @@ pub enum RootsError {
         got: String,
     },
     #[error(transparent)]
-    Param(#[from] crate::param::ParamError),
+    Param(#[from] crate::number::param::ParamError),
 }

@@ -4,7 +4,7 @@
 use super::equations::{solve_2_10, EquationRoots};
 use super::isolate::{ulps_between, Budget, RootEnclosure};
 use super::kappa0::{prove_kappa0, Bound, Kappa0Class, Kappa0Proof};
-use crate::param::enclose_decimal;
+use crate::number::param::enclose_decimal;
 use inari::{const_interval, Interval};
 use serde::Serialize;
 use std::time::Instant;

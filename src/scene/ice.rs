@@ -30,8 +30,8 @@
 
 use super::smooth::{SmoothDisc, SMOOTH_PARAMS};
 use super::{Angle, Constraints, Domain, Formulas, Model, Quadratic, Variant};
-use crate::param::{ParamError, ParamSet, ParamSpec, Sign};
-use crate::scalar::Scalar;
+use crate::number::param::{ParamError, ParamSet, ParamSpec, Sign};
+use crate::number::scalar::Scalar;
 use inari::Interval;
 
 #[derive(Clone, Debug)]

@@ -7,11 +7,12 @@
 //! boxes of one θ-slab.
 
 pub mod ice;
+pub mod slab;
 pub mod smooth;
 pub mod viscous;
 
-use crate::param::{enclose_window_end, ParamError, ParamSet, ParamSpec};
-use crate::scalar::Scalar;
+use crate::number::param::{enclose_window_end, ParamError, ParamSet, ParamSpec};
+use crate::number::scalar::Scalar;
 use inari::{const_interval, DecInterval, Interval};
 use serde::Serialize;
 use std::fmt;
@@ -135,7 +136,7 @@ impl Domain {
     }
 
     /// A window of this domain from text (`None` keeps the side): decimals,
-    /// or `pi`, `-pi`, `pi/N`, `-pi/N` ([`crate::param::enclose_window_end`]).
+    /// or `pi`, `-pi`, `pi/N`, `-pi/N` ([`crate::number::param::enclose_window_end`]).
     /// The window must be non-empty and must not lie provably outside the
     /// domain. An end whose enclosure overlaps the domain's end (e.g.
     /// `3.1415926535897932`, a decimal just below π, whose enclosure reaches
@@ -178,8 +179,8 @@ impl Domain {
             let outside = || {
                 invalid(&format!(
                     "the window must lie inside the scene's domain [{}, {}]",
-                    crate::param::short_num(full[0].inf()),
-                    crate::param::short_num(full[1].sup())
+                    crate::number::param::short_num(full[0].inf()),
+                    crate::number::param::short_num(full[1].sup())
                 ))
             };
             // Provably below the domain's start or above its end.

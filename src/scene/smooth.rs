@@ -27,8 +27,8 @@
 use super::{
     symmetric, theta_range_0_pi, Angle, Constraints, Domain, Formulas, Model, Quadratic, Variant,
 };
-use crate::param::{ParamError, ParamSet, ParamSpec, Sign};
-use crate::scalar::Scalar;
+use crate::number::param::{ParamError, ParamSet, ParamSpec, Sign};
+use crate::number::scalar::Scalar;
 use inari::Interval;
 
 /// Parameters shared by §2 and §3.

@@ -34,8 +34,8 @@
 //! witnesses in `tests/findings.rs`.
 
 use super::{symmetric, Angle, Constraints, Domain, Formulas, Model, Quadratic, Variant, PI};
-use crate::param::{ParamError, ParamSet, ParamSpec, Sign};
-use crate::scalar::Scalar;
+use crate::number::param::{ParamError, ParamSet, ParamSpec, Sign};
+use crate::number::scalar::Scalar;
 use inari::Interval;
 
 #[derive(Clone, Debug)]

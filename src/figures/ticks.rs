@@ -96,7 +96,7 @@ pub fn tick_label(v: f64, step: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::atlas::plain;
+    use crate::figures::plain;
 
     #[test]
     fn labels_are_short_for_extreme_ranges() {

@@ -22,8 +22,8 @@
 
 pub mod taylor;
 
-use crate::elementary::slab_constraints;
-use crate::scalar::is_defined;
+use crate::number::scalar::is_defined;
+use crate::scene::slab::constraints_on;
 use crate::scene::{Domain, Quadratic, Scene, Variant};
 use inari::{const_interval, DecInterval, Interval};
 use rayon::prelude::*;
@@ -122,7 +122,7 @@ enum Shape {
 
 /// Sign-applied coefficients `(a2, a1, a0)` of literal `l`: `{a(θ̇) < 0}` is
 /// the literal's set.
-fn lit_coeffs<T: crate::scalar::Scalar>(q: &Quadratic<T>, inside: bool) -> (T, T, T) {
+fn lit_coeffs<T: crate::number::scalar::Scalar>(q: &Quadratic<T>, inside: bool) -> (T, T, T) {
     if inside {
         (q.c2, q.c1, q.c0)
     } else {
@@ -262,7 +262,7 @@ fn literal_slice(
 
 /// The two roots by the cancellation-free pair `Q/a2`, `a0/Q`,
 /// `Q = −(a1 + s√D)/2`.
-fn root_forms<T: crate::scalar::Scalar>(a2: T, a1: T, a0: T, s: i8) -> [T; 2] {
+fn root_forms<T: crate::number::scalar::Scalar>(a2: T, a1: T, a0: T, s: i8) -> [T; 2] {
     let d = a1.sqr() - T::int(4) * a2 * a0;
     let sq = d.sqrt();
     let q = -(if s > 0 { a1 + sq } else { a1 - sq }) / T::int(2);
@@ -305,7 +305,7 @@ fn moments(t0: f64, t1: f64, m: f64) -> [Interval; N + 1] {
 impl Job<'_> {
     /// The slice shape on `theta`, with the literal shapes it uses.
     fn shape(&self, theta: Interval) -> Option<(Vec<Shape>, Slice)> {
-        let c = slab_constraints(self.scene, self.variant, theta);
+        let c = constraints_on(self.scene, self.variant, theta);
         let quads = [c.omega, c.omega0];
         let window = [
             Bound {

@@ -13,8 +13,7 @@
 //! possible pole of `tan`, an argument of `ln` reaching 0 — the functions fall
 //! back to `inari`'s own.
 
-use crate::scalar::{DualTheta, Scalar};
-use crate::scene::{Angle, Constraints, Scene, Variant};
+use crate::number::scalar::Scalar;
 use inari::{const_interval, DecInterval, Interval};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -301,30 +300,6 @@ impl Scalar for CrDec {
             _ => (self.sin(), self.cos()),
         }
     }
-}
-
-/// [`Scene::constraints_on`] with the elementary functions of this module:
-/// certified coefficient enclosures of Ω and Ω₀ over a θ-slab.
-pub fn slab_constraints(scene: &Scene, v: Variant, theta: Interval) -> Constraints<DecInterval> {
-    scene
-        .constraints(v, &Angle::new(CrDec(DecInterval::new(theta))))
-        .map(|x| x.0)
-}
-
-/// [`slab_constraints`] over a dual θ: every coefficient with its
-/// θ-derivative over the slab (gradient index 0).
-pub fn slab_dual_constraints(
-    scene: &Scene,
-    v: Variant,
-    theta: Interval,
-) -> Constraints<DualTheta<DecInterval>> {
-    let t = DualTheta::variable(CrDec(DecInterval::new(theta)), 0);
-    scene
-        .constraints(v, &Angle::new(t))
-        .map(|x: DualTheta<CrDec>| DualTheta {
-            value: x.value.0,
-            grad: x.grad.map(|g| g.0),
-        })
 }
 
 #[cfg(test)]

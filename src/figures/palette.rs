@@ -89,7 +89,7 @@ pub fn min_delta_e(colours: &[Rgb]) -> (f64, usize, usize, &'static str) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::atlas::Class;
+    use crate::figures::Class;
 
     #[test]
     fn atlas_classes_stay_apart_for_colour_blind_readers() {
@@ -110,8 +110,8 @@ mod tests {
 
     #[test]
     fn chart_colours_stay_apart_for_colour_blind_readers() {
+        use crate::figures::roots::{atlas_color, okabe_ito as oi};
         use crate::roots::critical::AtlasLabel;
-        use crate::roots::plot::{atlas_color, okabe_ito as oi};
         let rgb = |c: plotters::style::RGBColor| (c.0, c.1, c.2);
         let cc: Vec<Rgb> = [
             AtlasLabel::NoRoot,

@@ -1,12 +1,12 @@
 //! Pictures of the tangency study and of the critical curve (SVG and PNG).
 //! Drawing uses `f64` coordinates only; every plotted classification comes
 //! from the certified results. Colours are Okabe–Ito's colour-blind-safe
-//! set; text goes through [`crate::atlas::Figure`] (typeset sub- and
+//! set; text goes through [`crate::figures::Figure`] (typeset sub- and
 //! superscripts, even glyph spacing in PNG).
 
-use super::critical::{AtlasBox, AtlasLabel, CriticalCurve};
-use super::tangency::{Outcome, TangencyReport};
-use crate::atlas::{nice_ticks, tick_label, Figure, Formats};
+use crate::figures::{nice_ticks, tick_label, Figure, Formats};
+use crate::roots::critical::{AtlasBox, AtlasLabel, CriticalCurve};
+use crate::roots::tangency::{Outcome, TangencyReport};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -71,21 +71,21 @@ fn write_figure(
     let size = opts.size.unwrap_or(default_size);
     if size.0 < MIN_SIZE.0
         || size.1 < MIN_SIZE.1
-        || size.0 > crate::atlas::MAX_SIDE
-        || size.1 > crate::atlas::MAX_SIDE
+        || size.0 > crate::figures::MAX_SIDE
+        || size.1 > crate::figures::MAX_SIDE
     {
         return Err(format!(
             "figure size {}×{} outside [{}, {}] × [{}, {}]",
             size.0,
             size.1,
             MIN_SIZE.0,
-            crate::atlas::MAX_SIDE,
+            crate::figures::MAX_SIDE,
             MIN_SIZE.1,
-            crate::atlas::MAX_SIDE
+            crate::figures::MAX_SIDE
         ));
     }
     // plotters measures some text itself (captions), with registered fonts.
-    crate::atlas::register_fonts().map_err(err)?;
+    crate::figures::register_fonts().map_err(err)?;
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     let mut files = Vec::new();
     for ext in opts.formats.extensions() {
@@ -424,7 +424,7 @@ mod tests {
 
     #[test]
     fn merged_atlas_keeps_the_union() {
-        let cc = super::super::critical::critical_curve(16, 16, 0.25);
+        let cc = crate::roots::critical::critical_curve(16, 16, 0.25);
         let merged = merge_atlas(&cc.atlas);
         assert!(
             merged.len() < cc.atlas.len() / 2,

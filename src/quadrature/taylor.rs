@@ -10,8 +10,8 @@
 //! check that first (a `com` decorated evaluation on `x`) and reject any
 //! result that is not a bounded, non-empty enclosure.
 
-use crate::elementary;
-use crate::scalar::Scalar;
+use crate::number::elementary;
+use crate::number::scalar::Scalar;
 use inari::{const_interval, Interval};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 

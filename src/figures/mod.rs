@@ -1,4 +1,6 @@
-//! Drawing pavings and phase portraits (SVG and PNG).
+//! All drawing (SVG and PNG): atlases of pavings with phase portraits, the
+//! roots figures ([`roots`]), the speed–accuracy chart ([`chart`]) and the
+//! stability maps ([`stability`]).
 //!
 //! [`draw_atlas`] draws one paving of Ω and Ω₀ as a map of the four partition
 //! cells of the paper, with the undecided and (hatched) undefined leaves,
@@ -16,6 +18,7 @@ mod palette;
 mod portrait;
 mod raster;
 mod regions;
+pub mod roots;
 pub mod stability;
 mod ticks;
 
@@ -59,7 +62,7 @@ impl Default for AtlasStyle {
 pub struct PictureInfo<'a> {
     pub scene: &'a Scene,
     pub variant: Variant,
-    /// `(name, decimal text)` pairs, e.g. from [`crate::param::ParamSet::texts`].
+    /// `(name, decimal text)` pairs, e.g. from [`crate::number::param::ParamSet::texts`].
     pub params: Vec<(&'static str, String)>,
     /// Whether the paving finished; a note is drawn when this or
     /// [`Paving::complete`] is false.
