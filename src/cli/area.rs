@@ -13,7 +13,7 @@ pub struct AreaArgs {
     #[arg(long)]
     pub scene: String,
     /// Which reading of the paper: `derived` or `printed`.
-    #[arg(long, value_enum, default_value_t = Variant::Derived)]
+    #[arg(long, value_parser = super::variant_parser(), default_value_t = Variant::Derived)]
     pub variant: Variant,
     /// Only this region or cell (repeatable): omega, omega0, omega_and_omega0,
     /// not_omega_and_not_omega0, not_omega_and_omega0, omega_and_not_omega0.

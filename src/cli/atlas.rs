@@ -20,7 +20,7 @@ use std::time::Instant;
 #[derive(clap::Args, Debug, Clone)]
 pub struct PaveFlags {
     /// Which reading of the paper: `derived` (re-derived mechanics) or `printed`.
-    #[arg(long, value_enum, default_value_t = Variant::Derived)]
+    #[arg(long, value_parser = super::variant_parser(), default_value_t = Variant::Derived)]
     pub variant: Variant,
     /// Override a parameter, as decimal text: `--param mu=0.5` (repeatable).
     #[arg(long = "param", value_name = "NAME=VALUE")]

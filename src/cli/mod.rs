@@ -123,3 +123,11 @@ pub fn write_checked(
         format!("{} {}", report.checked, report.unit),
     ))
 }
+
+/// The reading of the paper (`--variant`), parsed by the library's names.
+pub fn variant_parser() -> impl clap::builder::TypedValueParser<Value = detach::scene::Variant> {
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+    use detach::scene::Variant;
+    PossibleValuesParser::new(Variant::ALL.map(|v| PossibleValue::new(v.name()).help(v.describe())))
+        .try_map(|s| s.parse::<Variant>())
+}

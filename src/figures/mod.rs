@@ -1,6 +1,6 @@
 //! All drawing (SVG and PNG): atlases of pavings with phase portraits, the
-//! roots figures ([`roots`]), the speed–accuracy chart ([`chart`]) and the
-//! stability maps ([`stability`]).
+//! roots figures ([`roots`]), the paper checks' pictures ([`claims`]), the
+//! speed–accuracy chart ([`chart`]) and the stability maps ([`stability`]).
 //!
 //! [`draw_atlas`] draws one paving of Ω and Ω₀ as a map of the four partition
 //! cells of the paper, with the undecided and (hatched) undefined leaves,
@@ -14,6 +14,7 @@
 
 mod canvas;
 pub mod chart;
+pub mod claims;
 mod palette;
 mod portrait;
 mod raster;

@@ -23,21 +23,45 @@ pub use smooth::SmoothDisc;
 pub use viscous::ViscousDisc;
 
 /// Which reading of the paper a formula follows.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Variant {
-    /// The formulas exactly as PAPER.md transcribes them.
+    /// The formulas exactly as the paper prints them.
     Printed,
     /// Re-derived from the mechanics the paper states (see each scene's docs).
     Derived,
 }
 
-impl fmt::Display for Variant {
-    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str(match self {
+impl Variant {
+    pub const ALL: [Variant; 2] = [Variant::Printed, Variant::Derived];
+    pub fn name(self) -> &'static str {
+        match self {
             Variant::Printed => "printed",
             Variant::Derived => "derived",
-        })
+        }
+    }
+    /// One line on what the reading is.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Variant::Printed => "the formulas exactly as the paper prints them",
+            Variant::Derived => "re-derived from the mechanics the paper states",
+        }
+    }
+}
+
+impl fmt::Display for Variant {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Variant {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Variant::ALL
+            .into_iter()
+            .find(|v| v.name() == s)
+            .ok_or_else(|| format!("unknown variant `{s}` (known: printed, derived)"))
     }
 }
 
@@ -272,7 +296,7 @@ pub trait Model: Sized {
 }
 
 /// Scene identifiers, as spelled on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SceneId {
     ViscousDisc,
