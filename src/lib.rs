@@ -74,12 +74,13 @@
 //! ```
 //!
 //! Keep `-Ctarget-feature=-avx512vl`: on a machine with AVX-512,
-//! `-Ctarget-cpu=native` alone makes the build fail inside inari with an
-//! assembler error that names neither inari nor AVX-512. For a binary to
-//! copy to other machines, build with `RUSTFLAGS="-Ctarget-cpu=haswell"`
-//! instead. `TARGET_CPU` is the `-march` with which `core-math-sys` compiles
-//! its C code (`native` when unset). `docs/library.md` in the repository
-//! has the details and `examples/dependent/` a complete dependent crate.
+//! `-Ctarget-cpu=native` alone makes the build fail with an assembler error,
+//! from inari's inline assembly, that names neither inari nor AVX-512. For a
+//! binary to copy to other machines, build with
+//! `RUSTFLAGS="-Ctarget-cpu=haswell"` instead. `TARGET_CPU` is the `-march`
+//! with which `core-math-sys` compiles its C code (`native` when unset).
+//! `docs/library.md` in the repository has the details and
+//! `examples/dependent/` a complete dependent crate.
 
 pub mod area;
 pub mod atlas;
