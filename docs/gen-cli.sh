@@ -23,7 +23,7 @@ unset CLICOLOR_FORCE COLUMNS
 commands() {
   "$bin" help | awk '
     /^Commands:/ { on = 1; next }
-    on && /^[[:space:]]*$/ { exit }
+    on && /^[[:space:]]*$/ { on = 0 }
     on && $1 != "help" { print $1 }'
 }
 
