@@ -42,8 +42,8 @@ const BUDGET_S: f64 = 5.0;
 const FINEST_U: f64 = 0.0015;
 
 struct Problem {
-    key: &'static str,
-    title: &'static str,
+    key: String,
+    title: String,
     scene: Scene,
     variant: Variant,
     domain: Domain,
@@ -74,22 +74,42 @@ fn problems() -> Vec<Problem> {
     let vd = viscous.domain();
     vec![
         Problem {
-            key: "omega_2_8",
-            title: "Ω of (2.8), p_φ=1, p_ψ=0.6, θ ∈ [0.05, π−0.05]",
+            key: "omega_2_8".into(),
+            title: "Ω of (2.8), p_φ=1, p_ψ=0.6, θ ∈ [0.05, π−0.05]".into(),
             scene: smooth,
             variant: Variant::Printed,
             domain: window,
             cell: 0,
         },
         Problem {
-            key: "omega0_1_11",
-            title: "Ω₀ of (1.11), Example 1 (printed, defaults)",
+            key: "omega0_1_11".into(),
+            title: "Ω₀ of (1.11), Example 1 (printed, defaults)".into(),
             scene: viscous,
             variant: Variant::Printed,
             domain: vd,
             cell: 1,
         },
     ]
+}
+
+/// Ω and Ω₀ of every scene (derived, defaults, whole domain): which method
+/// reaches a given accuracy first.
+fn scene_problems() -> Vec<Problem> {
+    let mut out = Vec::new();
+    for id in SceneId::ALL {
+        for (cell, region) in [(0, "omega"), (1, "omega0")] {
+            let scene = Scene::default_of(id);
+            out.push(Problem {
+                key: format!("{}/{region}", id.name()),
+                title: format!("{} {region}", id.name()),
+                domain: scene.domain(),
+                scene,
+                variant: Variant::Derived,
+                cell,
+            });
+        }
+    }
+    out
 }
 
 struct Args {
@@ -203,10 +223,11 @@ fn main() {
     }
     let load_before = load();
     let one = pool(1);
+    let scenes = scene_problems();
     let mut runs: Vec<(&str, Method, Vec<MethodRun>)> = Vec::new();
-    for p in &problems {
+    for p in problems.iter().chain(&scenes) {
         for &m in &a.methods {
-            runs.push((p.key, m, one.install(|| series(p, m))));
+            runs.push((&p.key, m, one.install(|| series(p, m))));
         }
     }
 
@@ -244,7 +265,7 @@ fn main() {
                 .map(|&u| match speedup(&pts, &sep.time_area, u) {
                     Some(s) => {
                         ratios.push(serde_json::json!({
-                            "problem": p.key, "method": m.name(), "undecided_area": u,
+                            "problem": &p.key, "method": m.name(), "undecided_area": u,
                             "detach_s": x_at(&pts, u), "codac_sep_s": x_at(&sep.time_area, u),
                             "speedup": s,
                         }));
@@ -267,6 +288,56 @@ fn main() {
             " |".repeat(MATCHED.len())
         );
     }
+
+    // The fastest method per scene and region, at matched accuracy.
+    let _ = writeln!(
+        md,
+        "## Methods per scene\n\nEach scene (derived, defaults, whole domain), one \
+         region refined: paving-call time on one thread to reach undecided area U \
+         (interpolated), per method; the fastest in bold.\n"
+    );
+    let head: Vec<String> = a.methods.iter().map(|m| m.to_string()).collect();
+    let _ = writeln!(
+        md,
+        "| problem | U | {} |\n|---|---|{}",
+        head.join(" | "),
+        "---|".repeat(a.methods.len())
+    );
+    let mut fastest = Vec::new();
+    for p in &scenes {
+        for u in [0.01, 0.003] {
+            let times: Vec<Option<f64>> = runs
+                .iter()
+                .filter(|r| r.0 == p.key)
+                .map(|(_, _, rs)| {
+                    let pts: Vec<(f64, f64)> =
+                        rs.iter().map(|r| (r.seconds, r.undecided_area)).collect();
+                    x_at(&pts, u)
+                })
+                .collect();
+            let best = times
+                .iter()
+                .enumerate()
+                .filter_map(|(i, t)| t.map(|t| (i, t)))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(i, _)| i);
+            let cells: Vec<String> = times
+                .iter()
+                .enumerate()
+                .map(|(i, t)| match t {
+                    Some(t) if Some(i) == best => format!("**{:.2} ms**", t * 1e3),
+                    Some(t) => format!("{:.2} ms", t * 1e3),
+                    None => "—".into(),
+                })
+                .collect();
+            let _ = writeln!(md, "| {} | {u} | {} |", p.title, cells.join(" | "));
+            fastest.push(serde_json::json!({
+                "problem": &p.key, "undecided_area": u,
+                "fastest": best.map(|i| a.methods[i].name()),
+            }));
+        }
+    }
+    let _ = writeln!(md);
 
     // Thread scaling, on its own: the viscous disc at ε = 1e-5.
     let viscous = Scene::default_of(SceneId::ViscousDisc);
@@ -333,7 +404,7 @@ fn main() {
                 points: c.time_area.clone(),
             }));
             Panel {
-                title: p.title.to_string(),
+                title: p.title.clone(),
                 curves,
             }
         })
@@ -359,6 +430,7 @@ fn main() {
             "bytes_per_leaf": r.bytes_per_leaf, "peak_bytes_per_leaf": r.peak_bytes_per_leaf,
         }))).collect::<Vec<_>>(),
         "ratios": ratios,
+        "fastest_per_scene": fastest,
         "threads": threads,
         "startup_s": startup,
     });

@@ -49,6 +49,18 @@ pub enum Verdict {
     NotCheckable,
 }
 
+impl Verdict {
+    pub const ALL: [Verdict; 7] = [
+        Verdict::Confirmed,
+        Verdict::ConfirmedOn,
+        Verdict::Typo,
+        Verdict::Error,
+        Verdict::False,
+        Verdict::Conditional,
+        Verdict::NotCheckable,
+    ];
+}
+
 impl fmt::Display for Verdict {
     fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
         f.write_str(match self {

@@ -131,3 +131,16 @@ pub fn claims_toml() -> String {
     }
     out
 }
+
+/// One line: how many claims, then the count of each verdict that occurs,
+/// in the order of [`Verdict`] (`48 claims: 30 confirmed, 3 typo, …`).
+pub fn summary(results: &[ClaimResult]) -> String {
+    let counts: Vec<String> = Verdict::ALL
+        .iter()
+        .filter_map(|v| {
+            let n = results.iter().filter(|r| r.verdict == *v).count();
+            (n > 0).then(|| format!("{n} {v}"))
+        })
+        .collect();
+    format!("{} claims: {}", results.len(), counts.join(", "))
+}

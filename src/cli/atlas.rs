@@ -70,8 +70,8 @@ pub struct AtlasArgs {
     pub scene: Vec<String>,
     #[command(flatten)]
     pub flags: PaveFlags,
-    /// Restrict θ to a window `LO:HI` (decimal text or `pi`) inside each
-    /// scene's domain.
+    /// Restrict θ to a window `LO:HI` (decimal text, `pi`, `-pi`, `pi/N`)
+    /// inside each scene's domain.
     #[arg(long, value_name = "LO:HI", allow_hyphen_values = true)]
     pub theta: Option<String>,
     /// Restrict θ̇ to a window `LO:HI` inside each scene's domain.
@@ -93,7 +93,8 @@ pub struct PaveArgs {
     pub scene: String,
     #[command(flatten)]
     pub flags: PaveFlags,
-    /// Restrict θ to a window `LO:HI` (decimal text) inside the scene's domain.
+    /// Restrict θ to a window `LO:HI` (decimal text, `pi`, `-pi`, `pi/N`)
+    /// inside the scene's domain.
     #[arg(long, value_name = "LO:HI", allow_hyphen_values = true)]
     pub theta: Option<String>,
     /// Restrict θ̇ to a window `LO:HI` (decimal text) inside the scene's domain.

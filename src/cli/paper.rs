@@ -40,5 +40,17 @@ pub fn run_check_paper(a: &CheckPaperArgs) -> CliResult {
             claims::figures::draw(&r.id, &a.out, mark).map_err(CliError::runtime)?;
         }
     }
+    let written = if a.claims.is_empty() {
+        format!("; wrote {}", a.out.join("REPORT.md").display())
+    } else {
+        String::new()
+    };
+    // On stderr under --json, which keeps stdout one JSON document.
+    let line = format!("{}{written}", report::summary(&results));
+    if a.json {
+        eprintln!("{line}");
+    } else {
+        outln!("{line}");
+    }
     Ok(())
 }

@@ -51,6 +51,7 @@ pub struct RootsArgs {
 /// The enclosure of κ₀ = √3/9 and the proof of the root count of (2.10).
 #[derive(clap::Args, Debug, Clone)]
 pub struct Kappa0Args {
+    /// Print JSON instead of a table.
     #[arg(long)]
     pub json: bool,
 }
@@ -70,6 +71,7 @@ pub struct CriticalCurveArgs {
     /// Top of the κ range (decimal; the grid uses the double below it).
     #[arg(long, default_value = "0.25", allow_hyphen_values = true)]
     pub kappa_max: String,
+    /// Print JSON instead of a table.
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]
@@ -114,6 +116,7 @@ pub struct TangencyArgs {
     /// Largest k (1 ≤ k ≤ 17).
     #[arg(long, default_value_t = 15, allow_negative_numbers = true)]
     pub k_max: i32,
+    /// Print JSON instead of a table.
     #[arg(long)]
     pub json: bool,
     #[command(flatten)]

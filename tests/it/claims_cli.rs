@@ -59,6 +59,29 @@ fn full_run_writes_the_report_and_json() {
     assert!(dir.join("figures/F1_10.svg").exists() && dir.join("figures/F1_10.png").exists());
     let toml = std::fs::read_to_string(dir.join("claims.toml")).unwrap();
     assert_eq!(toml.matches("[[claim]]").count(), arr.len());
+    // The summary line (on stderr under --json): the verdict counts of the
+    // JSON, in order, and where the report went.
+    let mut counts: Vec<(String, usize)> = Vec::new();
+    for r in arr {
+        let v = r["verdict"].as_str().unwrap().to_string();
+        match counts.iter_mut().find(|c| c.0 == v) {
+            Some(c) => c.1 += 1,
+            None => counts.push((v, 1)),
+        }
+    }
+    let err = String::from_utf8(o.stderr).unwrap();
+    let line = err.lines().last().unwrap();
+    assert!(
+        line.starts_with(&format!("{} claims: ", arr.len())),
+        "{line}"
+    );
+    for (v, n) in &counts {
+        assert!(line.contains(&format!(" {n} {v}")), "{v}: {line}");
+    }
+    assert!(
+        line.ends_with(&format!("wrote {}", dir.join("REPORT.md").display())),
+        "{line}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

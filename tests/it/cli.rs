@@ -268,3 +268,25 @@ fn roots_json_reads_back_and_brackets_the_closed_form() {
         );
     }
 }
+
+/// docs/cli.md is what `docs/gen-cli.sh` makes from this binary's help:
+/// the reference cannot drift from clap's definitions.
+#[test]
+fn cli_reference_matches_the_help() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let out = std::process::Command::new("bash")
+        .arg(format!("{root}/docs/gen-cli.sh"))
+        .args([env!("CARGO_BIN_EXE_detach"), "-"])
+        .output()
+        .expect("runs bash");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let committed = std::fs::read_to_string(format!("{root}/docs/cli.md")).unwrap();
+    assert!(
+        String::from_utf8_lossy(&out.stdout) == committed,
+        "docs/cli.md is stale: run docs/gen-cli.sh"
+    );
+}
