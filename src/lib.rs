@@ -76,6 +76,7 @@ pub mod certificate;
 pub mod check;
 pub mod claims;
 pub mod figures;
+pub mod files;
 pub mod number;
 pub mod pave;
 pub mod quadrature;

@@ -541,9 +541,10 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
 fn write_leaves(paving: &Paving, provenance: &str, path: &Path) -> CliResult {
     let fail =
         |e: std::io::Error| CliError::runtime(format!("cannot write {}: {e}", path.display()));
-    let file = std::fs::File::create(path).map_err(fail)?;
-    detach::pave::export::write_leaves_csv(paving, provenance, std::io::BufWriter::new(file))
-        .map_err(fail)
+    detach::files::write_atomic_with(path, |w| {
+        detach::pave::export::write_leaves_csv(paving, provenance, w)
+    })
+    .map_err(fail)
 }
 
 /// Parameter overrides for one scene of a multi-scene run: only the names it
@@ -653,7 +654,7 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
         &serde_json::json!({ "detach": detach::provenance(), "scenes": reports }),
     )
     .expect("serialisable");
-    std::fs::write(&summary, text)
+    detach::files::write_atomic(&summary, text.as_bytes())
         .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", summary.display())))?;
     outln!("wrote {}", summary.display());
     Ok(())

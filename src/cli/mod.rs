@@ -115,7 +115,7 @@ pub fn write_checked(
         )));
     }
     // Written only once the checker accepts it.
-    std::fs::write(path, &bytes)
+    detach::files::write_atomic(path, &bytes)
         .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
     Ok((
         bytes.len(),

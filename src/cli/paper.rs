@@ -29,7 +29,7 @@ pub fn run_check_paper(a: &CheckPaperArgs) -> CliResult {
             .map_err(|e| CliError::runtime(format!("{}: {e}", a.out.display())))?;
         let write = |name: &str, text: String| {
             let path = a.out.join(name);
-            std::fs::write(&path, text)
+            detach::files::write_atomic(&path, text.as_bytes())
                 .map_err(|e| CliError::runtime(format!("{}: {e}", path.display())))
         };
         write("REPORT.md", report::markdown(&results))?;

@@ -55,7 +55,7 @@ fn write_manifest(dir: &Path) -> CliResult {
         text.push_str(&format!("{}  {n}\n", hex_digest(&bytes)));
     }
     let path = dir.join("MANIFEST.sha256");
-    std::fs::write(&path, text)
+    detach::files::write_atomic(&path, text.as_bytes())
         .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))
 }
 

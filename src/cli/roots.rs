@@ -514,7 +514,7 @@ fn write_json<T: Serialize>(
     std::fs::create_dir_all(dir)
         .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", dir.display())))?;
     let path = dir.join(name);
-    std::fs::write(&path, to_json(x, arguments)? + "\n")
+    detach::files::write_atomic(&path, (to_json(x, arguments)? + "\n").as_bytes())
         .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
     Ok(path)
 }

@@ -400,7 +400,7 @@ pub fn run_stability(args: &StabilityArgs) -> CliResult {
     });
     let json = args.out.join("stability.json");
     let text = serde_json::to_string_pretty(&doc).expect("serialisable");
-    std::fs::write(&json, &text)
+    detach::files::write_atomic(&json, text.as_bytes())
         .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", json.display())))?;
     if args.json {
         outln!("{text}");

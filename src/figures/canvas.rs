@@ -368,7 +368,7 @@ impl SvgDoc {
         }
         doc.push_str(&self.body);
         doc.push_str("</svg>\n");
-        std::fs::write(&self.path, doc)
+        crate::files::write_atomic(&self.path, doc.as_bytes())
             .map_err(|e| FigureError(format!("cannot write {}: {e}", self.path.display())))
     }
 }

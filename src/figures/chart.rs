@@ -42,14 +42,18 @@ pub fn draw_speed_accuracy(
     png: &Path,
 ) -> Result<(), AtlasError> {
     start_drawing([svg, png])?;
-    {
-        let root = SVGBackend::new(svg, size).into_drawing_area();
+    crate::files::render_atomic(svg, |tmp| {
+        let root = SVGBackend::new(tmp, size).into_drawing_area();
         render(&root, panels, title)?;
-        root.present().map_err(draw_err)?;
-    }
-    let root = BitMapBackend::new(png, size).into_drawing_area();
-    render(&root, panels, title)?;
-    root.present().map_err(draw_err)
+        root.present().map_err(draw_err)
+    })
+    .map_err(AtlasError::Draw)?;
+    crate::files::render_atomic(png, |tmp| {
+        let root = BitMapBackend::new(tmp, size).into_drawing_area();
+        render(&root, panels, title)?;
+        root.present().map_err(draw_err)
+    })
+    .map_err(AtlasError::Draw)
 }
 
 fn render<DB: DrawingBackend>(

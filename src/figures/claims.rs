@@ -187,17 +187,14 @@ pub fn draw_claim_figure(fig: &ClaimFigure, dir: &Path, stem: &str) -> DrawResul
     super::roots::register_font();
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let size = (560, 380);
-    {
-        let svg = dir.join(format!("{stem}.svg"));
-        let root = SVGBackend::new(&svg, size).into_drawing_area();
+    crate::files::render_atomic(&dir.join(format!("{stem}.svg")), |tmp| {
+        let root = SVGBackend::new(tmp, size).into_drawing_area();
         draw_fig(fig, &root)?;
-        root.present().map_err(err)?;
-    }
-    {
-        let png = dir.join(format!("{stem}.png"));
-        let root = BitMapBackend::new(&png, size).into_drawing_area();
+        root.present().map_err(err)
+    })?;
+    crate::files::render_atomic(&dir.join(format!("{stem}.png")), |tmp| {
+        let root = BitMapBackend::new(tmp, size).into_drawing_area();
         draw_fig(fig, &root)?;
-        root.present().map_err(err)?;
-    }
-    Ok(())
+        root.present().map_err(err)
+    })
 }

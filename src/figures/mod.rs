@@ -32,6 +32,7 @@ pub use raster::{merge_rects, rasterize, Class, PixelRect, Raster};
 pub use regions::{even_odd_area, inside_even_odd, vector_regions, Region, Tracing};
 pub use ticks::{nice_ticks, tick_label};
 
+use crate::files::render_atomic;
 use crate::pave::Paving;
 use crate::scene::{Scene, Variant};
 use plotters::coord::Shift;
@@ -184,14 +185,20 @@ pub fn draw_atlas_files(
     let prep = prepare(paving, info, style);
     let size = (style.width, style.height);
     if let Some(p) = svg_path {
-        let root = Figure::svg(p, size).into_drawing_area();
-        render(&root, paving, &prep)?;
-        root.present().map_err(draw_err)?;
+        render_atomic(p, |tmp| {
+            let root = Figure::svg(tmp, size).into_drawing_area();
+            render(&root, paving, &prep)?;
+            root.present().map_err(draw_err)
+        })
+        .map_err(AtlasError::Draw)?;
     }
     if let Some(p) = png_path {
-        let root = Figure::png(p, size).into_drawing_area();
-        render(&root, paving, &prep)?;
-        root.present().map_err(draw_err)?;
+        render_atomic(p, |tmp| {
+            let root = Figure::png(tmp, size).into_drawing_area();
+            render(&root, paving, &prep)?;
+            root.present().map_err(draw_err)
+        })
+        .map_err(AtlasError::Draw)?;
     }
     Ok(())
 }

@@ -90,16 +90,16 @@ fn write_figure(
     let mut files = Vec::new();
     for ext in opts.formats.extensions() {
         let path = dir.join(format!("{stem}.{ext}"));
-        let fig = if ext == "svg" {
-            Figure::svg(&path, size)
-        } else {
-            Figure::png(&path, size)
-        };
-        {
+        crate::files::render_atomic(&path, |tmp| {
+            let fig = if ext == "svg" {
+                Figure::svg(tmp, size)
+            } else {
+                Figure::png(tmp, size)
+            };
             let root = fig.into_drawing_area();
             draw(&root)?;
-            root.present().map_err(err)?;
-        }
+            root.present().map_err(err)
+        })?;
         files.push(path);
     }
     Ok(files)

@@ -142,14 +142,18 @@ pub fn draw_stability_map(
         .collect();
     let rows = panels.len().div_ceil(2).max(1) as u32;
     let size = (1280, 110 + 400 * rows);
-    {
-        let root = Figure::svg(svg, size).into_drawing_area();
+    crate::files::render_atomic(svg, |tmp| {
+        let root = Figure::svg(tmp, size).into_drawing_area();
         render(&root, panels, &grids, title)?;
-        root.present().map_err(draw_err)?;
-    }
-    let root = Figure::png(png, size).into_drawing_area();
-    render(&root, panels, &grids, title)?;
-    root.present().map_err(draw_err)
+        root.present().map_err(draw_err)
+    })
+    .map_err(AtlasError::Draw)?;
+    crate::files::render_atomic(png, |tmp| {
+        let root = Figure::png(tmp, size).into_drawing_area();
+        render(&root, panels, &grids, title)?;
+        root.present().map_err(draw_err)
+    })
+    .map_err(AtlasError::Draw)
 }
 
 fn render(

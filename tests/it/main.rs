@@ -12,6 +12,7 @@ mod claims;
 mod claims_cli;
 mod cli;
 mod elementary;
+mod files;
 mod findings;
 mod fuzz_cli;
 mod hardening;
