@@ -346,6 +346,16 @@ fn write_roots_proof(path: &std::path::Path, args: &RootsArgs) -> CliResult {
     Ok(())
 }
 
+/// An enclosure's width: in ulps while that is a small count, else as a
+/// number.
+fn width_text(lo: f64, hi: f64, ulps: u64) -> String {
+    if ulps <= 1_000_000 {
+        format!("{ulps} ulp")
+    } else {
+        format!("{:.2e}", hi - lo)
+    }
+}
+
 /// `[lo, hi]` in exponent form, `-0` printed as `0`.
 fn fmt_enc(b: [f64; 2]) -> String {
     format!("[{:e}, {:e}]", b[0] + 0.0, b[1] + 0.0)
@@ -402,7 +412,7 @@ pub fn run_roots(args: &RootsArgs) -> CliResult {
         "#",
         "lo",
         "hi",
-        "width/ulp"
+        "width"
     );
     for (i, r) in result.roots.iter().enumerate() {
         let status = match r.status {
@@ -417,7 +427,7 @@ pub fn run_roots(args: &RootsArgs) -> CliResult {
             i + 1,
             format!("{:?}", r.lo),
             format!("{:?}", r.hi),
-            r.width_ulps(),
+            width_text(r.lo, r.hi, r.width_ulps()),
             status
         );
     }
@@ -583,9 +593,10 @@ pub fn run_critical_curve(args: &CriticalCurveArgs) -> CliResult {
         for c in cc.band.iter().step_by((cc.band.len() / 8).max(1)) {
             outln!(
                 "  α ∈ [{:.4}, {:.4}]: κ_crit ∈ [{:.6e}, {:.6e}]",
-                c.alpha.lo,
+                // `+ 0.0`: an interval's infimum 0 is −0.
+                c.alpha.lo + 0.0,
                 c.alpha.hi,
-                c.lower,
+                c.lower + 0.0,
                 c.upper
             );
         }
