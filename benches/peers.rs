@@ -285,7 +285,7 @@ fn main() {
             .unwrap_or_else(|| "—".into());
         let _ = writeln!(
             md,
-            "| (Codac sep) | {} | {k} |\n",
+            "| (Codac sep) |{} {k} |\n",
             " |".repeat(MATCHED.len())
         );
     }
