@@ -3,7 +3,7 @@
 use super::{write_checked, CliError, CliResult};
 use detach::certificate::catalog::file_name;
 use detach::certificate::{paving_proof, prove_named, PavingStatement, HEADLINE};
-use detach::check::{check_bytes, Verdict};
+use detach::check::{check_and_print, json_files, Status, Tally};
 use detach::number::param::ParamSet;
 use detach::pave::Paving;
 use detach::scene::{Domain, Scene, Variant};
@@ -101,43 +101,10 @@ pub fn run_prove(args: &ProveArgs) -> CliResult {
     Ok(())
 }
 
-/// The outcome of one file.
-enum Outcome {
-    Valid,
-    Invalid,
-    Unreadable,
-}
-
-fn verify_file(path: &Path, shown: &str, out: &mut impl Write) -> Outcome {
-    let bytes = match std::fs::read(path) {
-        Ok(b) => b,
-        Err(e) => {
-            let _ = writeln!(out, "UNREADABLE {shown}: {e}");
-            return Outcome::Unreadable;
-        }
-    };
-    match check_bytes(&bytes) {
-        Err(e) => {
-            let _ = writeln!(out, "UNREADABLE {shown}: {e}");
-            Outcome::Unreadable
-        }
-        Ok(r) => {
-            let (word, outcome, why) = match &r.verdict {
-                Verdict::Valid => ("VALID", Outcome::Valid, String::new()),
-                Verdict::Invalid(w) => ("INVALID", Outcome::Invalid, format!("\n    {w}")),
-            };
-            let _ = writeln!(
-                out,
-                "{word:<10} {shown}  {}  ({} {}, {:.3} s){why}",
-                r.claim, r.checked, r.unit, r.seconds
-            );
-            outcome
-        }
-    }
-}
-
-/// Checks `MANIFEST.sha256` of a folder: every listed file present with its hash.
-fn verify_manifest(dir: &Path, out: &mut impl Write) -> Vec<Outcome> {
+/// Checks `MANIFEST.sha256` of a folder: every listed file present with its
+/// hash. The checker crate has no hash function; this half of `verify` is
+/// detach's own.
+fn verify_manifest(dir: &Path, out: &mut impl Write) -> Vec<Status> {
     let path = dir.join("MANIFEST.sha256");
     let Ok(text) = std::fs::read_to_string(&path) else {
         return vec![];
@@ -146,7 +113,7 @@ fn verify_manifest(dir: &Path, out: &mut impl Write) -> Vec<Outcome> {
     for line in text.lines().filter(|l| !l.trim().is_empty()) {
         let Some((hash, name)) = line.split_once("  ") else {
             let _ = writeln!(out, "UNREADABLE {}: bad line `{line}`", path.display());
-            res.push(Outcome::Unreadable);
+            res.push(Status::Unreadable);
             continue;
         };
         match std::fs::read(dir.join(name)) {
@@ -157,64 +124,49 @@ fn verify_manifest(dir: &Path, out: &mut impl Write) -> Vec<Outcome> {
                     "INVALID    {}: SHA-256 differs from MANIFEST.sha256",
                     dir.join(name).display()
                 );
-                res.push(Outcome::Invalid);
+                res.push(Status::Invalid);
             }
             Err(e) => {
                 let _ = writeln!(out, "UNREADABLE {}: {e}", dir.join(name).display());
-                res.push(Outcome::Unreadable);
+                res.push(Status::Unreadable);
             }
         }
     }
     res
 }
 
+/// The manifest of each folder, then each proof through the checker crate,
+/// with `detach-check`'s lines and exit status.
 pub fn run_verify(args: &VerifyArgs) -> CliResult {
     let mut out = std::io::stdout().lock();
-    let mut outcomes = Vec::new();
+    let mut tally = Tally::default();
     for p in &args.paths {
         if p.is_dir() {
-            outcomes.extend(verify_manifest(p, &mut out));
-            let mut files: Vec<PathBuf> = match std::fs::read_dir(p) {
-                Ok(rd) => rd
-                    .filter_map(|e| e.ok())
-                    .map(|e| e.path())
-                    .filter(|f| f.extension().is_some_and(|x| x == "json"))
-                    .collect(),
+            for s in verify_manifest(p, &mut out) {
+                tally.add(s);
+            }
+            match json_files(p) {
+                Ok(files) => {
+                    for f in files {
+                        tally.add(check_and_print(&f, &mut out));
+                    }
+                }
                 Err(e) => {
                     let _ = writeln!(out, "UNREADABLE {}: {e}", p.display());
-                    outcomes.push(Outcome::Unreadable);
-                    continue;
+                    tally.add(Status::Unreadable);
                 }
-            };
-            files.sort();
-            for f in files {
-                outcomes.push(verify_file(&f, &f.display().to_string(), &mut out));
             }
         } else {
-            outcomes.push(verify_file(p, &p.display().to_string(), &mut out));
+            tally.add(check_and_print(p, &mut out));
         }
     }
-    let count = |f: fn(&Outcome) -> bool| outcomes.iter().filter(|o| f(o)).count();
-    let (valid, invalid, unreadable) = (
-        count(|o| matches!(o, Outcome::Valid)),
-        count(|o| matches!(o, Outcome::Invalid)),
-        count(|o| matches!(o, Outcome::Unreadable)),
-    );
-    let _ = writeln!(
-        out,
-        "{valid} valid, {invalid} invalid, {unreadable} unreadable"
-    );
-    if invalid > 0 {
-        Err(CliError {
-            message: format!("{invalid} proof(s) INVALID"),
-            code: 1,
-        })
-    } else if unreadable > 0 {
-        Err(CliError::usage(format!(
-            "{unreadable} file(s) could not be read"
-        )))
-    } else {
-        Ok(())
+    let _ = writeln!(out, "{}", tally.summary());
+    match tally.failure() {
+        None => Ok(()),
+        Some((code, message)) => Err(CliError {
+            message,
+            code: code.into(),
+        }),
     }
 }
 

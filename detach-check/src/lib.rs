@@ -1,11 +1,53 @@
 //! Independent checker of `detach-proof/1` files (`proofs/FORMAT.md`).
 //!
-//! The checker re-derives every enclosure from the statement and the
-//! evidence with its own parser, evaluator and decoders; it shares no code
-//! with the parts of the crate that produce proofs, so a bug there cannot
-//! hide itself here.
+//! A proof file states one claim of detach — the areas of a paving, the
+//! roots of an equation, the bound κ₀, the critical band — and carries the
+//! evidence for it. The checker confirms the claim by re-deriving every
+//! enclosure from the statement and the evidence with its own JSON access,
+//! expression parser, interval evaluator (forward-mode duals, nested for
+//! second derivatives) and decoders: it replays a paving's tree from the root
+//! box and re-decides every leaf label, sums areas exactly, re-checks every
+//! root witness and exclusion piece, and compares claimed bounds
+//! conservatively. The verdict is VALID, INVALID with the first failed check,
+//! or unreadable.
+//!
+//! # Trusted base
+//!
+//! [`inari`] for interval arithmetic (and the GMP/MPFR it is built on),
+//! `serde_json` for reading JSON, the Rust compiler and its standard library,
+//! and nothing else. The checker shares no code with the prover (the `detach`
+//! crate, which depends on this one and re-exports it as `detach::check`), so
+//! a bug there cannot hide itself here; `detach-check/tests/independence.rs`
+//! fails if the manifest gains any other dependency or a build script, or the
+//! sources name `detach`.
+//!
+//! The SHA-256 manifest that pins the committed proofs
+//! (`proofs/MANIFEST.sha256`) needs a hash function, which is none of the
+//! above, so the split is: `detach verify DIR` checks the manifest and calls
+//! this crate for the proofs; `detach-check` checks the proofs alone, and
+//! `sha256sum -c MANIFEST.sha256` in the folder checks the hashes.
+//!
+//! # Running it
+//!
+//! From the repository root, which builds this crate and not the prover:
+//!
+//! ```text
+//! cargo run --release -p detach-check -- proofs/*.json
+//! cargo install --path detach-check && detach-check proofs/kappa0.json
+//! ```
+//!
+//! A directory argument stands for the `.json` files in it. One line per
+//! file, as `detach verify` prints it: `VALID`, `INVALID` with the first
+//! failed check, or `UNREADABLE`; the exit status is 0 if all are VALID, 1 if
+//! any is INVALID, 2 if any cannot be read. The repository's
+//! `.cargo/config.toml` builds for the machine's CPU, since inari needs
+//! AVX2/FMA on x86-64: elsewhere, set `RUSTFLAGS="-Ctarget-cpu=haswell"`.
+//!
+//! # Library
 //!
 //! - [`check_str`], [`check_bytes`], [`check_file`]: check one proof file.
+//! - [`check_and_print`], [`Tally`]: the verdict lines and exit status of
+//!   `detach-check` and `detach verify`.
 //! - [`eval_on_box`]: evaluate one expression of the language on a box, as
 //!   the checker does.
 
@@ -16,11 +58,13 @@ mod eval;
 mod expr;
 mod json;
 mod kappa0;
+mod output;
 mod paving;
 mod pieces;
 mod roots;
 
 pub use self::encoding::{base64_decode, decimal_enclosure, parse_hex_f64};
+pub use self::output::{check_and_print, json_files, Status, Tally};
 
 use inari::{DecInterval, Interval};
 use std::fmt;
