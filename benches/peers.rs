@@ -283,11 +283,7 @@ fn main() {
         let k = cost_exponent(&sep.time_area, 0.001, 0.05)
             .map(|k| format!("{k:.2}"))
             .unwrap_or_else(|| "—".into());
-        let _ = writeln!(
-            md,
-            "| (Codac sep) |{} {k} |\n",
-            " |".repeat(MATCHED.len())
-        );
+        let _ = writeln!(md, "| (Codac sep) |{} {k} |\n", " |".repeat(MATCHED.len()));
     }
 
     // The fastest method per scene and region, at matched accuracy.

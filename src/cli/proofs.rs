@@ -103,8 +103,9 @@ pub fn run_prove(args: &ProveArgs) -> CliResult {
 
 /// Checks `MANIFEST.sha256` of a folder: every listed file present with its
 /// hash. The checker crate has no hash function; this half of `verify` is
-/// detach's own.
-fn verify_manifest(dir: &Path, out: &mut impl Write) -> Vec<Status> {
+/// detach's own. Returns each failure's status and, for a file, its path
+/// (a file failed here is reported once, not checked again).
+fn verify_manifest(dir: &Path, out: &mut impl Write) -> Vec<(Status, Option<PathBuf>)> {
     let path = dir.join("MANIFEST.sha256");
     let Ok(text) = std::fs::read_to_string(&path) else {
         return vec![];
@@ -113,7 +114,7 @@ fn verify_manifest(dir: &Path, out: &mut impl Write) -> Vec<Status> {
     for line in text.lines().filter(|l| !l.trim().is_empty()) {
         let Some((hash, name)) = line.split_once("  ") else {
             let _ = writeln!(out, "UNREADABLE {}: bad line `{line}`", path.display());
-            res.push(Status::Unreadable);
+            res.push((Status::Unreadable, None));
             continue;
         };
         match std::fs::read(dir.join(name)) {
@@ -124,11 +125,11 @@ fn verify_manifest(dir: &Path, out: &mut impl Write) -> Vec<Status> {
                     "INVALID    {}: SHA-256 differs from MANIFEST.sha256",
                     dir.join(name).display()
                 );
-                res.push(Status::Invalid);
+                res.push((Status::Invalid, Some(dir.join(name))));
             }
             Err(e) => {
                 let _ = writeln!(out, "UNREADABLE {}: {e}", dir.join(name).display());
-                res.push(Status::Unreadable);
+                res.push((Status::Unreadable, Some(dir.join(name))));
             }
         }
     }
@@ -142,13 +143,16 @@ pub fn run_verify(args: &VerifyArgs) -> CliResult {
     let mut tally = Tally::default();
     for p in &args.paths {
         if p.is_dir() {
-            for s in verify_manifest(p, &mut out) {
-                tally.add(s);
+            let failed = verify_manifest(p, &mut out);
+            for (s, _) in &failed {
+                tally.add(*s);
             }
             match json_files(p) {
                 Ok(files) => {
                     for f in files {
-                        tally.add(check_and_print(&f, &mut out));
+                        if !failed.iter().any(|(_, g)| g.as_deref() == Some(&*f)) {
+                            tally.add(check_and_print(&f, &mut out));
+                        }
                     }
                 }
                 Err(e) => {

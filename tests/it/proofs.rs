@@ -172,3 +172,40 @@ fn paper_checks_cite_existing_proof_files() {
     }
     assert!(cited >= 4);
 }
+
+/// `detach verify DIR` with a file whose hash no longer matches the
+/// manifest: the file is reported once, INVALID, and counted once.
+#[test]
+fn a_stale_manifest_entry_is_reported_once() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("proofs");
+    let dir = std::env::temp_dir().join(format!("detach-stale-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let name = "kappa0.json";
+    let manifest = std::fs::read_to_string(src.join("MANIFEST.sha256")).unwrap();
+    let line = manifest.lines().find(|l| l.ends_with(name)).unwrap();
+    std::fs::write(dir.join("MANIFEST.sha256"), format!("{line}\n")).unwrap();
+    // Still a valid proof, but not the bytes the manifest names.
+    let mut bytes = std::fs::read(src.join(name)).unwrap();
+    bytes.push(b'\n');
+    std::fs::write(dir.join(name), bytes).unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_detach"))
+        .arg("verify")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let out = String::from_utf8(o.stdout).unwrap();
+    assert_eq!(out.lines().filter(|l| l.contains(name)).count(), 1, "{out}");
+    assert!(
+        out.contains("INVALID") && out.contains("SHA-256 differs"),
+        "{out}"
+    );
+    assert!(
+        out.lines()
+            .last()
+            .unwrap()
+            .starts_with("0 valid, 1 invalid"),
+        "{out}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
