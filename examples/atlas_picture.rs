@@ -43,6 +43,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             variant,
             params: params.texts(),
             complete: paving.complete,
+            window: None,
         };
         let stem = format!("{}-{}", id.name(), variant);
         let (svg, png) = (

@@ -124,6 +124,15 @@ fn split_window(flag: &str, text: &Option<String>) -> Result<Option<[String; 2]>
     }
 }
 
+/// `θ ∈ [LO, HI], θ̇ ∈ [LO, HI]` for the window ends given, as given.
+fn window_text(th: &Option<[String; 2]>, thd: &Option<[String; 2]>) -> Option<String> {
+    let parts: Vec<String> = [("θ", th), ("θ̇", thd)]
+        .into_iter()
+        .filter_map(|(v, w)| w.as_ref().map(|[a, b]| format!("{v} ∈ [{a}, {b}]")))
+        .collect();
+    (!parts.is_empty()).then(|| parts.join(", "))
+}
+
 #[derive(clap::Args, Debug)]
 pub struct ScenesArgs {
     /// Print as JSON.
@@ -637,6 +646,7 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
             variant: args.flags.variant,
             params: params.texts(),
             complete: paving.complete,
+            window: window_text(&th, &thd),
         };
         let stem = args.out.join(scene.id().name());
         // Files first, then the table: a closed stdout never costs a file.

@@ -69,6 +69,9 @@ pub struct PictureInfo<'a> {
     /// Whether the paving finished; a note is drawn when this or
     /// [`Paving::complete`] is false.
     pub complete: bool,
+    /// The window inside the scene's domain, as given (`θ ∈ [0.5, 2.5]`),
+    /// when the picture shows one; stated in the subtitle.
+    pub window: Option<String>,
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -150,6 +153,8 @@ struct Prepared {
     lines: Vec<Vec<(f64, f64)>>,
     /// Share of the root box's area in each class, in [`Class::ALL`] order.
     shares: [f64; 6],
+    /// Why a class is empty by what the scene proves, in the same order.
+    empty: [Option<&'static str>; 6],
     title: String,
     subtitle: String,
     incomplete: bool,
@@ -277,8 +282,13 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         params.join("  ")
     );
     let n = paving.leaves.len();
+    let window = info
+        .window
+        .as_ref()
+        .map(|w| format!("  ·  window {w}"))
+        .unwrap_or_default();
     let subtitle = format!(
-        "{}  ·  eps = {}  ·  {n} {}",
+        "{}{window}  ·  eps = {}  ·  {n} {}",
         info.scene.id().title(),
         eps_text(paving.eps),
         if n == 1 { "leaf" } else { "leaves" }
@@ -290,10 +300,23 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         hatch,
         lines,
         shares,
+        empty: empty_classes(info),
         title,
         subtitle,
         incomplete: !(info.complete && paving.complete),
     }
+}
+
+/// The cells a scene proves empty: both paradoxes when Ω₀ is Ω by
+/// construction, non-uniqueness when Ω₀ ⊂ Ω is proved.
+fn empty_classes(info: &PictureInfo) -> [Option<&'static str>; 6] {
+    let same = info.scene.omega0_is_omega(info.variant);
+    let inside = info.scene.omega0_inside_omega(info.variant);
+    Class::ALL.map(|c| match c {
+        Class::NonUniqueness | Class::NonExistence if same => Some("Ω₀ = Ω"),
+        Class::NonUniqueness if inside => Some("Ω₀ ⊂ Ω"),
+        _ => None,
+    })
 }
 
 /// A parameter's name as typeset markup (`p_phi` → p with subscript φ).
@@ -660,7 +683,10 @@ fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), AtlasError> {
         ))
         .map_err(draw_err)?;
         let tx = x0 + sw + 10;
-        let share = format!("{:.1} % of box", 100.0 * prep.shares[i]);
+        let share = match prep.empty[i] {
+            Some(why) => format!("empty ({why})"),
+            None => format!("{:.1} % of box", 100.0 * prep.shares[i]),
+        };
         area.draw_text(symbol_markup(class), &name.color(&INK), (tx, y - 3))
             .map_err(draw_err)?;
         area.draw_text(&share, &body.color(&INK), (tx + 110, y))

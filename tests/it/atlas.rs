@@ -52,6 +52,7 @@ fn draws_svg_and_png_with_legend() {
             variant: Variant::Derived,
             params,
             complete: paving.complete,
+            window: None,
         };
         let style = AtlasStyle::default();
         let (svg, png) = (
@@ -100,6 +101,7 @@ fn incomplete_paving_is_flagged_and_small_styles_rejected() {
         variant: Variant::Printed,
         params: params.texts(),
         complete: paving.complete,
+        window: None,
     };
     let (svg, png) = (dir.join("a.svg"), dir.join("a.png"));
     draw_atlas(&paving, &info, &AtlasStyle::default(), &svg, &png).unwrap();
@@ -347,6 +349,7 @@ fn svg_is_vector_and_small() {
         variant: Variant::Derived,
         params,
         complete: paving.complete,
+        window: None,
     };
     let (svg, png) = (dir.join("a.svg"), dir.join("a.png"));
     draw_atlas(&paving, &info, &AtlasStyle::default(), &svg, &png).unwrap();
@@ -457,4 +460,52 @@ fn atlas_command_honours_size_format_and_window() {
         );
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The legend says why a cell is empty: the smooth disc's two paradox cells
+/// are empty because Ω₀ is Ω (not "0.0 % of box"); the ice disc's are not.
+#[test]
+fn legend_names_cells_empty_by_construction() {
+    let dir = temp_dir("legend-empty");
+    for (id, empties) in [(SceneId::SmoothDisc, 2), (SceneId::IceDisc, 0)] {
+        let (scene, params, paving) = paving_of(id, Variant::Derived, 1.0 / 64.0);
+        let info = PictureInfo {
+            scene: &scene,
+            variant: Variant::Derived,
+            params,
+            complete: paving.complete,
+            window: None,
+        };
+        let (svg, png) = (dir.join("a.svg"), dir.join("a.png"));
+        draw_atlas(&paving, &info, &AtlasStyle::default(), &svg, &png).unwrap();
+        let text = std::fs::read_to_string(&svg).unwrap();
+        assert_eq!(text.matches("empty (Ω₀ = Ω)").count(), empties, "{id:?}");
+        assert_eq!(text.matches("% of box").count(), 6 - empties, "{id:?}");
+    }
+}
+
+/// A windowed atlas states its window, as given, in the subtitle.
+#[test]
+fn windowed_atlas_states_its_window() {
+    let dir = temp_dir("window-subtitle");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_detach"))
+        .args([
+            "atlas",
+            "--scene",
+            "smooth-disc",
+            "--theta",
+            "0.5:2.5",
+            "--format",
+            "svg",
+        ])
+        .args(["--size", "640x480", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(dir.join("smooth-disc.svg")).unwrap();
+    assert!(
+        text.contains("window θ ∈ [0.5, 2.5]"),
+        "no window in the subtitle"
+    );
 }
