@@ -6,6 +6,7 @@
 //! earlier slots. A definition is one slot, so it is evaluated once per box.
 
 use inari::{DecInterval, Decoration, Interval};
+use std::cell::Cell;
 use std::collections::HashMap;
 
 use super::encoding::decimal_enclosure;
@@ -76,45 +77,90 @@ fn lang_pow<T: Num>(x: T, k: i32) -> T {
     }
 }
 
+thread_local! {
+    static LOOSENESS: Cell<u32> = const { Cell::new(0) };
+}
+
+/// Runs `f` with the result of every interval operation of an expression
+/// (and of the Newton and mean-value steps of root pieces) widened outward
+/// by `ulps` ulps at each end (but not a point, nor an end at 0): a stand-in for a
+/// checker whose rounding is correct but looser than this one's. Constants
+/// (decimals, parameters, `pi`) keep their enclosures. A proof meant for
+/// any correct checker stays VALID under it.
+pub fn with_loose_rounding<R>(ulps: u32, f: impl FnOnce() -> R) -> R {
+    let old = LOOSENESS.replace(ulps);
+    let r = f();
+    LOOSENESS.set(old);
+    r
+}
+
+/// `x` widened by the current looseness ([`with_loose_rounding`]). A point
+/// stays a point, and an end at 0 stays there: an exactly representable
+/// result (`x − x`, `0·y`, `1/∞`) is exact under any rounding, so a correct
+/// checker returns it exactly.
+pub(crate) fn loosen_i(x: Interval) -> Interval {
+    let k = LOOSENESS.get();
+    if k == 0 || x.is_empty() || x.inf() == x.sup() {
+        return x;
+    }
+    let (mut a, mut b) = (x.inf(), x.sup());
+    for _ in 0..k {
+        if a != 0.0 {
+            a = a.next_down();
+        }
+        if b != 0.0 {
+            b = b.next_up();
+        }
+    }
+    Interval::try_from((a, b)).unwrap_or(x)
+}
+
+fn loosen(x: DecInterval) -> DecInterval {
+    match x.interval() {
+        Some(i) if LOOSENESS.get() > 0 => DecInterval::set_dec(loosen_i(i), x.decoration()),
+        _ => x,
+    }
+}
+
 impl Num for DecInterval {
     fn constant(x: DecInterval) -> Self {
         x
     }
     fn add(self, o: Self) -> Self {
-        self + o
+        loosen(self + o)
     }
     fn sub(self, o: Self) -> Self {
-        self - o
+        loosen(self - o)
     }
     fn mul(self, o: Self) -> Self {
-        self * o
+        loosen(self * o)
     }
     fn div(self, o: Self) -> Self {
-        self / o
+        loosen(self / o)
     }
     fn neg(self) -> Self {
         -self
     }
     fn sqr(self) -> Self {
-        DecInterval::sqr(self)
+        loosen(DecInterval::sqr(self))
     }
     fn pown(self, n: i32) -> Self {
-        self.powi(n)
+        loosen(self.powi(n))
     }
     fn sqrt(self) -> Self {
-        DecInterval::sqrt(self)
+        loosen(DecInterval::sqrt(self))
     }
     fn sin(self) -> Self {
-        DecInterval::sin(self)
+        loosen(DecInterval::sin(self))
     }
     fn cos(self) -> Self {
-        DecInterval::cos(self)
+        loosen(DecInterval::cos(self))
     }
     fn tan(self) -> Self {
-        DecInterval::tan(self)
+        loosen(DecInterval::tan(self))
     }
     fn ln(self) -> Self {
-        DecInterval::ln(self)
+        loosen(DecInterval::ln(self))
     }
     fn abs(self) -> Self {
         DecInterval::abs(self)

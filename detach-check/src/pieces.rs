@@ -5,7 +5,7 @@ use inari::{DecInterval, Decoration, Interval};
 use serde_json::Value;
 
 use super::encoding::parse_hex_f64;
-use super::eval::{continuous, defined, show, show_i};
+use super::eval::{continuous, defined, loosen_i, show, show_i};
 use super::json::{as_obj, str_of};
 use super::Unreadable;
 
@@ -171,7 +171,7 @@ pub fn check_piece<F: Function>(
                 return Err(format!("{at}: NaI"));
             };
             if let Kind::ExcludeMv(_) = q.kind {
-                let mv = fm + d * (x - point(m));
+                let mv = loosen_i(fm + loosen_i(d * loosen_i(x - point(m))));
                 if mv.is_empty() || mv.contains(0.0) {
                     return Err(format!(
                         "{at}: mean-value form contains 0, computed {}",
@@ -183,7 +183,7 @@ pub fn check_piece<F: Function>(
             if d.contains(0.0) {
                 return Err(format!("{at}: f' contains 0, computed {}", show_i(d)));
             }
-            let n = point(m) - fm / d;
+            let n = loosen_i(point(m) - loosen_i(fm / d));
             if n.is_empty() || n.inf() <= x.inf() || n.sup() >= x.sup() {
                 return Err(format!(
                     "{at}: Newton image {} is not interior to the piece",

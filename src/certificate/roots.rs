@@ -8,6 +8,7 @@
 //! weakens accordingly; nothing is dropped.
 
 use super::numbers::{decimal, hex, Round};
+use crate::number::param::enclose_decimal;
 use crate::number::scalar::{is_defined, Dual, Scalar};
 use crate::roots::isolate::{point, split_point, RootEnclosure};
 use crate::roots::RealFn;
@@ -15,7 +16,55 @@ use inari::{DecInterval, Decoration, Interval};
 use serde_json::{json, Map, Value};
 
 /// Significant digits of claimed root enclosures.
-const ROOT_DIGITS: usize = 17;
+const ROOT_DIGITS: usize = 16;
+/// Ulps a claimed enclosure leaves around the prover's own on each side, at
+/// least; see [`with_slack`].
+const SLACK_ULPS: u32 = 8;
+/// Widths of the prover's enclosure added on each side: a checker rounding
+/// correctly but more loosely computes a wider `f(m)`, and so a wider Newton
+/// image, in proportion to the rounding error this width already shows.
+const SLACK_WIDTHS: f64 = 8.0;
+
+/// `x` widened on each side by [`SLACK_WIDTHS`] of its width and then by
+/// [`SLACK_ULPS`] ulps, so that any correct checker's enclosure still lies
+/// inside the claim.
+fn with_slack(x: Interval) -> (f64, f64) {
+    let w = SLACK_WIDTHS * (x.sup() - x.inf());
+    let (mut a, mut b) = ((x.inf() - w).next_down(), (x.sup() + w).next_up());
+    for _ in 0..SLACK_ULPS {
+        a = a.next_down();
+        b = b.next_up();
+    }
+    (a, b)
+}
+
+/// A claimed unique enclosure: `n` with slack ([`with_slack`]), in decimal
+/// text of at most [`ROOT_DIGITS`] digits, inside the piece `[lo, hi]` (the
+/// checker requires it there) and around `n`.
+fn claim_with_slack(n: Interval, lo: f64, hi: f64) -> (String, String) {
+    let (a, b) = with_slack(n);
+    (
+        claim_end(a.max(lo), lo, n.inf(), Round::Down),
+        claim_end(b.min(hi), n.sup(), hi, Round::Up),
+    )
+}
+
+/// Decimal text near `target` whose enclosure lies in `[floor, ceil]`:
+/// rounded `dir` (outward) where that stays in range, else the other way;
+/// 17 digits when 16 cannot do it.
+fn claim_end(target: f64, floor: f64, ceil: f64, dir: Round) -> String {
+    let inward = match dir {
+        Round::Down => Round::Up,
+        Round::Up => Round::Down,
+    };
+    let fits =
+        |t: &str| enclose_decimal("bound", t).is_ok_and(|e| floor <= e.inf() && e.sup() <= ceil);
+    [ROOT_DIGITS, 17]
+        .into_iter()
+        .flat_map(|d| [decimal(target, d, dir), decimal(target, d, inward)])
+        .find(|t| fits(t))
+        .unwrap_or_else(|| decimal(target, 17, dir))
+}
 /// Most pieces one proof may hold.
 const MAX_PIECES: usize = 20_000;
 
@@ -80,10 +129,12 @@ fn exclusion<F: RealFn>(f: &F, x: Interval) -> Option<PieceKind> {
 
 /// A Newton box around a few-ulp root enclosure, inside `[lo, hi]`, with
 /// `N(X)` at least an eighth of X's width away from both ends (room for a
-/// checker whose derivative enclosure differs by rounding).
+/// checker whose derivative enclosure differs by rounding). It reaches about
+/// 10⁻¹² (relative) from the root on each side, so that the exclusion pieces
+/// beside it see |f| far above any checker's rounding error.
 fn newton_box<F: RealFn>(f: &F, r: &RootEnclosure, lo: f64, hi: f64) -> Option<Piece> {
     let scale = r.lo.abs().max(r.hi.abs()).max(f64::MIN_POSITIVE);
-    let mut delta = (r.hi - r.lo).max(scale * 1e-15) * 4.0;
+    let mut delta = (r.hi - r.lo).max(scale * 2.5e-13) * 4.0;
     for _ in 0..40 {
         let (a, b) = ((r.lo - delta).max(lo), (r.hi + delta).min(hi));
         if a < b {
@@ -111,11 +162,13 @@ fn cover_gap<F: RealFn>(f: &F, a: f64, b: f64, min_width: f64, out: &mut Vec<Pie
     let mut stack = vec![(a, b)];
     while let Some((a, b)) = stack.pop() {
         let kind = exclusion(f, iv(a, b));
-        // An unbounded gap is cut at a finite point beyond `a` first.
+        // An unbounded gap is cut at a finite point beyond `a` first; not at
+        // 1, where the paper's polynomials have factors (1 − s²) that vanish
+        // exactly, and an exclusion would rest on that exact 0.
         let m = if b.is_finite() {
             split_point(a, b)
         } else {
-            (2.0 * a.abs()).max(1.0)
+            (2.0 * a.abs()).max(1.5)
         };
         let kind = match kind {
             Some(k) => k,
@@ -175,8 +228,8 @@ pub fn piece_json(p: &Piece) -> Value {
     }
 }
 
-/// The claimed enclosures: `N(X)` of each Newton piece rounded outward, and
-/// the hull of each run of undecided pieces.
+/// The claimed enclosures: `N(X)` of each Newton piece with slack, rounded
+/// outward, and the hull of each run of undecided pieces.
 pub fn claimed_roots(pieces: &[Piece]) -> Vec<Value> {
     let mut out = Vec::new();
     let mut run: Option<(f64, f64)> = None;
@@ -196,11 +249,8 @@ pub fn claimed_roots(pieces: &[Piece]) -> Vec<Value> {
             }
             PieceKind::Newton(_, n) => {
                 flush(&mut run, &mut out);
-                out.push(json!({
-                    "lo": decimal(n.inf(), ROOT_DIGITS, Round::Down),
-                    "hi": decimal(n.sup(), ROOT_DIGITS, Round::Up),
-                    "status": "unique",
-                }));
+                let (lo, hi) = claim_with_slack(n, p.lo, p.hi);
+                out.push(json!({ "lo": lo, "hi": hi, "status": "unique" }));
             }
             _ => flush(&mut run, &mut out),
         }
@@ -298,8 +348,8 @@ pub fn kappa0_proof(mu_star: &RootEnclosure) -> Value {
             "definitions": [],
             "p": P_TEXT,
             "kappa0": {
-                "lo": decimal(kappa0.inf(), ROOT_DIGITS, Round::Down),
-                "hi": decimal(kappa0.sup(), ROOT_DIGITS, Round::Up),
+                "lo": decimal(with_slack(kappa0).0, ROOT_DIGITS, Round::Down),
+                "hi": decimal(with_slack(kappa0).1, ROOT_DIGITS, Round::Up),
             },
         },
         "evidence": {
