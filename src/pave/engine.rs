@@ -70,8 +70,6 @@ pub(super) enum Outcome {
 
 /// A box to process at the current level.
 pub(super) struct Open<Sl> {
-    /// The arena node its entry is written to.
-    pub node: u32,
     pub bx: PhaseBox,
     pub slab: Option<Arc<Sl>>,
     /// The slab was computed for this box's θ-interval at this level: the
@@ -181,7 +179,6 @@ pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
     let set = method.scope().set;
     let mut tree = Tree::new();
     let mut frontier: Vec<Open<S::Slab>> = vec![Open {
-        node: 0,
         bx: root,
         slab: None,
         fresh: true,
@@ -200,29 +197,49 @@ pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
         };
         stats.slab_evaluations += shared as u64;
 
-        let done: Vec<Done<S::Slab>> = par_map_range(frontier.len(), PAR_MIN_HEAVY, |k| {
+        let mut done: Vec<Done<S::Slab>> = par_map_range(frontier.len(), PAR_MIN_HEAVY, |k| {
             visit(method, &frontier[k])
         });
-        let work = |d: &Done<S::Slab>| [d.work.evals, d.work.slabs];
-        let add = |a: [u64; 2], b: [u64; 2]| [a[0] + b[0], a[1] + b[1]];
-        let [evals, slabs] = if done.len() < PAR_MIN {
-            done.iter().map(work).fold([0, 0], add)
+        let work = |d: &Done<S::Slab>| {
+            let heap = match &d.outcome {
+                Outcome::Tree(t) => t.capacity() * size_of::<Local>(),
+                _ => 0,
+            };
+            [
+                d.work.evals,
+                d.work.slabs,
+                heap as u64,
+                d.slab.is_some() as u64,
+            ]
+        };
+        let add = |a: [u64; 4], b: [u64; 4]| [a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3]];
+        let [evals, slabs, heap, own_slabs] = if done.len() < PAR_MIN {
+            done.iter().map(work).fold([0; 4], add)
         } else {
-            done.par_iter().map(work).reduce(|| [0, 0], add)
+            done.par_iter().map(work).reduce(|| [0; 4], add)
         };
         stats.box_evaluations += evals;
         stats.slab_evaluations += slabs;
 
         let plan = schedule(method, &frontier, &done, &tree, opts.max_boxes, &mut left);
-        let next = tree.grow(&frontier, done, &plan);
-        // Written elements only: reserved capacity is not touched.
+        let (next, scratch) = tree.grow(&frontier, &mut done, &plan);
+
+        // Everything held at this point: the tree, both frontiers, this
+        // level's results and bookkeeping, and the slabs computed for it.
+        let slab_bytes = size_of::<S::Slab>() + 2 * size_of::<usize>();
         peak = peak.max(
             tree.bytes()
-                + next.capacity() * size_of::<Open<S::Slab>>()
-                + shared * size_of::<S::Slab>(),
+                + scratch
+                + (frontier.capacity() + next.capacity()) * size_of::<Open<S::Slab>>()
+                + done.capacity() * size_of::<Done<S::Slab>>()
+                + heap as usize
+                + plan.capacity() * size_of::<Plan>()
+                + (shared + own_slabs as usize) * slab_bytes,
         );
+        drop(plan);
+        par_each_owned(done, drop);
         // Dropping the old frontier releases slabs; do it off the main thread.
-        par_each_owned(std::mem::replace(&mut frontier, next), |_, o| drop(o));
+        par_each_owned(std::mem::replace(&mut frontier, next), drop);
         if !frontier.is_empty() {
             level += 1;
         }
@@ -230,7 +247,7 @@ pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
     stats.depth = level;
     let stop = left.stop();
 
-    let (nodes, leaves, assembly) = tree.into_preorder();
+    let (nodes, leaves, assembly) = tree.into_preorder(root);
     peak = peak.max(assembly);
     let bytes =
         nodes.capacity() * size_of::<super::Node>() + leaves.capacity() * size_of::<super::Leaf>();
@@ -448,11 +465,11 @@ pub(super) fn par_each_mut<T: Send>(xs: &mut [T], f: impl Fn(&mut T) + Sync + Se
     }
 }
 
-/// `f(index, item)` for every item, consuming the vector.
-pub(super) fn par_each_owned<T: Send>(xs: Vec<T>, f: impl Fn(usize, T) + Sync + Send) {
+/// `f(item)` for every item, consuming the vector.
+fn par_each_owned<T: Send>(xs: Vec<T>, f: impl Fn(T) + Sync + Send) {
     if xs.len() < PAR_MIN {
-        xs.into_iter().enumerate().for_each(|(k, x)| f(k, x))
+        xs.into_iter().for_each(f)
     } else {
-        xs.into_par_iter().enumerate().for_each(|(k, x)| f(k, x))
+        xs.into_par_iter().for_each(f)
     }
 }

@@ -1,331 +1,429 @@
-//! The bisection tree while it is built: one arena of nodes and one of
-//! leaves, grown level by level and written in parallel, each box through
-//! its own disjoint part; the flat preorder tree of a [`super::Paving`] is
-//! assembled from them at the end.
+//! The bisection tree while it is built: one node array per level, each
+//! allocated once at the size the level's schedule asks for and written in
+//! parallel through disjoint shares carved from it; the flat preorder tree of
+//! a [`super::Paving`] is assembled from the levels at the end.
+//!
+//! A leaf keeps only its labels: its box is replayed from the root and the
+//! splits when the tree is assembled, exactly as the paving computed it.
 
-use super::engine::{par_each_owned, Done, Local, Open, Outcome, Plan};
+use super::engine::{par_each_mut, Done, Local, Open, Outcome, Plan, PAR_MIN};
+use super::labels::Labels;
 use super::{Leaf, Node, PhaseBox};
-use std::mem::{size_of, MaybeUninit};
-use std::sync::Arc;
+use rayon::prelude::*;
+use std::mem::size_of;
 
-/// Arena node while building; children of a split are `a` and `a + 1`.
+/// A node of the tree under construction. The children of a split are
+/// entries `a` and `a + 1` of the same level's array, or of the next
+/// level's when `next` (the entry of a box refined at that level).
 #[derive(Clone, Copy)]
 enum Building {
-    Open,
-    Leaf(u32),
-    Split(u8, u32),
-    SplitAt(u8, f64, u32),
+    /// Box `k` of the next level's frontier, until that level replaces the
+    /// entry with the box's own.
+    Open(u32),
+    Leaf(Labels),
+    Split {
+        axis: u8,
+        next: bool,
+        a: u32,
+    },
+    SplitAt {
+        axis: u8,
+        next: bool,
+        a: u32,
+        at: f64,
+    },
 }
 
+const _: () = assert!(size_of::<Building>() == 16);
+
 pub(super) struct Tree {
-    arena: Vec<Building>,
-    leaves: Vec<Leaf>,
+    /// `levels[0]` holds the root's entry; `levels[l + 1]` the nodes that
+    /// paving level `l` adds.
+    levels: Vec<Vec<Building>>,
+    nodes: usize,
+    leaves: usize,
 }
 
 impl Tree {
     pub fn new() -> Tree {
-        // The tree's first 256 KiB reserved at once (its pages are touched
-        // only as they are written). Grown from small it was copied into
-        // fresh pages at every doubling: a coarse paving's whole process
-        // took 11–14 % longer (measured with glibc's malloc).
-        const TREE_START: usize = 256 << 10;
-        let mut arena: Vec<Building> = Vec::with_capacity(TREE_START / size_of::<Building>());
-        arena.push(Building::Open);
-        let leaves: Vec<Leaf> = Vec::with_capacity(TREE_START / size_of::<Leaf>());
-        Tree { arena, leaves }
+        Tree {
+            levels: vec![vec![Building::Open(0)]],
+            nodes: 1,
+            leaves: 0,
+        }
     }
 
     /// Nodes so far, the root and every split's two children.
     pub fn nodes(&self) -> usize {
-        self.arena.len()
+        self.nodes
     }
 
     /// Leaves so far.
     pub fn leaves(&self) -> usize {
-        self.leaves.len()
+        self.leaves
     }
 
-    /// Memory of the written nodes and leaves (reserved capacity is not
-    /// touched).
+    /// Memory held by the levels.
     pub fn bytes(&self) -> usize {
-        self.arena.len() * size_of::<Building>() + self.leaves.len() * size_of::<Leaf>()
+        self.levels
+            .iter()
+            .map(|l| l.capacity() * size_of::<Building>())
+            .sum()
     }
 
-    /// Adds the level `plan` makes of `frontier` (processed into `done`):
-    /// every box's new nodes, leaves and open boxes, and its own entry in
-    /// its parent's place. Returns the next frontier.
+    /// Adds the level `plan` makes of `frontier` (processed into `done`,
+    /// whose subtrees and slabs it takes): every box's new nodes and open
+    /// boxes, and its own entry in the level above. Returns the next
+    /// frontier and the bytes of bookkeeping it held besides.
     pub fn grow<Sl: Send + Sync>(
         &mut self,
         frontier: &[Open<Sl>],
-        done: Vec<Done<Sl>>,
+        done: &mut [Done<Sl>],
         plan: &[Plan],
-    ) -> Vec<Open<Sl>> {
-        // Offsets of each box's share, then every box writes its share of
-        // the reserved capacity itself (first touch on the workers).
-        let (base_nodes, base_leaves) = (self.arena.len(), self.leaves.len());
+    ) -> (Vec<Open<Sl>>, usize) {
         let mut offsets = Vec::with_capacity(plan.len());
         let mut total = [0usize; 3];
         for p in plan {
-            offsets.push(total);
+            offsets.push([total[0], total[2]]);
             total[0] += p.nodes as usize;
             total[1] += p.leaves as usize;
             total[2] += p.opens as usize;
         }
-        self.arena.reserve(total[0]);
-        self.leaves.reserve(total[1]);
-        let mut next: Vec<Open<Sl>> = Vec::with_capacity(total[2]);
-        {
-            // The whole arena allocation: parents (below `base_nodes`, one
-            // per box) and the new children (above) are written in place.
-            let an = Shared::whole(&mut self.arena);
-            let (ln, on) = (
-                Shared::new(self.leaves.spare_capacity_mut()),
-                Shared::new(next.spare_capacity_mut()),
-            );
-            par_each_owned(done, |k, d| {
-                let o = &frontier[k];
-                let slab = d.slab.or_else(|| o.slab.clone());
-                let off = offsets[k];
-                let p = plan[k];
-                let mut f = Filler {
-                    arena: an.part(base_nodes + off[0], p.nodes as usize),
-                    arena_base: (base_nodes + off[0]) as u32,
-                    leaves: ln.part(off[1], p.leaves as usize),
-                    leaf_base: (base_leaves + off[1]) as u32,
-                    opens: on.part(off[2], p.opens as usize),
-                    used: [0; 3],
-                };
-                let own = if p.refine {
-                    match d.outcome {
-                        Outcome::Split(ax) => {
-                            let t = [Local::Mid(ax), Local::Open, Local::Open];
-                            f.expand(&t, &mut 0, o.node, o.bx, slab)
-                        }
-                        Outcome::Tree(t) => f.expand(&t, &mut 0, o.node, o.bx, slab),
-                        Outcome::Leaf => unreachable!("a leaf is not refined"),
-                    }
-                } else {
-                    f.expand(&[Local::Leaf(d.labels)], &mut 0, o.node, o.bx, None)
-                };
-                // Every planned slot written: what makes set_len below sound.
-                assert_eq!(
-                    f.used,
-                    [p.nodes as usize, p.leaves as usize, p.opens as usize]
-                );
-                an.part(o.node as usize, 1)[0].write(own);
-            });
-            // SAFETY: each box wrote exactly its planned slots (asserted
-            // above), the shares are disjoint and together cover `total`.
-            unsafe {
-                self.arena.set_len(base_nodes + total[0]);
-                self.leaves.set_len(base_leaves + total[1]);
-                next.set_len(total[2]);
-            }
-        }
-        next
-    }
-
-    /// The tree in preorder with its leaves renumbered in that order, and
-    /// the bytes held while assembling it.
-    pub fn into_preorder(self) -> (Vec<Node>, Vec<Leaf>, usize) {
-        let (nodes, ordered) = preorder(&self.arena, &self.leaves);
-        // Building, leaves in build order, subtree sizes and the output together.
-        let held = self.arena.len() * (size_of::<Building>() + 8)
-            + self.leaves.len() * size_of::<Leaf>()
-            + nodes.capacity() * size_of::<Node>()
-            + ordered.capacity() * size_of::<Leaf>();
-        (nodes, ordered, held)
-    }
-}
-
-/// Uninitialised capacity that boxes fill in parallel, each through its
-/// own disjoint part.
-struct Shared<T> {
-    ptr: *mut MaybeUninit<T>,
-    len: usize,
-}
-
-// SAFETY: parts handed out are disjoint (offsets from prefix sums), so no
-// two threads write the same slot; `T: Send` moves values across threads.
-unsafe impl<T: Send> Sync for Shared<T> {}
-
-impl<T> Shared<T> {
-    fn new(s: &mut [MaybeUninit<T>]) -> Self {
-        Shared {
-            ptr: s.as_mut_ptr(),
-            len: s.len(),
-        }
-    }
-    /// The whole allocation of `v`, initialised part and spare capacity.
-    fn whole(v: &mut Vec<T>) -> Self {
-        Shared {
-            ptr: v.as_mut_ptr().cast::<MaybeUninit<T>>(),
-            len: v.capacity(),
-        }
-    }
-    /// The part `[start, start + n)`. Callers take disjoint parts.
-    #[allow(clippy::mut_from_ref)]
-    fn part(&self, start: usize, n: usize) -> &mut [MaybeUninit<T>] {
-        assert!(start + n <= self.len, "part within the reserved capacity");
-        // SAFETY: in bounds (asserted); disjoint from every other part taken
-        // (each box's offsets come from one prefix sum).
-        unsafe { std::slice::from_raw_parts_mut(self.ptr.add(start), n) }
-    }
-}
-
-/// One box's share of the new nodes, leaves and open boxes of a level.
-struct Filler<'a, Sl> {
-    arena: &'a mut [MaybeUninit<Building>],
-    arena_base: u32,
-    leaves: &'a mut [MaybeUninit<Leaf>],
-    leaf_base: u32,
-    opens: &'a mut [MaybeUninit<Open<Sl>>],
-    used: [usize; 3],
-}
-
-impl<Sl> Filler<'_, Sl> {
-    /// Writes the local subtree rooted at node `id` (box `bx`); returns the
-    /// entry of `id` itself.
-    fn expand(
-        &mut self,
-        t: &[Local],
-        pos: &mut usize,
-        id: u32,
-        bx: PhaseBox,
-        slab: Option<Arc<Sl>>,
-    ) -> Building {
-        let item = t[*pos];
-        *pos += 1;
-        let (ax, (lo, hi)) = match item {
-            Local::Leaf(labels) => {
-                let i = self.used[1];
-                self.used[1] += 1;
-                self.leaves[i].write(Leaf { bx, labels });
-                return Building::Leaf(self.leaf_base + i as u32);
-            }
-            Local::Open => {
-                let i = self.used[2];
-                self.used[2] += 1;
-                self.opens[i].write(Open {
-                    node: id,
-                    bx,
-                    fresh: slab.is_none(),
-                    slab,
-                });
-                return Building::Open;
-            }
-            Local::Mid(ax) => (ax, bx.split(ax as usize)),
-            Local::At(ax, p) => (
-                ax,
-                bx.split_at(ax as usize, p)
-                    .expect("contraction points lie strictly inside"),
-            ),
+        let mut nodes = filled(total[0], || Building::Open(0));
+        let mut opens = filled(total[2], || Open {
+            bx: PhaseBox {
+                theta: [0.0; 2],
+                theta_dot: [0.0; 2],
+            },
+            slab: None,
+            fresh: false,
+        });
+        let mut own = filled(frontier.len(), || Building::Open(0));
+        let shares = Shares {
+            boxes: frontier,
+            done,
+            plan,
+            offsets: &offsets,
+            own: &mut own,
+            nodes: &mut nodes,
+            opens: &mut opens,
         };
-        let i = self.used[0];
-        self.used[0] += 2;
-        let a = self.arena_base + i as u32;
-        // Below a θ split the parent's slab no longer applies.
-        let child_slab = if ax == 1 { slab } else { None };
-        let l = self.expand(t, pos, a, lo, child_slab.clone());
-        let h = self.expand(t, pos, a + 1, hi, child_slab);
-        self.arena[i].write(l);
-        self.arena[i + 1].write(h);
-        match item {
-            Local::At(_, p) => Building::SplitAt(ax, p, a),
-            _ => Building::Split(ax, a),
+        if frontier.len() < PAR_MIN {
+            shares.fill();
+        } else {
+            shares.fill_par();
         }
+        // Each open box's entry in the level above, now that it is known.
+        let above = self.levels.last_mut().expect("the root's level");
+        par_each_mut(above, |e| {
+            if let Building::Open(k) = *e {
+                *e = own[k as usize];
+            }
+        });
+        self.levels.push(nodes);
+        self.nodes += total[0];
+        self.leaves += total[1];
+        let scratch =
+            offsets.capacity() * size_of::<[usize; 2]>() + own.capacity() * size_of::<Building>();
+        (opens, scratch)
+    }
+
+    /// The tree in preorder with its leaves numbered in that order, and the
+    /// bytes held while assembling it. Subtree sizes give every subtree its
+    /// place in the output, so large subtrees are written in parallel; the
+    /// result does not depend on the thread count.
+    pub fn into_preorder(self, root: PhaseBox) -> (Vec<Node>, Vec<Leaf>, usize) {
+        let levels = self.levels;
+        // Children come after their parent within a level, or in the next
+        // level: sizes in one reverse pass from the last level.
+        let mut size: Vec<Vec<u32>> = levels.iter().map(|l| vec![0u32; l.len()]).collect();
+        for s in (0..levels.len()).rev() {
+            let (this, below) = size.split_at_mut(s + 1);
+            let (this, below) = (&mut this[s], below.first().map(|b| &b[..]));
+            for (i, e) in levels[s].iter().enumerate().rev() {
+                this[i] = match *e {
+                    Building::Split { next, a, .. } | Building::SplitAt { next, a, .. } => {
+                        let a = a as usize;
+                        let c = if next {
+                            below.expect("a next level")
+                        } else {
+                            &this[..]
+                        };
+                        1 + c[a] + c[a + 1]
+                    }
+                    Building::Leaf(_) => 1,
+                    Building::Open(_) => unreachable!("every box ends as a leaf or a split"),
+                };
+            }
+        }
+        // Every node and leaf is reachable from the root exactly once (every
+        // split has two children: a tree of n nodes has (n + 1) / 2 leaves).
+        assert_eq!(size[0][0] as usize, self.nodes);
+        assert_eq!(self.nodes.div_ceil(2), self.leaves);
+        let mut nodes = filled(self.nodes, || Node::Leaf(0));
+        let mut leaves = filled(self.leaves, || Leaf {
+            bx: root,
+            labels: [super::Label::Undecided; super::MAX_CONSTRAINTS],
+        });
+        let levels_bytes: usize = levels
+            .iter()
+            .map(|l| l.capacity() * size_of::<Building>())
+            .sum();
+        let size_bytes: usize = size.iter().map(|s| s.capacity() * size_of::<u32>()).sum();
+        let held = levels_bytes
+            + size_bytes
+            + nodes.capacity() * size_of::<Node>()
+            + leaves.capacity() * size_of::<Leaf>();
+        let walk = Walk {
+            levels: &levels,
+            size: &size,
+        };
+        walk.write((0, 0), root, &mut nodes, &mut leaves, 0);
+        (nodes, leaves, held)
     }
 }
 
 /// Subtrees of at most this many nodes are written by one thread.
 const SERIAL_SUBTREE: u32 = 1 << 15;
 
-/// The tree in preorder with its leaves renumbered in that order. Subtree
-/// sizes give every subtree its place in the output, so large subtrees are
-/// written in parallel; the result does not depend on the thread count.
-fn preorder(arena: &[Building], leaves: &[Leaf]) -> (Vec<Node>, Vec<Leaf>) {
-    // Children come after their parent in the arena: sizes in one reverse pass.
-    let mut size = vec![(0u32, 0u32); arena.len()];
-    for i in (0..arena.len()).rev() {
-        size[i] = match arena[i] {
-            Building::Split(_, a) | Building::SplitAt(_, _, a) => {
-                let (l, h) = (size[a as usize], size[a as usize + 1]);
-                (1 + l.0 + h.0, l.1 + h.1)
-            }
-            _ => (1, 1),
-        };
-    }
-    // Every node and leaf is reachable from the root exactly once.
-    assert_eq!(size[0], (arena.len() as u32, leaves.len() as u32));
-    let mut nodes = Vec::with_capacity(arena.len());
-    let mut out = Vec::with_capacity(leaves.len());
-    write_preorder(
-        arena,
-        leaves,
-        &size,
-        0,
-        &mut nodes.spare_capacity_mut()[..arena.len()],
-        &mut out.spare_capacity_mut()[..leaves.len()],
-        0,
-    );
-    // SAFETY: the walk wrote one entry per node and per leaf (sizes
-    // asserted above), each at its own preorder position.
-    unsafe {
-        nodes.set_len(arena.len());
-        out.set_len(leaves.len());
-    }
-    (nodes, out)
+/// The levels and their subtree sizes, read while writing the preorder.
+struct Walk<'a> {
+    levels: &'a [Vec<Building>],
+    size: &'a [Vec<u32>],
 }
 
-fn write_preorder(
-    arena: &[Building],
-    leaves: &[Leaf],
-    size: &[(u32, u32)],
-    root: u32,
-    nodes: &mut [MaybeUninit<Node>],
-    out: &mut [MaybeUninit<Leaf>],
-    leaf_base: u32,
-) {
-    if size[root as usize].0 <= SERIAL_SUBTREE {
-        let (mut n, mut l) = (0, 0);
-        let mut stack = vec![root];
-        while let Some(i) = stack.pop() {
-            nodes[n].write(match arena[i as usize] {
-                Building::Split(ax, a) => {
-                    stack.extend([a + 1, a]);
-                    Node::Split(ax)
-                }
-                Building::SplitAt(ax, p, a) => {
-                    stack.extend([a + 1, a]);
-                    Node::SplitAt(ax, p)
-                }
-                Building::Leaf(k) => {
-                    out[l].write(leaves[k as usize]);
-                    l += 1;
-                    Node::Leaf(leaf_base + l as u32 - 1)
-                }
-                Building::Open => unreachable!("every box ends as a leaf or a split"),
-            });
-            n += 1;
-        }
-        return;
+impl Walk<'_> {
+    /// The children of entry `e` of level `s`: their level and first index.
+    fn children(s: usize, next: bool, a: u32) -> (usize, u32) {
+        (s + usize::from(next), a)
     }
-    let a = match arena[root as usize] {
-        Building::Split(ax, a) => {
-            nodes[0].write(Node::Split(ax));
-            a
+
+    /// Writes the subtree at entry `at` (level, index), of box `bx`, into
+    /// `nodes` and `leaves`, numbering its leaves from `leaf_base`.
+    fn write(
+        &self,
+        at: (usize, u32),
+        bx: PhaseBox,
+        nodes: &mut [Node],
+        leaves: &mut [Leaf],
+        leaf_base: u32,
+    ) {
+        let (s, i) = at;
+        if self.size[s][i as usize] <= SERIAL_SUBTREE {
+            let (mut n, mut l) = (0, 0);
+            let mut stack = vec![(at, bx)];
+            while let Some(((s, i), bx)) = stack.pop() {
+                nodes[n] = match self.levels[s][i as usize] {
+                    Building::Split { axis, next, a } => {
+                        let (lo, hi) = bx.split(axis as usize);
+                        let c = Self::children(s, next, a);
+                        stack.extend([((c.0, c.1 + 1), hi), (c, lo)]);
+                        Node::Split(axis)
+                    }
+                    Building::SplitAt { axis, next, a, at } => {
+                        let (lo, hi) = split_at(&bx, axis, at);
+                        let c = Self::children(s, next, a);
+                        stack.extend([((c.0, c.1 + 1), hi), (c, lo)]);
+                        Node::SplitAt(axis, at)
+                    }
+                    Building::Leaf(labels) => {
+                        leaves[l] = Leaf { bx, labels };
+                        l += 1;
+                        Node::Leaf(leaf_base + l as u32 - 1)
+                    }
+                    Building::Open(_) => unreachable!("every box ends as a leaf or a split"),
+                };
+                n += 1;
+            }
+            return;
         }
-        Building::SplitAt(ax, p, a) => {
-            nodes[0].write(Node::SplitAt(ax, p));
-            a
+        let (c, (lo, hi)) = match self.levels[s][i as usize] {
+            Building::Split { axis, next, a } => {
+                nodes[0] = Node::Split(axis);
+                (Self::children(s, next, a), bx.split(axis as usize))
+            }
+            Building::SplitAt { axis, next, a, at } => {
+                nodes[0] = Node::SplitAt(axis, at);
+                (Self::children(s, next, a), split_at(&bx, axis, at))
+            }
+            _ => unreachable!("a large subtree is a split"),
+        };
+        let left = self.size[c.0][c.1 as usize];
+        let (ln, rn) = nodes[1..].split_at_mut(left as usize);
+        let (ll, rl) = leaves.split_at_mut(left.div_ceil(2) as usize);
+        let right_base = leaf_base + left.div_ceil(2);
+        rayon::join(
+            || self.write(c, lo, ln, ll, leaf_base),
+            || self.write((c.0, c.1 + 1), hi, rn, rl, right_base),
+        );
+    }
+}
+
+fn split_at(bx: &PhaseBox, axis: u8, at: f64) -> (PhaseBox, PhaseBox) {
+    bx.split_at(axis as usize, at)
+        .expect("contraction points lie strictly inside")
+}
+
+/// `n` values of `f()`, written in parallel for a long vector so that its
+/// pages are first touched by the pool's threads.
+fn filled<T: Send>(n: usize, f: impl Fn() -> T + Sync + Send) -> Vec<T> {
+    if n < PAR_MIN {
+        (0..n).map(|_| f()).collect()
+    } else {
+        let mut v = Vec::with_capacity(n);
+        (0..n).into_par_iter().map(|_| f()).collect_into_vec(&mut v);
+        v
+    }
+}
+
+/// Boxes `[k, k + n)` of a level with their shares of its storage: the new
+/// nodes and open boxes of each lie at its offsets (from one prefix sum),
+/// so the shares of disjoint runs of boxes are disjoint slices.
+struct Shares<'a, Sl> {
+    boxes: &'a [Open<Sl>],
+    done: &'a mut [Done<Sl>],
+    plan: &'a [Plan],
+    /// Each box's first node and first open box in the level.
+    offsets: &'a [[usize; 2]],
+    own: &'a mut [Building],
+    nodes: &'a mut [Building],
+    opens: &'a mut [Open<Sl>],
+}
+
+/// Boxes per task when a level is filled in parallel.
+const FILL_GRAIN: usize = 256;
+
+impl<Sl: Send + Sync> Shares<'_, Sl> {
+    /// The boxes before `m` and from `m`.
+    fn split(self, m: usize) -> (Self, Self) {
+        let [n0, o0] = self.offsets[0];
+        let [nm, om] = self.offsets[m];
+        let (boxes_a, boxes_b) = self.boxes.split_at(m);
+        let (done_a, done_b) = self.done.split_at_mut(m);
+        let (plan_a, plan_b) = self.plan.split_at(m);
+        let (off_a, off_b) = self.offsets.split_at(m);
+        let (own_a, own_b) = self.own.split_at_mut(m);
+        let (nodes_a, nodes_b) = self.nodes.split_at_mut(nm - n0);
+        let (opens_a, opens_b) = self.opens.split_at_mut(om - o0);
+        (
+            Shares {
+                boxes: boxes_a,
+                done: done_a,
+                plan: plan_a,
+                offsets: off_a,
+                own: own_a,
+                nodes: nodes_a,
+                opens: opens_a,
+            },
+            Shares {
+                boxes: boxes_b,
+                done: done_b,
+                plan: plan_b,
+                offsets: off_b,
+                own: own_b,
+                nodes: nodes_b,
+                opens: opens_b,
+            },
+        )
+    }
+
+    fn fill_par(self) {
+        let n = self.boxes.len();
+        if n <= FILL_GRAIN {
+            return self.fill();
         }
-        _ => unreachable!("a large subtree is a split"),
-    };
-    let (ln, rn) = nodes[1..].split_at_mut(size[a as usize].0 as usize);
-    let (ll, rl) = out.split_at_mut(size[a as usize].1 as usize);
-    let right_base = leaf_base + size[a as usize].1;
-    rayon::join(
-        || write_preorder(arena, leaves, size, a, ln, ll, leaf_base),
-        || write_preorder(arena, leaves, size, a + 1, rn, rl, right_base),
-    );
+        let (a, b) = self.split(n / 2);
+        rayon::join(|| a.fill_par(), || b.fill_par());
+    }
+
+    /// Every box writes its share, one after the other.
+    fn fill(self) {
+        let (mut nodes, mut opens) = (self.nodes, self.opens);
+        for (k, o) in self.boxes.iter().enumerate() {
+            let d = &mut self.done[k];
+            let p = self.plan[k];
+            let (my_nodes, rest) = std::mem::take(&mut nodes).split_at_mut(p.nodes as usize);
+            nodes = rest;
+            let (my_opens, rest) = std::mem::take(&mut opens).split_at_mut(p.opens as usize);
+            opens = rest;
+            let [node_base, open_base] = self.offsets[k];
+            let mut f = Filler {
+                nodes: my_nodes,
+                node_base: node_base as u32,
+                opens: my_opens,
+                open_base: open_base as u32,
+                used: [0; 2],
+            };
+            let slab = d.slab.take().or_else(|| o.slab.clone());
+            let outcome = std::mem::replace(&mut d.outcome, Outcome::Leaf);
+            self.own[k] = if p.refine {
+                match outcome {
+                    Outcome::Split(ax) => {
+                        let t = [Local::Mid(ax), Local::Open, Local::Open];
+                        f.expand(&t, &mut 0, o.bx, slab, true)
+                    }
+                    Outcome::Tree(t) => f.expand(&t, &mut 0, o.bx, slab, true),
+                    Outcome::Leaf => unreachable!("a leaf is not refined"),
+                }
+            } else {
+                Building::Leaf(d.labels)
+            };
+            // Every planned slot written.
+            assert_eq!(f.used, [p.nodes as usize, p.opens as usize]);
+        }
+    }
+}
+
+/// One box's share of the new nodes and open boxes of a level.
+struct Filler<'a, Sl> {
+    nodes: &'a mut [Building],
+    node_base: u32,
+    opens: &'a mut [Open<Sl>],
+    open_base: u32,
+    used: [usize; 2],
+}
+
+impl<Sl> Filler<'_, Sl> {
+    /// Writes the local subtree of box `bx` and returns its root entry;
+    /// `next`: that entry lies in the level above (its children in this
+    /// one).
+    fn expand(
+        &mut self,
+        t: &[Local],
+        pos: &mut usize,
+        bx: PhaseBox,
+        slab: Option<std::sync::Arc<Sl>>,
+        next: bool,
+    ) -> Building {
+        let item = t[*pos];
+        *pos += 1;
+        let (axis, (lo, hi)) = match item {
+            Local::Leaf(labels) => return Building::Leaf(labels),
+            Local::Open => {
+                let i = self.used[1];
+                self.used[1] += 1;
+                self.opens[i] = Open {
+                    bx,
+                    fresh: slab.is_none(),
+                    slab,
+                };
+                return Building::Open(self.open_base + i as u32);
+            }
+            Local::Mid(ax) => (ax, bx.split(ax as usize)),
+            Local::At(ax, p) => (ax, split_at(&bx, ax, p)),
+        };
+        let i = self.used[0];
+        self.used[0] += 2;
+        // Below a θ split the parent's slab no longer applies.
+        let child_slab = if axis == 1 { slab } else { None };
+        let l = self.expand(t, pos, lo, child_slab.clone(), false);
+        let h = self.expand(t, pos, hi, child_slab, false);
+        self.nodes[i] = l;
+        self.nodes[i + 1] = h;
+        let a = self.node_base + i as u32;
+        match item {
+            Local::At(_, at) => Building::SplitAt { axis, next, a, at },
+            _ => Building::Split { axis, next, a },
+        }
+    }
 }
