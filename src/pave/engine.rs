@@ -360,34 +360,42 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
 ) -> Vec<Plan> {
     let scope = method.scope();
     let counts: Vec<Plan> = par_map(done, PAR_MIN, |d| Plan::of(&d.outcome));
-    let (mut want_leaves, mut want_nodes) = (0usize, 0usize);
-    for c in counts.iter().filter(|c| c.refine) {
-        want_leaves += c.extra();
-        want_nodes += c.nodes as usize;
-    }
+    let want = |k: usize| match counts[k] {
+        c if c.refine => [c.extra(), c.nodes as usize],
+        _ => [0, 0],
+    };
+    let [want_leaves, want_nodes] = par_fold(counts.len(), [0, 0], want, |a, b| {
+        [a[0] + b[0], a[1] + b[1]]
+    });
     let room = (u32::MAX as usize).saturating_sub(tree.nodes() + 2 * frontier.len());
     let undecided_leaf = |t: &[Local]| {
         t.iter()
             .any(|l| matches!(l, Local::Leaf(x) if scope.undecided(x)))
     };
     if tree.leaves() + frontier.len() + want_leaves <= max_boxes && want_nodes <= room {
-        // Every refinement fits, so the order does not matter: each box is
-        // decided on its own, in parallel, as the loop below would.
-        let per_box = |k: usize| -> (Plan, bool, bool) {
+        // Every refinement fits, so the order does not matter: each box
+        // gets what it asks for (a box not refined asks for one leaf), and
+        // what is left undecided is found in parallel, as the loop below
+        // would.
+        let left_by = |k: usize| -> [bool; 2] {
             let d = &done[k];
             if counts[k].refine {
-                let undecided = matches!(&d.outcome, Outcome::Tree(t) if undecided_leaf(t));
-                (counts[k], undecided, false)
+                [
+                    matches!(&d.outcome, Outcome::Tree(t) if undecided_leaf(t)),
+                    false,
+                ]
             } else if scope.undecided(&d.labels) {
-                (Plan::LEAF, true, method.at_ulp_limit(&frontier[k].bx))
+                [true, method.at_ulp_limit(&frontier[k].bx)]
             } else {
-                (Plan::LEAF, false, false)
+                [false, false]
             }
         };
-        let decided: Vec<(Plan, bool, bool)> = par_map_range(done.len(), PAR_MIN, per_box);
-        left.undecided |= decided.iter().any(|d| d.1);
-        left.ulp_limit |= decided.iter().any(|d| d.2);
-        return decided.iter().map(|d| d.0).collect();
+        let [undecided, ulp_limit] = par_fold(done.len(), [false, false], left_by, |a, b| {
+            [a[0] | b[0], a[1] | b[1]]
+        });
+        left.undecided |= undecided;
+        left.ulp_limit |= ulp_limit;
+        return counts;
     }
     let mut order: Vec<usize> = (0..frontier.len()).collect();
     if R::LARGEST_FIRST {
@@ -454,6 +462,21 @@ pub(super) fn par_map_range<U: Send>(
         (0..n).map(f).collect()
     } else {
         (0..n).into_par_iter().map(f).collect()
+    }
+}
+
+/// `f(k)` for `k` in `0..n` combined by `op` (associative, `zero` its
+/// identity), in parallel from [`PAR_MIN`] items.
+fn par_fold<T: Copy + Send + Sync>(
+    n: usize,
+    zero: T,
+    f: impl Fn(usize) -> T + Sync + Send,
+    op: impl Fn(T, T) -> T + Sync + Send,
+) -> T {
+    if n < PAR_MIN {
+        (0..n).map(f).fold(zero, op)
+    } else {
+        (0..n).into_par_iter().map(f).reduce(|| zero, op)
     }
 }
 

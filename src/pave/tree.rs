@@ -40,6 +40,9 @@ pub(super) struct Tree {
     /// `levels[0]` holds the root's entry; `levels[l + 1]` the nodes that
     /// paving level `l` adds.
     levels: Vec<Vec<Building>>,
+    /// Per level, where runs of whole shares start (every [`SCAN`]-th
+    /// box's first node): sizes are computed run by run.
+    cuts: Vec<Vec<u32>>,
     nodes: usize,
     leaves: usize,
 }
@@ -48,6 +51,7 @@ impl Tree {
     pub fn new() -> Tree {
         Tree {
             levels: vec![vec![Building::Open(0)]],
+            cuts: vec![vec![0]],
             nodes: 1,
             leaves: 0,
         }
@@ -81,14 +85,7 @@ impl Tree {
         done: &mut [Done<Sl>],
         plan: &[Plan],
     ) -> (Vec<Open<Sl>>, usize) {
-        let mut offsets = Vec::with_capacity(plan.len());
-        let mut total = [0usize; 3];
-        for p in plan {
-            offsets.push([total[0], total[2]]);
-            total[0] += p.nodes as usize;
-            total[1] += p.leaves as usize;
-            total[2] += p.opens as usize;
-        }
+        let (offsets, total, cuts) = prefix_sums(plan);
         let mut nodes = filled(total[0], || Building::Open(0));
         let mut opens = filled(total[2], || Open {
             bx: PhaseBox {
@@ -121,10 +118,12 @@ impl Tree {
             }
         });
         self.levels.push(nodes);
+        self.cuts.push(cuts);
         self.nodes += total[0];
         self.leaves += total[1];
         let scratch =
             offsets.capacity() * size_of::<[usize; 2]>() + own.capacity() * size_of::<Building>();
+        debug_assert_eq!(offsets.len(), frontier.len());
         (opens, scratch)
     }
 
@@ -134,26 +133,45 @@ impl Tree {
     /// result does not depend on the thread count.
     pub fn into_preorder(self, root: PhaseBox) -> (Vec<Node>, Vec<Leaf>, usize) {
         let levels = self.levels;
-        // Children come after their parent within a level, or in the next
-        // level: sizes in one reverse pass from the last level.
+        // Children come after their parent within one box's share of a
+        // level, or in the next level: sizes from the last level up, each
+        // level's runs of shares (between cuts) in parallel, each run in
+        // one reverse pass.
         let mut size: Vec<Vec<u32>> = levels.iter().map(|l| vec![0u32; l.len()]).collect();
         for s in (0..levels.len()).rev() {
             let (this, below) = size.split_at_mut(s + 1);
             let (this, below) = (&mut this[s], below.first().map(|b| &b[..]));
-            for (i, e) in levels[s].iter().enumerate().rev() {
-                this[i] = match *e {
-                    Building::Split { next, a, .. } | Building::SplitAt { next, a, .. } => {
-                        let a = a as usize;
-                        let c = if next {
-                            below.expect("a next level")
-                        } else {
-                            &this[..]
-                        };
-                        1 + c[a] + c[a + 1]
-                    }
-                    Building::Leaf(_) => 1,
-                    Building::Open(_) => unreachable!("every box ends as a leaf or a split"),
-                };
+            let mut runs = Vec::with_capacity(self.cuts[s].len());
+            let mut rest = &mut this[..];
+            let mut from = 0;
+            for w in self.cuts[s].windows(2) {
+                let (run, r) = rest.split_at_mut(w[1] as usize - w[0] as usize);
+                runs.push((from, run));
+                (rest, from) = (r, w[1] as usize);
+            }
+            runs.push((from, rest));
+            let level = &levels[s][..];
+            let sizes = |(from, run): (usize, &mut [u32])| {
+                for i in (0..run.len()).rev() {
+                    run[i] = match level[from + i] {
+                        Building::Split { next, a, .. } | Building::SplitAt { next, a, .. } => {
+                            let a = a as usize;
+                            if next {
+                                let c = below.expect("a next level");
+                                1 + c[a] + c[a + 1]
+                            } else {
+                                1 + run[a - from] + run[a + 1 - from]
+                            }
+                        }
+                        Building::Leaf(_) => 1,
+                        Building::Open(_) => unreachable!("every box ends as a leaf or a split"),
+                    };
+                }
+            };
+            if runs.len() == 1 {
+                runs.into_iter().for_each(sizes);
+            } else {
+                runs.into_par_iter().for_each(sizes);
             }
         }
         // Every node and leaf is reachable from the root exactly once (every
@@ -262,6 +280,54 @@ impl Walk<'_> {
 fn split_at(bx: &PhaseBox, axis: u8, at: f64) -> (PhaseBox, PhaseBox) {
     bx.split_at(axis as usize, at)
         .expect("contraction points lie strictly inside")
+}
+
+/// Boxes per run of the prefix sums (and of the size pass's runs).
+const SCAN: usize = 4096;
+
+/// Each box's first new node and first open box in the level (one prefix
+/// sum of the plan), the level's totals of nodes, leaves and open boxes,
+/// and the first node of every [`SCAN`]-th box. A long plan is summed in
+/// parallel by runs of boxes, then the runs' starts, then each run.
+fn prefix_sums(plan: &[Plan]) -> (Vec<[usize; 2]>, [usize; 3], Vec<u32>) {
+    let add = |t: [usize; 3], p: &Plan| {
+        [
+            t[0] + p.nodes as usize,
+            t[1] + p.leaves as usize,
+            t[2] + p.opens as usize,
+        ]
+    };
+    let run_sums: Vec<[usize; 3]> = if plan.len() < PAR_MIN {
+        vec![plan.iter().fold([0; 3], add)]
+    } else {
+        plan.par_chunks(SCAN)
+            .map(|c| c.iter().fold([0; 3], add))
+            .collect()
+    };
+    let mut starts = Vec::with_capacity(run_sums.len());
+    let mut total = [0usize; 3];
+    for r in &run_sums {
+        starts.push(total);
+        total = [total[0] + r[0], total[1] + r[1], total[2] + r[2]];
+    }
+    let fill = |offsets: &mut [[usize; 2]], plan: &[Plan], start: [usize; 3]| {
+        let mut t = start;
+        for (o, p) in offsets.iter_mut().zip(plan) {
+            *o = [t[0], t[2]];
+            t = add(t, p);
+        }
+    };
+    let mut offsets = filled(plan.len(), || [0usize; 2]);
+    if plan.len() < PAR_MIN {
+        fill(&mut offsets, plan, starts[0]);
+    } else {
+        offsets
+            .par_chunks_mut(SCAN)
+            .zip(plan.par_chunks(SCAN).zip(starts.par_iter()))
+            .for_each(|(o, (p, s))| fill(o, p, *s));
+    }
+    let cuts = starts.iter().map(|s| s[0] as u32).collect();
+    (offsets, total, cuts)
 }
 
 /// `n` values of `f()`, written in parallel for a long vector so that its
