@@ -187,6 +187,10 @@ pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
     let mut left = Left::default();
     let mut level = 0u32;
     let mut peak = 0usize;
+    // Per-level buffers, reused (their pages are touched once): this
+    // level's results and plan, and the next level's frontier (the buffer
+    // of the level before).
+    let (mut done, mut plan, mut next) = (Vec::new(), Vec::new(), Vec::new());
 
     while !frontier.is_empty() {
         progress(level, frontier.len(), tree.leaves());
@@ -197,7 +201,7 @@ pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
         };
         stats.slab_evaluations += shared as u64;
 
-        let mut done: Vec<Done<S::Slab>> = par_map_range(frontier.len(), PAR_MIN_HEAVY, |k| {
+        refill(&mut done, frontier.len(), PAR_MIN_HEAVY, |k| {
             visit(method, &frontier[k])
         });
         let work = |d: &Done<S::Slab>| {
@@ -221,31 +225,41 @@ pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
         stats.box_evaluations += evals;
         stats.slab_evaluations += slabs;
 
-        let plan = schedule(method, &frontier, &done, &tree, opts.max_boxes, &mut left);
-        let (next, scratch) = tree.grow(&frontier, &mut done, &plan);
+        schedule(
+            method,
+            &frontier,
+            &done,
+            &tree,
+            opts.max_boxes,
+            &mut left,
+            &mut plan,
+        );
+        tree.grow(&mut frontier, &mut done, &plan, &mut next);
 
-        // Everything held at this point: the tree, both frontiers, this
-        // level's results and bookkeeping, and the slabs computed for it.
+        // Everything held at this point: the tree and its bookkeeping, both
+        // frontiers, this level's results and plan, and the slabs computed
+        // for it.
         let slab_bytes = size_of::<S::Slab>() + 2 * size_of::<usize>();
         peak = peak.max(
             tree.bytes()
-                + scratch
                 + (frontier.capacity() + next.capacity()) * size_of::<Open<S::Slab>>()
                 + done.capacity() * size_of::<Done<S::Slab>>()
                 + heap as usize
                 + plan.capacity() * size_of::<Plan>()
                 + (shared + own_slabs as usize) * slab_bytes,
         );
-        drop(plan);
-        par_each_owned(done, drop);
-        // Dropping the old frontier releases slabs; do it off the main thread.
-        par_each_owned(std::mem::replace(&mut frontier, next), drop);
+        // Emptied off the main thread (the drops release slabs); the
+        // buffers are reused.
+        par_clear(&mut done);
+        par_clear(&mut frontier);
+        std::mem::swap(&mut frontier, &mut next);
         if !frontier.is_empty() {
             level += 1;
         }
     }
     stats.depth = level;
     let stop = left.stop();
+    drop((done, plan, next));
 
     let (nodes, leaves, assembly) = tree.into_preorder(root);
     peak = peak.max(assembly);
@@ -357,9 +371,12 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
     tree: &Tree,
     max_boxes: usize,
     left: &mut Left,
-) -> Vec<Plan> {
+    plan: &mut Vec<Plan>,
+) {
     let scope = method.scope();
-    let counts: Vec<Plan> = par_map(done, PAR_MIN, |d| Plan::of(&d.outcome));
+    // What each box asks for, then cut back to what the budget allows.
+    refill(plan, done.len(), PAR_MIN, |k| Plan::of(&done[k].outcome));
+    let counts = &plan[..];
     let want = |k: usize| match counts[k] {
         c if c.refine => [c.extra(), c.nodes as usize],
         _ => [0, 0],
@@ -395,7 +412,7 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
         });
         left.undecided |= undecided;
         left.ulp_limit |= ulp_limit;
-        return counts;
+        return;
     }
     let mut order: Vec<usize> = (0..frontier.len()).collect();
     if R::LARGEST_FIRST {
@@ -404,12 +421,11 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
         };
         order.sort_by(|&a, &b| area(&frontier[b]).total_cmp(&area(&frontier[a])));
     }
-    let mut plan = vec![Plan::default(); frontier.len()];
     let mut leaves_if_stopped = tree.leaves() + frontier.len();
     let mut nodes_planned = 0usize;
     for &k in &order {
         let d = &done[k];
-        let count = counts[k];
+        let count = plan[k];
         let extra = count.extra();
         let fits =
             leaves_if_stopped + extra <= max_boxes && nodes_planned + count.nodes as usize <= room;
@@ -432,7 +448,6 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
             }
         }
     }
-    plan
 }
 
 fn slab_key(b: &PhaseBox) -> (u64, u64) {
@@ -449,19 +464,44 @@ pub(super) const PAR_MIN: usize = 1024;
 const PAR_MIN_HEAVY: usize = 512;
 
 fn par_map<T: Sync, U: Send>(xs: &[T], min: usize, f: impl Fn(&T) -> U + Sync + Send) -> Vec<U> {
-    par_map_range(xs.len(), min, |k| f(&xs[k]))
+    if xs.len() < min {
+        xs.iter().map(f).collect()
+    } else {
+        xs.par_iter().map(f).collect()
+    }
 }
 
-/// `f(k)` for `k` in `0..n`, in parallel from `min` items.
-pub(super) fn par_map_range<U: Send>(
+/// `v` holding `f(k)` for `k` in `0..n`, written in parallel from `min`
+/// items (so a new buffer's pages are first touched by the
+/// pool's threads). A buffer too small is replaced, not grown: nothing
+/// is copied, and one never allocated gets exactly `n`.
+pub(super) fn refill<T: Send>(
+    v: &mut Vec<T>,
     n: usize,
     min: usize,
-    f: impl Fn(usize) -> U + Sync + Send,
-) -> Vec<U> {
+    f: impl Fn(usize) -> T + Sync + Send,
+) {
+    v.clear();
+    if v.capacity() < n {
+        // At least double: a buffer that grows level by level is replaced
+        // every other level, not at each (its fresh pages cost faults).
+        let cap = n.max(2 * v.capacity());
+        *v = Vec::new();
+        *v = Vec::with_capacity(cap);
+    }
     if n < min {
-        (0..n).map(f).collect()
+        v.extend((0..n).map(f));
     } else {
-        (0..n).into_par_iter().map(f).collect()
+        v.par_extend((0..n).into_par_iter().map(f));
+    }
+}
+
+/// Empties `v`, dropping its items in parallel; its buffer stays.
+fn par_clear<T: Send>(v: &mut Vec<T>) {
+    if v.len() < PAR_MIN {
+        v.clear();
+    } else {
+        v.par_drain(..).for_each(drop);
     }
 }
 
@@ -485,14 +525,5 @@ pub(super) fn par_each_mut<T: Send>(xs: &mut [T], f: impl Fn(&mut T) + Sync + Se
         xs.iter_mut().for_each(f)
     } else {
         xs.par_iter_mut().for_each(f)
-    }
-}
-
-/// `f(item)` for every item, consuming the vector.
-fn par_each_owned<T: Send>(xs: Vec<T>, f: impl Fn(T) + Sync + Send) {
-    if xs.len() < PAR_MIN {
-        xs.into_iter().for_each(f)
-    } else {
-        xs.into_par_iter().for_each(f)
     }
 }

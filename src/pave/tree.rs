@@ -6,7 +6,7 @@
 //! A leaf keeps only its labels: its box is replayed from the root and the
 //! splits when the tree is assembled, exactly as the paving computed it.
 
-use super::engine::{par_each_mut, Done, Local, Open, Outcome, Plan, PAR_MIN};
+use super::engine::{par_each_mut, refill, Done, Local, Open, Outcome, Plan, PAR_MIN};
 use super::labels::Labels;
 use super::{Leaf, Node, PhaseBox};
 use rayon::prelude::*;
@@ -43,6 +43,10 @@ pub(super) struct Tree {
     /// Per level, where runs of whole shares start (every [`SCAN`]-th
     /// box's first node): sizes are computed run by run.
     cuts: Vec<Vec<u32>>,
+    /// Each box's first node and first open box in its level, and its own
+    /// entry: per-level bookkeeping, reused (its pages are touched once).
+    offsets: Vec<[usize; 2]>,
+    own: Vec<Building>,
     nodes: usize,
     leaves: usize,
 }
@@ -52,6 +56,8 @@ impl Tree {
         Tree {
             levels: vec![vec![Building::Open(0)]],
             cuts: vec![vec![0]],
+            offsets: Vec::new(),
+            own: Vec::new(),
             nodes: 1,
             leaves: 0,
         }
@@ -67,27 +73,33 @@ impl Tree {
         self.leaves
     }
 
-    /// Memory held by the levels.
+    /// Memory held by the levels and their bookkeeping.
     pub fn bytes(&self) -> usize {
-        self.levels
+        let levels: usize = self
+            .levels
             .iter()
             .map(|l| l.capacity() * size_of::<Building>())
-            .sum()
+            .sum();
+        levels
+            + self.offsets.capacity() * size_of::<[usize; 2]>()
+            + self.own.capacity() * size_of::<Building>()
     }
 
-    /// Adds the level `plan` makes of `frontier` (processed into `done`,
-    /// whose subtrees and slabs it takes): every box's new nodes and open
-    /// boxes, and its own entry in the level above. Returns the next
-    /// frontier and the bytes of bookkeeping it held besides.
+    /// Adds the level `plan` makes of `frontier` (processed into `done`;
+    /// the subtrees and slabs of both are taken): every box's new nodes and
+    /// open boxes, and its own entry in the level above. The open boxes are
+    /// written to `next`.
     pub fn grow<Sl: Send + Sync>(
         &mut self,
-        frontier: &[Open<Sl>],
+        frontier: &mut [Open<Sl>],
         done: &mut [Done<Sl>],
         plan: &[Plan],
-    ) -> (Vec<Open<Sl>>, usize) {
-        let (offsets, total, cuts) = prefix_sums(plan);
-        let mut nodes = filled(total[0], || Building::Open(0));
-        let mut opens = filled(total[2], || Open {
+        next: &mut Vec<Open<Sl>>,
+    ) {
+        let (total, cuts) = prefix_sums(plan, &mut self.offsets);
+        let mut nodes = Vec::new();
+        refill(&mut nodes, total[0], PAR_MIN, |_| Building::Open(0));
+        refill(next, total[2], PAR_MIN, |_| Open {
             bx: PhaseBox {
                 theta: [0.0; 2],
                 theta_dot: [0.0; 2],
@@ -95,22 +107,24 @@ impl Tree {
             slab: None,
             fresh: false,
         });
-        let mut own = filled(frontier.len(), || Building::Open(0));
+        let boxes = frontier.len();
+        refill(&mut self.own, boxes, PAR_MIN, |_| Building::Open(0));
         let shares = Shares {
             boxes: frontier,
             done,
             plan,
-            offsets: &offsets,
-            own: &mut own,
+            offsets: &self.offsets,
+            own: &mut self.own,
             nodes: &mut nodes,
-            opens: &mut opens,
+            opens: next,
         };
-        if frontier.len() < PAR_MIN {
+        if boxes < PAR_MIN {
             shares.fill();
         } else {
             shares.fill_par();
         }
         // Each open box's entry in the level above, now that it is known.
+        let own = &self.own;
         let above = self.levels.last_mut().expect("the root's level");
         par_each_mut(above, |e| {
             if let Building::Open(k) = *e {
@@ -121,10 +135,6 @@ impl Tree {
         self.cuts.push(cuts);
         self.nodes += total[0];
         self.leaves += total[1];
-        let scratch =
-            offsets.capacity() * size_of::<[usize; 2]>() + own.capacity() * size_of::<Building>();
-        debug_assert_eq!(offsets.len(), frontier.len());
-        (opens, scratch)
     }
 
     /// The tree in preorder with its leaves numbered in that order, and the
@@ -178,8 +188,9 @@ impl Tree {
         // split has two children: a tree of n nodes has (n + 1) / 2 leaves).
         assert_eq!(size[0][0] as usize, self.nodes);
         assert_eq!(self.nodes.div_ceil(2), self.leaves);
-        let mut nodes = filled(self.nodes, || Node::Leaf(0));
-        let mut leaves = filled(self.leaves, || Leaf {
+        let (mut nodes, mut leaves) = (Vec::new(), Vec::new());
+        refill(&mut nodes, self.nodes, PAR_MIN, |_| Node::Leaf(0));
+        refill(&mut leaves, self.leaves, PAR_MIN, |_| Leaf {
             bx: root,
             labels: [super::Label::Undecided; super::MAX_CONSTRAINTS],
         });
@@ -286,10 +297,11 @@ fn split_at(bx: &PhaseBox, axis: u8, at: f64) -> (PhaseBox, PhaseBox) {
 const SCAN: usize = 4096;
 
 /// Each box's first new node and first open box in the level (one prefix
-/// sum of the plan), the level's totals of nodes, leaves and open boxes,
-/// and the first node of every [`SCAN`]-th box. A long plan is summed in
-/// parallel by runs of boxes, then the runs' starts, then each run.
-fn prefix_sums(plan: &[Plan]) -> (Vec<[usize; 2]>, [usize; 3], Vec<u32>) {
+/// sum of the plan, into `offsets`), the level's totals of nodes, leaves
+/// and open boxes, and the first node of every [`SCAN`]-th box. A long plan
+/// is summed in parallel by runs of boxes, then the runs' starts, then each
+/// run.
+fn prefix_sums(plan: &[Plan], offsets: &mut Vec<[usize; 2]>) -> ([usize; 3], Vec<u32>) {
     let add = |t: [usize; 3], p: &Plan| {
         [
             t[0] + p.nodes as usize,
@@ -317,9 +329,9 @@ fn prefix_sums(plan: &[Plan]) -> (Vec<[usize; 2]>, [usize; 3], Vec<u32>) {
             t = add(t, p);
         }
     };
-    let mut offsets = filled(plan.len(), || [0usize; 2]);
+    refill(offsets, plan.len(), PAR_MIN, |_| [0usize; 2]);
     if plan.len() < PAR_MIN {
-        fill(&mut offsets, plan, starts[0]);
+        fill(offsets, plan, starts[0]);
     } else {
         offsets
             .par_chunks_mut(SCAN)
@@ -327,26 +339,14 @@ fn prefix_sums(plan: &[Plan]) -> (Vec<[usize; 2]>, [usize; 3], Vec<u32>) {
             .for_each(|(o, (p, s))| fill(o, p, *s));
     }
     let cuts = starts.iter().map(|s| s[0] as u32).collect();
-    (offsets, total, cuts)
-}
-
-/// `n` values of `f()`, written in parallel for a long vector so that its
-/// pages are first touched by the pool's threads.
-fn filled<T: Send>(n: usize, f: impl Fn() -> T + Sync + Send) -> Vec<T> {
-    if n < PAR_MIN {
-        (0..n).map(|_| f()).collect()
-    } else {
-        let mut v = Vec::with_capacity(n);
-        (0..n).into_par_iter().map(|_| f()).collect_into_vec(&mut v);
-        v
-    }
+    (total, cuts)
 }
 
 /// Boxes `[k, k + n)` of a level with their shares of its storage: the new
 /// nodes and open boxes of each lie at its offsets (from one prefix sum),
 /// so the shares of disjoint runs of boxes are disjoint slices.
 struct Shares<'a, Sl> {
-    boxes: &'a [Open<Sl>],
+    boxes: &'a mut [Open<Sl>],
     done: &'a mut [Done<Sl>],
     plan: &'a [Plan],
     /// Each box's first node and first open box in the level.
@@ -364,7 +364,7 @@ impl<Sl: Send + Sync> Shares<'_, Sl> {
     fn split(self, m: usize) -> (Self, Self) {
         let [n0, o0] = self.offsets[0];
         let [nm, om] = self.offsets[m];
-        let (boxes_a, boxes_b) = self.boxes.split_at(m);
+        let (boxes_a, boxes_b) = self.boxes.split_at_mut(m);
         let (done_a, done_b) = self.done.split_at_mut(m);
         let (plan_a, plan_b) = self.plan.split_at(m);
         let (off_a, off_b) = self.offsets.split_at(m);
@@ -405,7 +405,7 @@ impl<Sl: Send + Sync> Shares<'_, Sl> {
     /// Every box writes its share, one after the other.
     fn fill(self) {
         let (mut nodes, mut opens) = (self.nodes, self.opens);
-        for (k, o) in self.boxes.iter().enumerate() {
+        for (k, o) in self.boxes.iter_mut().enumerate() {
             let d = &mut self.done[k];
             let p = self.plan[k];
             let (my_nodes, rest) = std::mem::take(&mut nodes).split_at_mut(p.nodes as usize);
@@ -420,7 +420,7 @@ impl<Sl: Send + Sync> Shares<'_, Sl> {
                 open_base: open_base as u32,
                 used: [0; 2],
             };
-            let slab = d.slab.take().or_else(|| o.slab.clone());
+            let slab = d.slab.take().or_else(|| o.slab.take());
             let outcome = std::mem::replace(&mut d.outcome, Outcome::Leaf);
             self.own[k] = if p.refine {
                 match outcome {
