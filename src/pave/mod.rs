@@ -405,8 +405,10 @@ pub struct PaveStats {
     pub depth: u32,
     /// Memory of the finished tree (nodes and leaves) per leaf.
     pub bytes_per_leaf: f64,
-    /// Most memory held while paving (tree under construction, open boxes
-    /// and their slabs, the serialisation), per final leaf.
+    /// Most memory held while paving, per final leaf: the tree's levels and
+    /// their bookkeeping, both frontiers, a level's results and plan and the
+    /// slabs computed for it (buffers counted by capacity); then the
+    /// levels, subtree sizes and output of the preorder assembly.
     pub peak_bytes_per_leaf: f64,
 }
 
