@@ -10,8 +10,16 @@
 //! with [`Paving::nodes`] (bisection choices in preorder) and the leaf labels.
 
 pub mod area;
+mod centred;
+mod certify;
+mod contract;
+mod engine;
 pub mod export;
+pub mod labels;
 pub mod methods;
+mod natural;
+mod slices;
+mod tree;
 
 use crate::number::scalar::{is_continuous, is_defined};
 use crate::scene::{Angle, Constraints, Domain, Quadratic, Scene, Variant};
@@ -231,7 +239,7 @@ pub trait ConstraintSet: Sync {
     }
     /// Every constraint's coefficients over `theta` with their θ-derivatives,
     /// and at θ's two ends: what the checker's monotone test needs
-    /// ([`methods::monotone_label`]). `None`: labels are natural only.
+    /// ([`labels::monotone_label`]). `None`: labels are natural only.
     fn slab_ends(&self, _theta: Interval) -> Option<PerConstraint<SlabEnds>> {
         None
     }
@@ -397,8 +405,10 @@ pub struct PaveStats {
     pub depth: u32,
     /// Memory of the finished tree (nodes and leaves) per leaf.
     pub bytes_per_leaf: f64,
-    /// Most memory held while paving (tree under construction, open boxes
-    /// and their slabs, the serialisation), per final leaf.
+    /// Most memory held while paving, per final leaf: the tree's levels and
+    /// their bookkeeping, both frontiers, a level's results and plan and the
+    /// slabs computed for it (buffers counted by capacity); then the
+    /// levels, subtree sizes and output of the preorder assembly.
     pub peak_bytes_per_leaf: f64,
 }
 

@@ -1,0 +1,529 @@
+//! The level-synchronous paving loop every method shares.
+//!
+//! A level's open boxes are processed independently (in parallel), then the
+//! tree grows by one level in a fixed order, so the tree is the same whatever
+//! the thread count. One level is three steps: the θ-slabs its boxes share
+//! ([`share_slabs`]), which boxes the budget lets refine ([`schedule`]), and
+//! the level written into the tree ([`Tree::grow`]). What a method adds —
+//! how it steers, which subtree it gives an undecided box — is behind
+//! [`Refine`].
+
+use super::labels::{Labels, Scope};
+use super::tree::Tree;
+use super::{
+    ConstraintSet, Label, PaveOptions, PaveStats, Paving, PerConstraint, PhaseBox, SlabEnds,
+    StopReason, MAX_CONSTRAINTS,
+};
+use inari::Interval;
+use rayon::prelude::*;
+use std::mem::size_of;
+use std::sync::Arc;
+
+/// A refinement method: where bisection stops, and what it does with a box
+/// left undecided by the natural labels beyond bisecting it.
+pub(super) trait Refine<S: ConstraintSet>: Sync {
+    /// The engine computes each θ-slab once per level for all the boxes
+    /// that need it. Otherwise a fresh box computes its own slab with the
+    /// end data the monotone test needs.
+    const SHARED_SLABS: bool = true;
+    /// When the budget cannot take every refinement of a level, the boxes
+    /// of largest area go first (otherwise frontier order).
+    const LARGEST_FIRST: bool = false;
+
+    fn scope(&self) -> &Scope<'_, S>;
+    /// The axis to bisect an undecided box along, if any.
+    fn choose_axis(&self, b: &PhaseBox) -> Option<u8>;
+    /// The box is above the resolution but one ulp wide along such an axis.
+    fn at_ulp_limit(&self, b: &PhaseBox) -> bool;
+    /// A fresh box bisected in θ before any interval work.
+    fn split_unevaluated(&self, _b: &PhaseBox) -> bool {
+        false
+    }
+    /// A subtree for an undecided box, instead of bisecting it. `ends`: the
+    /// slab's end data when computed with the slab.
+    fn subtree(
+        &self,
+        o: &Open<S::Slab>,
+        slab: &Arc<S::Slab>,
+        ends: Option<PerConstraint<SlabEnds>>,
+        labels: &Labels,
+        work: &mut Work,
+    ) -> Option<Vec<Local>>;
+}
+
+/// A small subtree in preorder, produced for one box.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Local {
+    Mid(u8),
+    At(u8, f64),
+    Leaf(Labels),
+    /// Stays open: refined at the next level.
+    Open,
+}
+
+/// What processing one open box decided.
+pub(super) enum Outcome {
+    Leaf,
+    Split(u8),
+    Tree(Vec<Local>),
+}
+
+/// A box to process at the current level.
+pub(super) struct Open<Sl> {
+    pub bx: PhaseBox,
+    pub slab: Option<Arc<Sl>>,
+    /// The slab was computed for this box's θ-interval at this level: the
+    /// contraction has not seen it yet.
+    pub fresh: bool,
+}
+
+/// One box processed: its natural labels, outcome, work, and the slab it
+/// computed for itself (which its θ̇-children share).
+pub(super) struct Done<Sl> {
+    pub labels: Labels,
+    pub outcome: Outcome,
+    pub work: Work,
+    pub slab: Option<Arc<Sl>>,
+}
+
+/// Per-box work counters.
+#[derive(Default, Clone, Copy)]
+pub(super) struct Work {
+    pub evals: u64,
+    pub slabs: u64,
+}
+
+/// What one box adds to the tree.
+#[derive(Clone, Copy, Default)]
+pub(super) struct Plan {
+    pub nodes: u32,
+    pub leaves: u32,
+    pub opens: u32,
+    /// Refined (split or subtree) rather than kept as one leaf.
+    pub refine: bool,
+}
+
+impl Plan {
+    pub const LEAF: Plan = Plan {
+        nodes: 0,
+        leaves: 1,
+        opens: 0,
+        refine: false,
+    };
+    fn of_tree(t: &[Local]) -> Plan {
+        let mut p = Plan {
+            refine: true,
+            ..Plan::default()
+        };
+        for l in t {
+            match l {
+                Local::Mid(_) | Local::At(..) => p.nodes += 2,
+                Local::Leaf(_) => p.leaves += 1,
+                Local::Open => p.opens += 1,
+            }
+        }
+        p
+    }
+    /// What a box's outcome asks for.
+    fn of(outcome: &Outcome) -> Plan {
+        match outcome {
+            Outcome::Leaf => Plan::LEAF,
+            Outcome::Split(_) => Plan {
+                nodes: 2,
+                leaves: 0,
+                opens: 2,
+                refine: true,
+            },
+            Outcome::Tree(t) => Plan::of_tree(t),
+        }
+    }
+    /// Leaves (counting open boxes) it adds beyond the box itself.
+    fn extra(&self) -> usize {
+        (self.leaves + self.opens) as usize - 1
+    }
+}
+
+/// What is left unrefined, hence why refinement stopped.
+#[derive(Default)]
+struct Left {
+    /// A refinement did not fit in the budget.
+    budget: bool,
+    /// An undecided box above the resolution could not be split.
+    ulp_limit: bool,
+    /// Some leaf is undecided.
+    undecided: bool,
+}
+
+impl Left {
+    fn stop(&self) -> StopReason {
+        if self.budget {
+            StopReason::Budget
+        } else if self.ulp_limit {
+            StopReason::DoublePrecisionLimit
+        } else if self.undecided {
+            StopReason::Resolution
+        } else {
+            StopReason::AllDecided
+        }
+    }
+}
+
+/// Paves `root` with `method`; arguments already checked.
+pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
+    method: &R,
+    root: PhaseBox,
+    opts: PaveOptions,
+    names: Vec<String>,
+    mut progress: impl FnMut(u32, usize, usize),
+) -> Paving {
+    let set = method.scope().set;
+    let mut tree = Tree::new();
+    let mut frontier: Vec<Open<S::Slab>> = vec![Open {
+        bx: root,
+        slab: None,
+        fresh: true,
+    }];
+    let mut stats = PaveStats::default();
+    let mut left = Left::default();
+    let mut level = 0u32;
+    let mut peak = 0usize;
+    // Per-level buffers, reused (their pages are touched once): this
+    // level's results and plan, and the next level's frontier (the buffer
+    // of the level before).
+    let (mut done, mut plan, mut next) = (Vec::new(), Vec::new(), Vec::new());
+
+    while !frontier.is_empty() {
+        progress(level, frontier.len(), tree.leaves());
+        let shared = if R::SHARED_SLABS {
+            share_slabs(set, &mut frontier)
+        } else {
+            0
+        };
+        stats.slab_evaluations += shared as u64;
+
+        refill(&mut done, frontier.len(), PAR_MIN_HEAVY, |k| {
+            visit(method, &frontier[k])
+        });
+        let work = |d: &Done<S::Slab>| {
+            let heap = match &d.outcome {
+                Outcome::Tree(t) => t.capacity() * size_of::<Local>(),
+                _ => 0,
+            };
+            [
+                d.work.evals,
+                d.work.slabs,
+                heap as u64,
+                d.slab.is_some() as u64,
+            ]
+        };
+        let add = |a: [u64; 4], b: [u64; 4]| [a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3]];
+        let [evals, slabs, heap, own_slabs] = if done.len() < PAR_MIN {
+            done.iter().map(work).fold([0; 4], add)
+        } else {
+            done.par_iter().map(work).reduce(|| [0; 4], add)
+        };
+        stats.box_evaluations += evals;
+        stats.slab_evaluations += slabs;
+
+        schedule(
+            method,
+            &frontier,
+            &done,
+            &tree,
+            opts.max_boxes,
+            &mut left,
+            &mut plan,
+        );
+        tree.grow(&mut frontier, &mut done, &plan, &mut next);
+
+        // Everything held at this point: the tree and its bookkeeping, both
+        // frontiers, this level's results and plan, and the slabs computed
+        // for it.
+        let slab_bytes = size_of::<S::Slab>() + 2 * size_of::<usize>();
+        peak = peak.max(
+            tree.bytes()
+                + (frontier.capacity() + next.capacity()) * size_of::<Open<S::Slab>>()
+                + done.capacity() * size_of::<Done<S::Slab>>()
+                + heap as usize
+                + plan.capacity() * size_of::<Plan>()
+                + (shared + own_slabs as usize) * slab_bytes,
+        );
+        // Emptied off the main thread (the drops release slabs); the
+        // buffers are reused.
+        par_clear(&mut done);
+        par_clear(&mut frontier);
+        std::mem::swap(&mut frontier, &mut next);
+        if !frontier.is_empty() {
+            level += 1;
+        }
+    }
+    stats.depth = level;
+    let stop = left.stop();
+    drop((done, plan, next));
+
+    let (nodes, leaves, assembly) = tree.into_preorder(root);
+    peak = peak.max(assembly);
+    let bytes =
+        nodes.capacity() * size_of::<super::Node>() + leaves.capacity() * size_of::<super::Leaf>();
+    stats.bytes_per_leaf = bytes as f64 / leaves.len().max(1) as f64;
+    stats.peak_bytes_per_leaf = peak as f64 / leaves.len().max(1) as f64;
+    Paving {
+        root,
+        names,
+        eps: opts.eps,
+        nodes,
+        leaves,
+        complete: stop != StopReason::Budget,
+        stop,
+        same_as: method.scope().same_as.clone(),
+        stats,
+    }
+}
+
+/// θ-slabs of boxes just split in θ (fresh boxes are exactly those without
+/// a slab), each computed once per level; boxes split in θ̇ share their
+/// parent's slab. Returns how many were computed.
+fn share_slabs<S: ConstraintSet>(set: &S, frontier: &mut [Open<S::Slab>]) -> usize {
+    let needs_slab = |k: usize| -> Option<(u64, u64)> {
+        let o = &frontier[k];
+        o.slab.is_none().then(|| slab_key(&o.bx))
+    };
+    let mut missing: Vec<(u64, u64)> = if frontier.len() < PAR_MIN {
+        (0..frontier.len()).filter_map(needs_slab).collect()
+    } else {
+        (0..frontier.len())
+            .into_par_iter()
+            .filter_map(needs_slab)
+            .collect()
+    };
+    if missing.len() < PAR_MIN {
+        missing.sort_unstable();
+    } else {
+        missing.par_sort_unstable();
+    }
+    missing.dedup();
+    let fresh: Vec<Arc<S::Slab>> = par_map(&missing, PAR_MIN_HEAVY, |&(lo, hi)| {
+        let th = Interval::try_from((f64::from_bits(lo), f64::from_bits(hi)))
+            .expect("ordered endpoints");
+        Arc::new(set.slab(th))
+    });
+    par_each_mut(frontier, |o| {
+        if o.slab.is_none() {
+            let k = missing
+                .binary_search(&slab_key(&o.bx))
+                .expect("every missing slab computed");
+            o.slab = Some(fresh[k].clone());
+        }
+    });
+    missing.len()
+}
+
+/// Processes one open box: natural labels, then, while a relevant
+/// constraint is undecided, the method's subtree or a bisection.
+fn visit<S: ConstraintSet, R: Refine<S>>(method: &R, o: &Open<S::Slab>) -> Done<S::Slab> {
+    let scope = method.scope();
+    let mut work = Work::default();
+    // A fresh slab the method calls too coarse is split in θ without
+    // interval work (undecided as far as computed).
+    if o.fresh && method.split_unevaluated(&o.bx) {
+        return Done {
+            labels: [Label::Undecided; MAX_CONSTRAINTS],
+            outcome: Outcome::Split(0),
+            work,
+            slab: None,
+        };
+    }
+    let (slab, ends, own) = match o.slab.as_ref() {
+        Some(slab) => (slab.clone(), None, None),
+        None => {
+            work.slabs += 3;
+            let (slab, ends) = scope.set.slab_and_ends(o.bx.theta_interval());
+            let slab = Arc::new(slab);
+            (slab.clone(), ends, Some(slab))
+        }
+    };
+    let labels = scope.natural(&slab, &o.bx, &mut work);
+    let outcome = if !scope.undecided(&labels) {
+        Outcome::Leaf
+    } else if let Some(t) = method.subtree(o, &slab, ends, &labels, &mut work) {
+        Outcome::Tree(t)
+    } else {
+        match method.choose_axis(&o.bx) {
+            Some(ax) => Outcome::Split(ax),
+            None => Outcome::Leaf,
+        }
+    };
+    Done {
+        labels,
+        outcome,
+        work,
+        slab: own,
+    }
+}
+
+/// Which boxes of a level are refined: every one that asks when the budget
+/// takes them all, otherwise in priority order while it does. Records what
+/// is left unrefined.
+fn schedule<S: ConstraintSet, R: Refine<S>>(
+    method: &R,
+    frontier: &[Open<S::Slab>],
+    done: &[Done<S::Slab>],
+    tree: &Tree,
+    max_boxes: usize,
+    left: &mut Left,
+    plan: &mut Vec<Plan>,
+) {
+    let scope = method.scope();
+    // What each box asks for, then cut back to what the budget allows.
+    refill(plan, done.len(), PAR_MIN, |k| Plan::of(&done[k].outcome));
+    let counts = &plan[..];
+    let want = |k: usize| match counts[k] {
+        c if c.refine => [c.extra(), c.nodes as usize],
+        _ => [0, 0],
+    };
+    let [want_leaves, want_nodes] = par_fold(counts.len(), [0, 0], want, |a, b| {
+        [a[0] + b[0], a[1] + b[1]]
+    });
+    let room = (u32::MAX as usize).saturating_sub(tree.nodes() + 2 * frontier.len());
+    let undecided_leaf = |t: &[Local]| {
+        t.iter()
+            .any(|l| matches!(l, Local::Leaf(x) if scope.undecided(x)))
+    };
+    if tree.leaves() + frontier.len() + want_leaves <= max_boxes && want_nodes <= room {
+        // Every refinement fits, so the order does not matter: each box
+        // gets what it asks for (a box not refined asks for one leaf), and
+        // what is left undecided is found in parallel, as the loop below
+        // would.
+        let left_by = |k: usize| -> [bool; 2] {
+            let d = &done[k];
+            if counts[k].refine {
+                [
+                    matches!(&d.outcome, Outcome::Tree(t) if undecided_leaf(t)),
+                    false,
+                ]
+            } else if scope.undecided(&d.labels) {
+                [true, method.at_ulp_limit(&frontier[k].bx)]
+            } else {
+                [false, false]
+            }
+        };
+        let [undecided, ulp_limit] = par_fold(done.len(), [false, false], left_by, |a, b| {
+            [a[0] | b[0], a[1] | b[1]]
+        });
+        left.undecided |= undecided;
+        left.ulp_limit |= ulp_limit;
+        return;
+    }
+    let mut order: Vec<usize> = (0..frontier.len()).collect();
+    if R::LARGEST_FIRST {
+        let area = |o: &Open<S::Slab>| {
+            (o.bx.theta[1] - o.bx.theta[0]) * (o.bx.theta_dot[1] - o.bx.theta_dot[0])
+        };
+        order.sort_by(|&a, &b| area(&frontier[b]).total_cmp(&area(&frontier[a])));
+    }
+    let mut leaves_if_stopped = tree.leaves() + frontier.len();
+    let mut nodes_planned = 0usize;
+    for &k in &order {
+        let d = &done[k];
+        let count = plan[k];
+        let extra = count.extra();
+        let fits =
+            leaves_if_stopped + extra <= max_boxes && nodes_planned + count.nodes as usize <= room;
+        if count.refine && fits {
+            leaves_if_stopped += extra;
+            nodes_planned += count.nodes as usize;
+            plan[k] = count;
+            if let Outcome::Tree(t) = &d.outcome {
+                left.undecided |= undecided_leaf(t);
+            }
+        } else {
+            plan[k] = Plan::LEAF;
+            if count.refine {
+                left.budget = true;
+            } else if scope.undecided(&d.labels) {
+                left.undecided = true;
+                if method.at_ulp_limit(&frontier[k].bx) {
+                    left.ulp_limit = true;
+                }
+            }
+        }
+    }
+}
+
+fn slab_key(b: &PhaseBox) -> (u64, u64) {
+    (b.theta[0].to_bits(), b.theta[1].to_bits())
+}
+
+/// Below this many items a level's step runs on the calling thread: waking
+/// the pool costs more (tens of µs per call) than the work.
+pub(super) const PAR_MIN: usize = 1024;
+/// The same for work of a microsecond or more per item (slabs, processing).
+/// The pool's first use in a process also starts its threads (about 0.2 ms
+/// here): from 512 items a level has enough work to pay for it. (At 64, a
+/// coarse paving's whole process was up to a quarter slower than serial.)
+const PAR_MIN_HEAVY: usize = 512;
+
+fn par_map<T: Sync, U: Send>(xs: &[T], min: usize, f: impl Fn(&T) -> U + Sync + Send) -> Vec<U> {
+    if xs.len() < min {
+        xs.iter().map(f).collect()
+    } else {
+        xs.par_iter().map(f).collect()
+    }
+}
+
+/// `v` holding `f(k)` for `k` in `0..n`, written in parallel from `min`
+/// items (so a new buffer's pages are first touched by the
+/// pool's threads). A buffer too small is replaced, not grown: nothing
+/// is copied, and one never allocated gets exactly `n`.
+pub(super) fn refill<T: Send>(
+    v: &mut Vec<T>,
+    n: usize,
+    min: usize,
+    f: impl Fn(usize) -> T + Sync + Send,
+) {
+    v.clear();
+    if v.capacity() < n {
+        // At least double: a buffer that grows level by level is replaced
+        // every other level, not at each (its fresh pages cost faults).
+        let cap = n.max(2 * v.capacity());
+        *v = Vec::new();
+        *v = Vec::with_capacity(cap);
+    }
+    if n < min {
+        v.extend((0..n).map(f));
+    } else {
+        v.par_extend((0..n).into_par_iter().map(f));
+    }
+}
+
+/// Empties `v`, dropping its items in parallel; its buffer stays.
+fn par_clear<T: Send>(v: &mut Vec<T>) {
+    if v.len() < PAR_MIN {
+        v.clear();
+    } else {
+        v.par_drain(..).for_each(drop);
+    }
+}
+
+/// `f(k)` for `k` in `0..n` combined by `op` (associative, `zero` its
+/// identity), in parallel from [`PAR_MIN`] items.
+fn par_fold<T: Copy + Send + Sync>(
+    n: usize,
+    zero: T,
+    f: impl Fn(usize) -> T + Sync + Send,
+    op: impl Fn(T, T) -> T + Sync + Send,
+) -> T {
+    if n < PAR_MIN {
+        (0..n).map(f).fold(zero, op)
+    } else {
+        (0..n).into_par_iter().map(f).reduce(|| zero, op)
+    }
+}
+
+pub(super) fn par_each_mut<T: Send>(xs: &mut [T], f: impl Fn(&mut T) + Sync + Send) {
+    if xs.len() < PAR_MIN {
+        xs.iter_mut().for_each(f)
+    } else {
+        xs.par_iter_mut().for_each(f)
+    }
+}

@@ -1,0 +1,262 @@
+//! The label tests: every label a paving writes is one the proof checker
+//! recomputes on that leaf, by the natural interval extension, the monotone
+//! test ([`monotone_label`]) or the convex test ([`convex_label`]).
+//! [`centred_label`] (a centred form) only steers: it says a box is worth
+//! certifying by a few extra splits, never a label.
+
+use super::engine::Work;
+use super::{ConstraintSet, Label, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
+use crate::number::scalar::{is_defined, Dual};
+use crate::scene::Quadratic;
+use inari::{DecInterval, Interval};
+
+/// One label per constraint (unused slots past the constraint count).
+pub(super) type Labels = [Label; MAX_CONSTRAINTS];
+
+/// The constraints a paving labels: how many, which are copies of another,
+/// and which decide whether a box is refined.
+pub(super) struct Scope<'a, S: ConstraintSet> {
+    pub set: &'a S,
+    pub n: usize,
+    pub same_as: Vec<Option<usize>>,
+    pub relevant: u8,
+}
+
+impl<S: ConstraintSet> Scope<'_, S> {
+    /// Labels by the natural extension: one enclosure per constraint.
+    pub fn natural(&self, slab: &S::Slab, b: &PhaseBox, work: &mut Work) -> Labels {
+        work.evals += 1;
+        let mut labels = [Label::ProvedOut; MAX_CONSTRAINTS];
+        for (l, g) in labels.iter_mut().zip(
+            self.set
+                .enclose(slab, b.theta_dot_interval())
+                .iter()
+                .copied(),
+        ) {
+            *l = Label::from_enclosure(g);
+        }
+        self.copy_aliases(&mut labels);
+        labels
+    }
+
+    /// Labels the checker confirms. Without the slab's end data: natural.
+    /// With it: the monotone test on the relevant constraints first (cheaper
+    /// and, next to the boundary, stronger), then, if `convex`, the convex
+    /// test, the natural labels only if one is left undecided; other
+    /// constraints keep what natural gives, if run. (A part the contraction
+    /// leaves undecided straddles the boundary, where the convex test does
+    /// not decide and costs up to four evaluations: 3–4 % of a coarse
+    /// paving's whole process.)
+    pub fn label(
+        &self,
+        slab: &S::Slab,
+        ends: Option<&[SlabEnds]>,
+        b: &PhaseBox,
+        work: &mut Work,
+        convex: bool,
+    ) -> Labels {
+        let Some(ends) = ends else {
+            return self.natural(slab, b, work);
+        };
+        let mut labels = [Label::Undecided; MAX_CONSTRAINTS];
+        work.evals += 1;
+        for i in self.relevant_own() {
+            if let Some(e) = ends.get(i) {
+                labels[i] = monotone_label(e, b);
+                if convex && !labels[i].is_decided() {
+                    labels[i] = convex_label(e, b);
+                }
+            }
+        }
+        self.copy_aliases(&mut labels);
+        if self.undecided(&labels) {
+            let nat = self.natural(slab, b, work);
+            for (l, n) in labels.iter_mut().zip(nat) {
+                if !l.is_decided() {
+                    *l = n;
+                }
+            }
+        }
+        labels
+    }
+
+    fn copy_aliases(&self, labels: &mut Labels) {
+        for (i, s) in self.same_as.iter().enumerate() {
+            if let Some(j) = *s {
+                labels[i] = labels[j];
+            }
+        }
+    }
+
+    /// The constraints `labels` decide (bit `i` = constraint `i`).
+    pub fn decided_mask(&self, labels: &Labels) -> u8 {
+        (0..self.n)
+            .filter(|&i| labels[i].is_decided())
+            .fold(0, |m, i| m | 1 << i)
+    }
+
+    /// Some relevant constraint is left undecided.
+    pub fn undecided(&self, labels: &Labels) -> bool {
+        self.decided_mask(labels) & self.relevant != self.relevant
+    }
+
+    /// Constraints computed (not copies of another).
+    pub fn own(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.n).filter(|&i| self.same_as[i].is_none())
+    }
+
+    /// Own constraints whose labels matter (themselves or through a copy).
+    pub fn relevant_own(&self) -> impl Iterator<Item = usize> + '_ {
+        self.own()
+            .filter(|&i| self.with_copies(1 << i) & self.relevant != 0)
+    }
+
+    /// A mask over own constraints extended to their copies.
+    pub fn with_copies(&self, m: u8) -> u8 {
+        (0..self.n).fold(m, |acc, i| match self.same_as[i] {
+            Some(j) if m >> j & 1 == 1 => acc | 1 << i,
+            _ => acc,
+        })
+    }
+}
+
+/// `b` with its θ̇-range replaced by `[lo, hi]`.
+pub(super) fn with_w(b: &PhaseBox, lo: f64, hi: f64) -> PhaseBox {
+    PhaseBox {
+        theta: b.theta,
+        theta_dot: [lo, hi],
+    }
+}
+
+/// The point interval `[x, x]` (the whole line for a non-finite `x`).
+pub(super) fn point(x: f64) -> Interval {
+    Interval::try_from((x, x)).unwrap_or(Interval::ENTIRE)
+}
+
+/// Natural ∩ mean-value form ∩ monotonicity range of a quadratic in θ̇ with
+/// coefficient enclosures, over `w`; the label it supports.
+pub fn centred_label(q: &Quadratic<DecInterval>, w: Interval) -> Label {
+    let wd = DecInterval::new(w);
+    let nat = q.eval(wd);
+    let Some(mut e) = nat.interval().filter(|_| is_defined(nat)) else {
+        return Label::from_enclosure(nat);
+    };
+    let dq = Quadratic {
+        c2: Dual::constant(q.c2),
+        c1: Dual::constant(q.c1),
+        c0: Dual::constant(q.c0),
+    }
+    .eval(Dual::variable(wd, 1));
+    let slope = dq.grad[1];
+    if is_defined(slope) {
+        let s = slope.interval().expect("defined");
+        let m = point(0.5 * w.inf() + 0.5 * w.sup());
+        let qm = q.eval(DecInterval::new(m));
+        // q(w) = q(m) + q'(ξ)(w − m) for each choice of coefficients.
+        let mv = qm + slope * DecInterval::new(w - m);
+        if is_defined(mv) {
+            e = e.intersection(mv.interval().expect("defined"));
+        }
+        // Monotone in θ̇ for every choice of coefficients: the range lies
+        // between the values at the two ends.
+        if s.inf() >= 0.0 || s.sup() <= 0.0 {
+            let (a, z) = (
+                q.eval(DecInterval::new(point(w.inf()))),
+                q.eval(DecInterval::new(point(w.sup()))),
+            );
+            if let (true, true, Some(a), Some(z)) =
+                (is_defined(a), is_defined(z), a.interval(), z.interval())
+            {
+                e = e.intersection(a.convex_hull(z));
+            }
+        }
+    }
+    if e.is_empty() {
+        // Cannot happen for sound enclosures of a defined function; claim nothing.
+        return Label::Undecided;
+    }
+    if e.sup() < 0.0 {
+        Label::ProvedIn
+    } else if e.inf() > 0.0 {
+        Label::ProvedOut
+    } else {
+        Label::Undecided
+    }
+}
+
+/// The proof checker's monotone test (`proofs/FORMAT.md`, paving step 3) on
+/// `b` for one quadratic constraint: where ∂g/∂θ or ∂g/∂θ̇ has a constant sign
+/// on the box, g is largest (smallest) at one end of that variable, so the
+/// label is decided on the box reduced to those ends. The value and both
+/// derivatives must be continuous (`≥ dac`), as the checker requires.
+pub fn monotone_label(e: &SlabEnds, b: &PhaseBox) -> Label {
+    if !e.smooth {
+        return Label::Undecided;
+    }
+    let w = b.theta_dot_interval();
+    // ∂g/∂θ = c₂'θ̇² + c₁'θ̇ + c₀', ∂g/∂θ̇ = 2c₂θ̇ + c₁ over the box.
+    let g_theta = e.d_theta.eval(w);
+    let two = Interval::try_from((2.0, 2.0)).expect("2 is a double");
+    let g_w = two * e.value.c2 * w + e.value.c1;
+    let sign = |d: Interval| {
+        if d.is_empty() {
+            0
+        } else if d.inf() >= 0.0 {
+            1
+        } else if d.sup() <= 0.0 {
+            -1
+        } else {
+            0
+        }
+    };
+    let (st, sw) = (sign(g_theta), sign(g_w));
+    if st == 0 && sw == 0 {
+        return Label::Undecided;
+    }
+    for want_in in [true, false] {
+        // The end (0 lower, 1 upper) where g is largest for `in`, smallest for `out`.
+        let pick = |sg: i32| (sg != 0).then_some(usize::from((sg > 0) == want_in));
+        let q = pick(st).map_or(&e.value, |k| &e.ends[k]);
+        let wv = pick(sw).map_or(w, |k| point(b.theta_dot[k]));
+        let v = q.eval(wv);
+        if v.is_empty() {
+            continue;
+        }
+        if want_in && v.sup() < 0.0 {
+            return Label::ProvedIn;
+        }
+        if !want_in && v.inf() > 0.0 {
+            return Label::ProvedOut;
+        }
+    }
+    Label::Undecided
+}
+
+/// The proof checker's convex test (`proofs/FORMAT.md`, paving step 3) on
+/// `b` for one quadratic constraint: where ∂²g/∂θ̇² = 2c₂ ≥ 0 on the box, g
+/// is convex in θ̇ for every θ, so its largest value lies on one of θ̇'s two
+/// ends (for `≤ 0`, its smallest): the label `in` (`out`) is decided by
+/// both ends, each by its value or the monotone test on that end's segment.
+/// A part of a slab around the quadratic's vertex is thus one leaf.
+pub fn convex_label(e: &SlabEnds, b: &PhaseBox) -> Label {
+    if !e.smooth {
+        return Label::Undecided;
+    }
+    let c2 = e.value.c2;
+    let want = if c2.inf() >= 0.0 {
+        Label::ProvedIn
+    } else if c2.sup() <= 0.0 {
+        Label::ProvedOut
+    } else {
+        return Label::Undecided;
+    };
+    let holds_at = |w: f64| {
+        let by_value = Label::from_enclosure(DecInterval::new(e.value.eval(point(w))));
+        by_value == want || monotone_label(e, &with_w(b, w, w)) == want
+    };
+    if holds_at(b.theta_dot[0]) && holds_at(b.theta_dot[1]) {
+        want
+    } else {
+        Label::Undecided
+    }
+}
