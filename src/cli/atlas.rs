@@ -37,7 +37,7 @@ pub struct PaveFlags {
     /// Paving method: natural, centred, contract or slices. Every method's
     /// labels are re-decided by the proof checker (natural evaluation, or its
     /// monotone test for contract and slices).
-    #[arg(long, value_enum, default_value_t = Method::Natural)]
+    #[arg(long, value_parser = super::method_parser(), default_value_t = Method::Natural)]
     pub method: Method,
     /// Refine only for this region or cell (omega, omega0, omega_and_omega0,
     /// …): boxes undecided only for a constraint it does not use stay leaves.

@@ -131,3 +131,10 @@ pub fn variant_parser() -> impl clap::builder::TypedValueParser<Value = detach::
     PossibleValuesParser::new(Variant::ALL.map(|v| PossibleValue::new(v.name()).help(v.describe())))
         .try_map(|s| s.parse::<Variant>())
 }
+
+/// The paving method (`--method`), parsed by the library's names.
+pub fn method_parser() -> impl clap::builder::TypedValueParser<Value = detach::pave::Method> {
+    use clap::builder::{PossibleValuesParser, TypedValueParser};
+    use detach::pave::Method;
+    PossibleValuesParser::new(Method::ALL.map(|m| m.name())).try_map(|s| s.parse::<Method>())
+}

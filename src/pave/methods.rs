@@ -35,7 +35,7 @@ use std::str::FromStr;
 pub use super::labels::{centred_label, convex_label, monotone_label};
 
 /// A paving method (`--method`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Method {
     /// Natural interval extension and bisection.
