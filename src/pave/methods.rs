@@ -39,7 +39,6 @@ pub use super::labels::{centred_label, convex_label, monotone_label};
 #[serde(rename_all = "lowercase")]
 pub enum Method {
     /// Natural interval extension and bisection.
-    #[default]
     Natural,
     /// Mean-value form and monotonicity in θ̇ (and in θ at the resolution)
     /// intersected with the natural enclosure, decided boxes certified by
@@ -47,7 +46,10 @@ pub enum Method {
     Centred,
     /// Exact contraction of each quadratic in θ̇ on every new θ-slab.
     Contract,
-    /// Adaptive θ-slabs, each split in θ̇ at its contraction points.
+    /// Adaptive θ-slabs, each split in θ̇ at its contraction points: the
+    /// default, the fastest at equal accuracy on every scene
+    /// (`cargo bench --bench peers`).
+    #[default]
     Slices,
 }
 

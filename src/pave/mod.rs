@@ -493,7 +493,13 @@ pub fn pave<S: ConstraintSet>(
     opts: PaveOptions,
     progress: impl FnMut(u32, usize, usize),
 ) -> Result<Paving, PaveError> {
-    methods::pave_with(set, root, opts, &MethodOptions::default(), progress)
+    methods::pave_with(
+        set,
+        root,
+        opts,
+        &MethodOptions::new(Method::Natural),
+        progress,
+    )
 }
 
 impl Paving {
