@@ -397,10 +397,10 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
         let left_by = |k: usize| -> [bool; 2] {
             let d = &done[k];
             if counts[k].refine {
-                [
-                    matches!(&d.outcome, Outcome::Tree(t) if undecided_leaf(t)),
-                    false,
-                ]
+                // A subtree left undecided on a slab that cannot be split
+                // further stopped at the limit of double precision.
+                let undecided = matches!(&d.outcome, Outcome::Tree(t) if undecided_leaf(t));
+                [undecided, undecided && method.at_ulp_limit(&frontier[k].bx)]
             } else if scope.undecided(&d.labels) {
                 [true, method.at_ulp_limit(&frontier[k].bx)]
             } else {
@@ -434,7 +434,10 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
             nodes_planned += count.nodes as usize;
             plan[k] = count;
             if let Outcome::Tree(t) = &d.outcome {
-                left.undecided |= undecided_leaf(t);
+                if undecided_leaf(t) {
+                    left.undecided = true;
+                    left.ulp_limit |= method.at_ulp_limit(&frontier[k].bx);
+                }
             }
         } else {
             plan[k] = Plan::LEAF;

@@ -13,8 +13,12 @@ fn assert_bad_input(args: &[&str], needle: &str) {
     assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
 }
 
-const ULP_WINDOW: [&str; 7] = [
+/// Natural bisection down to the ulp (slices, the default, refines in θ
+/// only where its prediction asks).
+const ULP_WINDOW: [&str; 9] = [
     "pave",
+    "--method",
+    "natural",
     "--scene",
     "viscous-disc",
     "--theta",
@@ -554,6 +558,8 @@ fn leaves_export_round_trips_exactly() {
     let file = dir.join("leaves.csv");
     let out = detach(&[
         "pave",
+        "--method",
+        "natural",
         "--scene",
         "ice-disc",
         "--eps",
@@ -679,4 +685,25 @@ fn ice_omega0_is_decided_next_to_theta_pi() {
         omega0["outer_area"].as_f64().unwrap(),
     );
     assert!(inner > 1.0 && outer - inner < 1e-9, "[{inner}, {outer}]");
+}
+
+/// `slices` (the default) in a window two ulps wide in θ: its slabs cannot
+/// be split, so it says it stopped at the limit of double precision, not at
+/// the resolution asked for.
+#[test]
+fn slices_at_the_ulp_limit_says_so() {
+    let v = json(&[
+        "pave",
+        "--scene",
+        "viscous-disc",
+        "--theta",
+        "1.5:1.5000000000000004",
+        "--theta-dot",
+        "4.42:4.46",
+        "--eps",
+        "1e-300",
+        "--json",
+    ]);
+    assert_eq!(v["method"], "slices");
+    assert_eq!(v["stop"], "double_precision_limit");
 }
