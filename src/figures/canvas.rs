@@ -368,7 +368,9 @@ impl SvgDoc {
         }
         doc.push_str(&self.body);
         doc.push_str("</svg>\n");
-        crate::files::write_atomic(&self.path, doc.as_bytes())
+        // Written once: every caller draws to a temporary file that
+        // `files::render_atomic` renames into place.
+        std::fs::write(&self.path, doc)
             .map_err(|e| FigureError(format!("cannot write {}: {e}", self.path.display())))
     }
 }

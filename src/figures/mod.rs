@@ -300,7 +300,7 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         hatch,
         lines,
         shares,
-        empty: empty_classes(info),
+        empty: empty_classes(paving, info),
         title,
         subtitle,
         incomplete: !(info.complete && paving.complete),
@@ -309,13 +309,13 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
 
 /// The cells a scene proves empty: both paradoxes when Ω₀ is Ω by
 /// construction, non-uniqueness when Ω₀ ⊂ Ω is proved.
-fn empty_classes(info: &PictureInfo) -> [Option<&'static str>; 6] {
-    let same = info.scene.omega0_is_omega(info.variant);
-    let inside = info.scene.omega0_inside_omega(info.variant);
-    Class::ALL.map(|c| match c {
-        Class::NonUniqueness | Class::NonExistence if same => Some("Ω₀ = Ω"),
-        Class::NonUniqueness if inside => Some("Ω₀ ⊂ Ω"),
-        _ => None,
+fn empty_classes(paving: &Paving, info: &PictureInfo) -> [Option<&'static str>; 6] {
+    let empty = crate::pave::empty_cells(paving, info.scene, info.variant);
+    // The four cell classes come first, in the order of cells 2..6.
+    std::array::from_fn(|j| {
+        (j < Class::CELLS.len())
+            .then(|| empty[j + 2].map(|e| e.symbol()))
+            .flatten()
     })
 }
 

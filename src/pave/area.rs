@@ -264,6 +264,34 @@ impl Emptiness {
             Emptiness::Omega0InsideOmega => "omega0 inside omega",
         }
     }
+    /// The same in symbols, as pictures show it.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Emptiness::Omega0IsOmega => "Ω₀ = Ω",
+            Emptiness::Omega0InsideOmega => "Ω₀ ⊂ Ω",
+        }
+    }
+}
+
+/// Which of Ω, Ω₀ and the four cells ([`Cell`] order) are empty whatever
+/// the leaves: those asking opposite signs of one function (Ω₀ ≡ Ω), and
+/// Ω̄∩Ω₀ when the scene proves Ω₀ ⊂ Ω.
+pub fn empty_cells(
+    paving: &Paving,
+    scene: &crate::scene::Scene,
+    variant: crate::scene::Variant,
+) -> [Option<Emptiness>; 6] {
+    let inside = scene.omega0_inside_omega(variant);
+    let cells = standard_cells();
+    std::array::from_fn(|i| {
+        if cells[i].contradictory(&paving.same_as) {
+            Some(Emptiness::Omega0IsOmega)
+        } else if inside && i == Cell::Omega0NotOmega.index() {
+            Some(Emptiness::Omega0InsideOmega)
+        } else {
+            None
+        }
+    })
 }
 
 /// Area bounds of Ω, Ω₀ and the four cells ([`Cell`] order) of a scene's
@@ -275,21 +303,19 @@ pub fn standard_cell_bounds(
     variant: crate::scene::Variant,
     uncovered_sup: f64,
 ) -> [(AreaBounds, Option<Emptiness>); 6] {
-    let inside = scene.omega0_inside_omega(variant);
+    let empty = empty_cells(paving, scene, variant);
     let bounds = paving.area_bounds_all(&standard_cells(), uncovered_sup);
-    std::array::from_fn(|i| {
-        let b = bounds[i];
-        if b.proved_empty {
-            (b, Some(Emptiness::Omega0IsOmega))
-        } else if inside && i == Cell::Omega0NotOmega.index() {
-            let b = AreaBounds {
-                outer_area: b.inner_area,
-                outer_boxes: b.inner_boxes,
-                ..b
-            };
-            (b, Some(Emptiness::Omega0InsideOmega))
-        } else {
-            (b, None)
-        }
+    std::array::from_fn(|i| match empty[i] {
+        // Empty by what the scene proves, not by the cell's literals: the
+        // leaves' sums bound it from below only.
+        Some(Emptiness::Omega0InsideOmega) => (
+            AreaBounds {
+                outer_area: bounds[i].inner_area,
+                outer_boxes: bounds[i].inner_boxes,
+                ..bounds[i]
+            },
+            empty[i],
+        ),
+        e => (bounds[i], e),
     })
 }

@@ -26,7 +26,9 @@ use crate::scene::{Angle, Constraints, Domain, Quadratic, Scene, Variant};
 use inari::{DecInterval, Interval};
 use serde::Serialize;
 
-pub use area::{standard_cell_bounds, standard_cells, AreaBounds, Cell, CellSpec, Emptiness};
+pub use area::{
+    empty_cells, standard_cell_bounds, standard_cells, AreaBounds, Cell, CellSpec, Emptiness,
+};
 pub use methods::{monotone_label, pave_with, run_method, Method, MethodOptions, MethodRun};
 
 /// Most constraints one paving can carry.
