@@ -14,7 +14,7 @@ use super::exact::{
     RationalPath, Rng, Sample, Q,
 };
 use super::witness::{find_difference, find_leaf, labels_on, window};
-use super::{dec, enc, Claim, Outcome, Strength, Verdict};
+use super::{dec, enc, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::pave::Label;
 use crate::scene::Angle;
@@ -854,21 +854,20 @@ pub fn s1_traj(mutant: bool) -> Outcome {
     }
 }
 
-pub fn claims() -> Vec<Claim> {
-    vec![
-        Claim { id: "F1.3", location: "§1, (1.3)", statement: "Λ = y − h(θ) ≥ 0, h(θ) = a + b sin θ", method: "identity test against the height of the lowest rim point", check: f1_3 },
-        Claim { id: "F1.4", location: "§1, (1.4)", statement: "F = −μν, ν = θ̇ h(θ) (slip velocity at the contact point)", method: "identity test against v_G + θ̇ k × (P − G)", check: f1_4 },
-        Claim { id: "F1.5", location: "§1, (1.5)", statement: "T = ½ m ẏ + ½ C θ̇², Π = m g y", method: "identity test against ½m|v_G|² + ½Cθ̇²; whether (1.7) follows from the printed T", check: f1_5 },
-        Claim { id: "F1.7", location: "§1, (1.7)", statement: "2(C + m h'²) θ̈ + 2 m h' h'' θ̇² = −m g h' − μ h² θ̇", method: "identity test against the Newton equations with Λ̈ = 0 (exact Cramer solve); certified θ̈ enclosures", check: f1_7 },
-        Claim { id: "F1.8", location: "§1, (1.8)", statement: "Λ̈ = ÿ − h'' θ̇² − h' θ̈, ÿ = N/m − g", method: "identity test against d²Λ/dt² along rational paths", check: f1_8 },
-        Claim { id: "F1.9", location: "§1, (1.9)", statement: "Λ̈ = N/m + (μ h² h' θ̇ − g(2C + m h'²) − 2 C h'' θ̇²)/(2(C + m h'²))", method: "identity test against (1.8) with Newton θ̈, and against (1.8) with the printed (1.7)", check: f1_9 },
-        Claim { id: "F1.10", location: "§1, (1.10)", statement: "Ω: −g(2C + m h'²) − 2 C h'' θ̇² < 0", method: "paver: box proved in one of printed/derived Ω and out of the other", check: f1_10 },
-        Claim { id: "F1.11", location: "§1, (1.11)", statement: "Ω₀: μ h² h' θ̇ − g(2C + m h'²) − 2 C h'' θ̇² < 0", method: "paver: box proved in one of printed/derived Ω₀ and out of the other", check: f1_11 },
-        Claim { id: "S1.ideal", location: "§1, text after (1.2)", statement: "for an ideal constraint Ω = Ω₀", method: "identity −N = positive · free-flight Λ̈ at μ = 0", check: s1_ideal },
-        Claim { id: "S1.friction", location: "§1, text after (1.2)", statement: "with friction Ω ≠ Ω₀ in general", method: "paver: certified box of Ω ∖ Ω₀ in Example 1", check: s1_friction },
-        Claim { id: "S1.12", location: "§1, (1.12)", statement: "where θ̇ cos θ > 0, Ω₀ ⊂ Ω; where θ̇ cos θ < 0, Ω ⊂ Ω₀", method: "exact split g_Ω₀ = C g_Ω + μh²b θ̇cosθ (both readings) and sign argument", check: s1_12 },
-        Claim { id: "S1.12mu", location: "§1, after (1.12)", statement: "the difference between the sets grows with μ", method: "exact slope of g_Ω₀ in μ, certified box changing side between μ = 0.8 and 1.6", check: s1_12mu },
-        Claim { id: "S1.eq", location: "§1, Fig. 1b", statement: "θ = π/2 is a saddle, θ = −π/2 a stable focus", method: "exact Jacobians (dual numbers over rationals) at decimal parameters, both sides of the focus/node condition", check: s1_eq },
-        Claim { id: "S1.traj", location: "§1, Fig. 1b", statement: "a phase curve of continuous motion may enter Ω ∩ Ω̄₀, but can be in Ω̄ ∩ Ω₀ only if its initial point lies there", method: "exact flow identity on ∂Ω with sign argument; certified exit box from Ω₀ inside Ω", check: s1_traj },
-    ]
-}
+/// This section's check functions, by claim id (`claims.toml` holds the rest).
+pub(super) const CHECKS: &[(&str, Check)] = &[
+    ("F1.3", f1_3),
+    ("F1.4", f1_4),
+    ("F1.5", f1_5),
+    ("F1.7", f1_7),
+    ("F1.8", f1_8),
+    ("F1.9", f1_9),
+    ("F1.10", f1_10),
+    ("F1.11", f1_11),
+    ("S1.ideal", s1_ideal),
+    ("S1.friction", s1_friction),
+    ("S1.12", s1_12),
+    ("S1.12mu", s1_12mu),
+    ("S1.eq", s1_eq),
+    ("S1.traj", s1_traj),
+];

@@ -5,7 +5,7 @@ use super::example1::{self, P1};
 use super::ice::{logs, rhs_3_5, vx_printed};
 use super::smooth::{p2_texts, ClearedSlope};
 use super::witness::{window, PairSet};
-use crate::figures::claims::{draw_claim_figure, ClaimFigure};
+use crate::figures::claims::{draw_claim_figure, ClaimFigure, Curves};
 use crate::pave::{pave, PaveOptions, PhaseBox};
 use crate::roots::isolate::RealFn;
 use crate::scene::Angle;
@@ -48,13 +48,7 @@ enum Fig {
         names: [&'static str; 2],
         mark: Option<PhaseBox>,
     },
-    Lines {
-        title: String,
-        x: &'static str,
-        y: &'static str,
-        series: Vec<(String, Vec<(f64, f64)>)>,
-        marks: Vec<(f64, f64)>,
-    },
+    Lines(Curves),
 }
 
 fn grid(lo: f64, hi: f64, n: usize) -> impl Iterator<Item = f64> {
@@ -125,17 +119,17 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
             let newton: Vec<(f64, f64)> = grid(-pi, pi, 400)
                 .map(|t| (t, example1::newton(&p, t.sin(), t.cos(), 1.0, 1).0))
                 .collect();
-            Fig::Lines {
+            Fig::Lines(Curves {
                 title: "θ̈ at θ̇ = 1 (defaults): printed (1.7) vs Newton".into(),
                 x: "θ",
                 y: "θ̈",
                 series: vec![("printed (1.7)".into(), pts(2)), ("Newton".into(), newton)],
                 marks: vec![(0.0, -5.1864), (0.0, -10.3727)],
-            }
+            })
         }
         "F3.4" => {
             let v = |t: f64| 1.0 + t.cos().powi(2) / (0.25 + t.sin().powi(2));
-            Fig::Lines {
+            Fig::Lines(Curves {
                 title: "V₀ (m = a = 1, A = 0.25): printed 1/m vs Newton–Euler".into(),
                 x: "θ",
                 y: "V₀",
@@ -150,12 +144,12 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                     ),
                 ],
                 marks: vec![(1.0, v(1.0))],
-            }
+            })
         }
         "S1.eq" => {
             let (a, b, m, c, g): (f64, f64, f64, f64, f64) = (1.0, 0.5, 1.0, 0.3, 9.81);
             let disc = |mu: f64| (mu * mu * (a - b).powi(4) - 4.0 * m * g * b * c) / (c * c);
-            Fig::Lines {
+            Fig::Lines(Curves {
                 title: "θ = −π/2: trace² − 4 det against μ (< 0: focus)".into(),
                 x: "μ",
                 y: "trace² − 4 det",
@@ -167,9 +161,9 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                     ("0".into(), vec![(0.0, 0.0), (20.0, 0.0)]),
                 ],
                 marks: vec![(0.8, disc(0.8)), (20.0, disc(20.0))],
-            }
+            })
         }
-        "S2.case1fr" => Fig::Lines {
+        "S2.case1fr" => Fig::Lines(Curves {
             title: "α = 0: f_r(θ) = −cos²θ touches 0 at π/2".into(),
             x: "θ",
             y: "f_r",
@@ -178,7 +172,7 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                 grid(0.0, pi, 200).map(|t| (t, -t.cos().powi(2))).collect(),
             )],
             marks: vec![(pi / 2.0, 0.0)],
-        },
+        }),
         "S2.12count" | "S2.12type" | "S2.12components" => {
             let samples: &[(&str, &str)] = if id == "S2.12components" {
                 &[("2", "2"), ("2.5", "2")]
@@ -200,13 +194,13 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                 }
             }
             series.push(("0".into(), vec![(0.0, 0.0), (pi, 0.0)]));
-            Fig::Lines {
+            Fig::Lines(Curves {
                 title: "sin³θ·Π̃'(θ), scaled; dots: certified equilibria".into(),
                 x: "θ",
                 y: "scaled slope",
                 series,
                 marks,
-            }
+            })
         }
         "S3.c0invariant" | "S3.c0anypoint" => {
             let p = p2_texts("2.5", "2").map(|x| x.mid());
@@ -223,7 +217,7 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                 series.push((format!("Ω₀ boundary θ̇ > 0, c₀ = {c0}"), pts));
             }
             let ts = (0.8f64).acos();
-            Fig::Lines {
+            Fig::Lines(Curves {
                 title: "(2.5, 2): Ω₀ boundaries for three c₀ meet at cos θ* = 0.8 and π/2".into(),
                 x: "θ",
                 y: "θ̇",
@@ -233,7 +227,7 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                     (pi / 2.0, 9.81f64.sqrt()),
                     (ts, 0.0),
                 ],
-            }
+            })
         }
         "S3.forms" | "S3.sub2" => {
             let samples: &[(&str, &str, f64)] = &[
@@ -271,13 +265,13 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
             } else {
                 "θ̈ of (3.3) at θ̇ = 0, clipped: equilibria where it vanishes"
             };
-            Fig::Lines {
+            Fig::Lines(Curves {
                 title: title.into(),
                 x: "θ",
                 y: "value",
                 series,
                 marks: vec![],
-            }
+            })
         }
         _ => return None,
     })
@@ -318,19 +312,7 @@ pub fn draw(id: &str, dir: &Path, mark: Option<PhaseBox>) -> Result<(), String> 
                 mark,
             }
         }
-        Fig::Lines {
-            title,
-            x,
-            y,
-            series,
-            marks,
-        } => ClaimFigure::Lines {
-            title,
-            x,
-            y,
-            series,
-            marks,
-        },
+        Fig::Lines(curves) => ClaimFigure::Lines(curves),
     };
     draw_claim_figure(&fig, &dir.join("figures"), &id.replace('.', "_"))
 }

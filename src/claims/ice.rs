@@ -22,7 +22,7 @@ use super::smooth::{
     dt_dtheta, free_lambda_ddot, spin_rates, t_rot_printed, tau_printed, u_printed, P2,
 };
 use super::witness::{find_difference, window};
-use super::{dec, enc, Claim, Outcome, Strength, Verdict};
+use super::{dec, enc, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::roots::isolate::{isolate, point, RealFn};
 use crate::roots::{solve_3_3, Budget};
@@ -923,22 +923,21 @@ pub fn s3_sub3(mutant: bool) -> Outcome {
     }
 }
 
-pub fn claims() -> Vec<Claim> {
-    vec![
-        Claim { id: "F3.1", location: "§3, (3.1)", statement: "v_x + (a/A)(p_ψ ln tg(θ/2) − p_φ ln sin θ) = c₀ is a first integral", method: "identity test of dv_x/dθ against v̇_x = v_n ψ̇ (logs as symbols, (ln u)' = u'/u)", check: f3_1 },
-        Claim { id: "F3.2", location: "§3, (3.2)", statement: "(A + m a²) θ̇² = 2h − 2 m g a sin θ − m v_x² − A τ² − p_φ²/C", method: "identity test against the kinetic energy with the blade constraint", check: f3_2 },
-        Claim { id: "F3.3", location: "§3, (3.3)", statement: "(A + m a²) θ̈ = −m g a cos θ + m a v_x τ − A τ τ'", method: "identity tests: derivative of (3.2), Newton–Euler with the blade constraint", check: f3_3 },
-        Claim { id: "F3.4", location: "§3, (3.4)", statement: "Λ̈ = U₀ + V₀ N, V₀ = 1/m, U₀ = −g + a θ̇² sin θ + a cos θ/(A + m a²)·(m g a cos θ − m a v_x τ + A τ τ')", method: "identity tests against Λ̈(N) from Newton–Euler; certified V₀ enclosures", check: f3_4 },
-        Claim { id: "F3.5", location: "§3, (3.5)", statement: "Λ̈ = 0 with some N ≥ 0 iff a θ̇² sin θ ≤ g − a cos θ/(A + m a²)·(m g a cos θ − m a v_x τ + A τ τ'): Ω₀", method: "identity test: slack = N/m from Newton–Euler", check: f3_5 },
-        Claim { id: "S3.omega", location: "§3, after (3.2)", statement: "Ω (inequality (2.7)) is exactly as for the smooth plane", method: "identity test: free-flight Λ̈ = U of (2.7)", check: s3_omega },
-        Claim { id: "S3.c0changes", location: "§3, after (3.5)", statement: "changing c₀ changes both the phase portrait (3.2) and Ω₀", method: "paver box and θ̈ enclosures for c₀ = 0, 1; exact identity for p_φ = p_ψ = 0", check: s3_c0changes },
-        Claim { id: "S3.c0invariant", location: "§3, after (3.5)", statement: "invariant under c₀ are only the boundary points of Ω₀ at θ = π/2 and its vertical asymptotes at θ → +0, π − 0", method: "exact c₀-slope, zero of τ, certified τ ≠ 0 for the other ordering", check: s3_c0invariant },
-        Claim { id: "S3.c0linear", location: "§3, after (3.5)", statement: "the right side of (3.5) is linear in c₀", method: "identity tests: second difference, slope", check: s3_c0linear },
-        Claim { id: "S3.c0anypoint", location: "§3, after (3.5)", statement: "for any p_φ, p_ψ not both zero and any point with θ ≠ 0, π/2, π some c₀ puts it in Ω₀ and some out", method: "exact evaluation at a point with τ = 0", check: s3_c0anypoint },
-        Claim { id: "S3.forms", location: "§3, after (3.5)", statement: "depending on the integrals, Ω₀ has the form of Fig. 3a, b or c", method: "certified roots of (3.5)'s right side on [0.01, π − 0.01] over a parameter grid; forms = sign patterns", check: s3_forms },
-        Claim { id: "S3.symmetry", location: "§3, symmetry", statement: "p_ψ → −p_ψ, θ → π − θ leaves the equations of motion and of Ω, Ω₀ unchanged", method: "identity tests (ice, Example 1, §2)", check: s3_symmetry },
-        Claim { id: "S3.sub1", location: "§3, subcase 1", statement: "p_ψ = p_φ = 0: τ = 0, (3.5) free of c₀, Ω₀ ⊂ Ω, v_x = const, dynamically an inverted pendulum", method: "identity tests and exact linearisation", check: s3_sub1 },
-        Claim { id: "S3.sub2", location: "§3, subcase 2", statement: "p_ψ = p_φ ≠ 0: depending on c₀, two equilibria or none; they lie in Ω₀ but may lie outside Ω", method: "certified isolation over c₀ samples (θ → 0 end analytic), exact Ω₀ identity, certified U > 0 at an equilibrium", check: s3_sub2 },
-        Claim { id: "S3.sub3", location: "§3, subcase 3", statement: "p_ψ ≠ p_φ: all phase trajectories of (3.2) are bounded; equilibria in Ω₀ but may lie outside Ω", method: "certified end bounds of Aτ², equilibria by the isolator, exact Ω₀ identity", check: s3_sub3 },
-    ]
-}
+/// This section's check functions, by claim id (`claims.toml` holds the rest).
+pub(super) const CHECKS: &[(&str, Check)] = &[
+    ("F3.1", f3_1),
+    ("F3.2", f3_2),
+    ("F3.3", f3_3),
+    ("F3.4", f3_4),
+    ("F3.5", f3_5),
+    ("S3.omega", s3_omega),
+    ("S3.c0changes", s3_c0changes),
+    ("S3.c0invariant", s3_c0invariant),
+    ("S3.c0linear", s3_c0linear),
+    ("S3.c0anypoint", s3_c0anypoint),
+    ("S3.forms", s3_forms),
+    ("S3.symmetry", s3_symmetry),
+    ("S3.sub1", s3_sub1),
+    ("S3.sub2", s3_sub2),
+    ("S3.sub3", s3_sub3),
+];

@@ -26,8 +26,9 @@ pub mod smooth;
 pub mod witness;
 
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::fmt;
+use std::sync::OnceLock;
 
 /// What the computation shows about a claim.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -133,15 +134,100 @@ impl Outcome {
     }
 }
 
-/// One entry of the registry.
+/// A claim's check: `mutant` as documented at each check.
+pub type Check = fn(bool) -> Outcome;
+
+/// One entry of the registry: a row of `claims.toml` and its check.
 pub struct Claim {
-    pub id: &'static str,
-    pub location: &'static str,
+    pub id: String,
+    pub location: String,
     /// The statement as the paper makes it.
-    pub statement: &'static str,
+    pub statement: String,
     /// How it is checked.
-    pub method: &'static str,
-    pub check: fn(bool) -> Outcome,
+    pub method: String,
+    pub check: Check,
+}
+
+/// The claim table, the registry's source (`check-paper` writes it out as
+/// `claims.toml`).
+pub const TABLE: &str = include_str!("claims.toml");
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Table {
+    claim: Vec<Row>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Row {
+    id: String,
+    location: String,
+    statement: String,
+    method: String,
+}
+
+/// A claim table that does not match the check functions.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum TableError {
+    #[error("claim table: {0}")]
+    Syntax(String),
+    #[error("claim table: `{0}` has no check function")]
+    NoCheck(String),
+    #[error("claim table: `{0}` appears twice")]
+    Repeated(String),
+    #[error("claim table: the check of `{0}` has no row")]
+    NoRow(String),
+}
+
+/// Pairs every row of `table` with its check from `checks`, one to one.
+pub fn pair(table: &str, checks: &[(&str, Check)]) -> Result<Vec<Claim>, TableError> {
+    let rows = toml::from_str::<Table>(table)
+        .map_err(|e| TableError::Syntax(e.message().to_string()))?
+        .claim;
+    let mut out: Vec<Claim> = Vec::with_capacity(rows.len());
+    for r in rows {
+        if out.iter().any(|c| c.id == r.id) {
+            return Err(TableError::Repeated(r.id));
+        }
+        let check = match checks.iter().find(|(id, _)| *id == r.id) {
+            Some((_, f)) => *f,
+            None => return Err(TableError::NoCheck(r.id)),
+        };
+        out.push(Claim {
+            id: r.id,
+            location: r.location,
+            statement: r.statement,
+            method: r.method,
+            check,
+        });
+    }
+    match checks
+        .iter()
+        .find(|(id, _)| !out.iter().any(|c| c.id == *id))
+    {
+        Some((id, _)) => Err(TableError::NoRow(id.to_string())),
+        None => Ok(out),
+    }
+}
+
+/// Every check function of §1–§3, by id.
+pub fn checks() -> Vec<(&'static str, Check)> {
+    [example1::CHECKS, smooth::CHECKS, ice::CHECKS].concat()
+}
+
+/// Every claim, in report order (the order of `claims.toml`).
+pub fn registry() -> &'static [Claim] {
+    static REGISTRY: OnceLock<Vec<Claim>> = OnceLock::new();
+    REGISTRY.get_or_init(|| {
+        // The table is built in: a mismatch is caught by the test suite.
+        pair(TABLE, &checks()).expect("claims.toml matches the check functions")
+    })
+}
+
+/// Ids of [`registry`] in order.
+pub fn ids() -> Vec<&'static str> {
+    registry().iter().map(|c| c.id.as_str()).collect()
 }
 
 /// A claim with its computed verdict.
@@ -162,19 +248,6 @@ pub struct ClaimResult {
     pub figure: Option<String>,
 }
 
-/// Every claim, in report order.
-pub fn registry() -> Vec<Claim> {
-    let mut v = example1::claims();
-    v.extend(smooth::claims());
-    v.extend(ice::claims());
-    v
-}
-
-/// Ids of [`registry`] in order.
-pub fn ids() -> Vec<&'static str> {
-    registry().iter().map(|c| c.id).collect()
-}
-
 /// An id not in the registry.
 #[derive(Debug, thiserror::Error, PartialEq)]
 #[error("unknown claim id `{0}` (see `paper-checks/claims.toml` for the list)")]
@@ -184,13 +257,13 @@ pub struct UnknownClaim(pub String);
 pub fn run(ids: &[String]) -> Result<Vec<ClaimResult>, UnknownClaim> {
     let reg = registry();
     for id in ids {
-        if !reg.iter().any(|c| c.id == id) {
+        if !reg.iter().any(|c| &c.id == id) {
             return Err(UnknownClaim(id.clone()));
         }
     }
     let chosen: Vec<&Claim> = reg
         .iter()
-        .filter(|c| ids.is_empty() || ids.iter().any(|i| i == c.id))
+        .filter(|c| ids.is_empty() || ids.contains(&c.id))
         .collect();
     Ok(chosen.par_iter().map(|c| run_one(c, false)).collect())
 }
@@ -199,16 +272,16 @@ pub fn run(ids: &[String]) -> Result<Vec<ClaimResult>, UnknownClaim> {
 pub fn run_one(c: &Claim, mutant: bool) -> ClaimResult {
     let o = (c.check)(mutant);
     ClaimResult {
-        id: c.id.into(),
-        location: c.location.into(),
-        statement: c.statement.into(),
+        id: c.id.clone(),
+        location: c.location.clone(),
+        statement: c.statement.clone(),
         verdict: o.verdict,
         strength: o.strength,
         summary: o.summary,
         correction: o.correction,
         witness: o.witness,
-        proof_file: proof_file(c.id).map(String::from),
-        figure: figures::figure_path(c.id),
+        proof_file: proof_file(&c.id).map(String::from),
+        figure: figures::figure_path(&c.id),
     }
 }
 

@@ -1,7 +1,8 @@
-//! The generated files of `paper-checks/`: `REPORT.md`, `report.json` and
-//! `claims.toml`. Deterministic: no timings, fixed order.
+//! The generated files of `paper-checks/`: `REPORT.md` and `report.json`
+//! (beside them, `claims.toml` is the claim table as built in).
+//! Deterministic: no timings, fixed order.
 
-use super::{registry, ClaimResult, Verdict};
+use super::{ClaimResult, Verdict};
 use serde_json::json;
 use std::fmt::Write;
 
@@ -104,29 +105,6 @@ pub fn markdown(results: &[ClaimResult]) -> String {
             out,
             "<details><summary>witness</summary>\n\n```json\n{}\n```\n\n</details>\n",
             serde_json::to_string_pretty(&r.witness).unwrap()
-        );
-    }
-    out
-}
-
-fn toml_str(s: &str) -> String {
-    format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""))
-}
-
-/// `claims.toml`: id, location, statement, method, for every claim.
-pub fn claims_toml() -> String {
-    let mut out = String::from(
-        "# The paper's claims checked by `detach check-paper` (src/claims/).\n\
-         # Generated from the registry; ids are fixed.\n",
-    );
-    for c in registry() {
-        let _ = write!(
-            out,
-            "\n[[claim]]\nid = {}\nlocation = {}\nstatement = {}\nmethod = {}\n",
-            toml_str(c.id),
-            toml_str(c.location),
-            toml_str(c.statement),
-            toml_str(c.method)
         );
     }
     out

@@ -11,7 +11,7 @@ use super::exact::{
     angle_d, dd_const, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, verdict_of,
     RationalPath, Rng, Sample, Q,
 };
-use super::{enc, Claim, Outcome, Strength, Verdict};
+use super::{enc, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::roots::critical::{band_cell, g as g_crit};
 use crate::roots::equations::kappa_alpha;
@@ -963,26 +963,25 @@ pub fn s2_12components(mutant: bool) -> Outcome {
     }
 }
 
-pub fn claims() -> Vec<Claim> {
-    vec![
-        Claim { id: "F2.1", location: "§2, (2.1)", statement: "T = ½m(ẋ² + ẏ² + ż²) + ½A(θ̇² + ψ̇² sin²θ) + ½C(ψ̇ cos θ + φ̇)², Π = m g z, Λ = z − a sin θ ≥ 0", method: "identity tests against the Euler-angle angular velocity and the depth of the lowest point", check: f2_1 },
-        Claim { id: "F2.5", location: "§2, (2.5)", statement: "Routh reduction: T̃ = ½(A + m a² cos²θ)θ̇², Π̃ = m g a sin θ + (p_ψ − p_φ cos θ)²/(2A sin²θ)", method: "identity tests: integrals (2.3), amended potential, reduced equation against the Lagrange equations", check: f2_5 },
-        Claim { id: "F2.6", location: "§2, (2.6)", statement: "Λ̈ = N/m − g + a θ̇² sin θ − a θ̈ cos θ", method: "identity test along rational paths", check: f2_6 },
-        Claim { id: "F2.7", location: "§2, (2.7)", statement: "contact kept iff U = −g + a θ̇² sin θ + a τ τ' cos θ ≤ 0, τ = (p_ψ − p_φ cos θ)/(A sin θ), τ' = (p_φ − p_ψ cos θ)/(A sin²θ)", method: "identity tests: τ' = dτ/dθ, U = free-flight Λ̈, U + V N = 0 in contact with V > 0", check: f2_7 },
-        Claim { id: "F2.8", location: "§2, (2.8)", statement: "θ̇² ≤ Φ(θ) = g/(a sin θ) − cos θ/(A² sin⁴θ)·(p_φ − p_ψ cos θ)(p_ψ − p_φ cos θ)", method: "identity test (θ̇² − Φ)·a sin θ = U", check: f2_8 },
-        Claim { id: "F2.9", location: "§2, (2.9)", statement: "roots of Φ = 0 solve κ sin³θ = cos θ(α − cos θ)(1 − α cos θ), κ = gA²/(a p_M²), α = p_m/p_M", method: "identity test Φ·A²sin⁴θ/p_M² = κ sin³θ − f_r", check: f2_9 },
-        Claim { id: "S2.alpha", location: "§2, after (2.9)", statement: "thus α ≤ 1", method: "exact sample with p_φ p_ψ < 0", check: s2_alpha },
-        Claim { id: "F2.10", location: "§2, (2.10)", statement: "α = 1: 2κ = μ(1 − μ)(1 + μ), μ = tg(θ/2)", method: "identity test of the tan-half substitution", check: f2_10 },
-        Claim { id: "F2.12", location: "§2, (2.12)", statement: "stationary points of Π̃: m g a cos θ + A τ τ' = 0", method: "identity test against dΠ̃/dθ by dual numbers", check: f2_12 },
-        Claim { id: "S2.omega", location: "§2, after (2.8)", statement: "(2.8) defines Ω = Ω₀ on the phase plane", method: "identity (θ̇² − Φ)·a sin θ = −V N, V > 0", check: s2_omega },
-        Claim { id: "S2.case1", location: "§2, case 1", statement: "α = 0: f_r(θ) < 0, so Φ(θ) > 0 on (0, π)", method: "identity Φ = g/(a sin θ) + p_M²cos²θ/(A²sin⁴θ)", check: s2_case1 },
-        Claim { id: "S2.case1fr", location: "§2, case 1", statement: "α = 0: f_r(θ) < 0 on (0, π)", method: "exact value of f_r at θ = π/2", check: s2_case1fr },
-        Claim { id: "S2.case2", location: "§2, case 2", statement: "α = 1: for κ > κ₀ = √3/9 no positive root of (2.10) and Φ > 0; for κ < κ₀ two positive roots, Φ < 0 between them, Ω has two components", method: "κ₀ proof (roots module) with certified samples and the sign identity of F2.9/F2.10", check: s2_case2 },
-        Claim { id: "S2.case3", location: "§2, case 3", statement: "α ∈ (0, 1): depending on κ, Ω has the form of Fig. 3a (one component) or 3b (two)", method: "unimodality lemma of κ_crit(α) on 32 α-boxes; certified roots of (2.9) on both sides of the band at α = 0.5", check: s2_case3 },
-        Claim { id: "S2.case4", location: "§2, case 4", statement: "α < 0 reduces to the previous cases by θ → π − θ", method: "identity test Φ(π − θ; p_φ, p_ψ) = Φ(θ; p_φ, −p_ψ)", check: s2_case4 },
-        Claim { id: "S2.12count", location: "§2, after (2.12)", statement: "(2.12) has one or three roots", method: "certified root isolation of (2.12) at parameter samples including α = 1", check: s2_12count },
-        Claim { id: "S2.12type", location: "§2, after (2.12)", statement: "one centre (Fig. 4a), or a saddle and two centres (Fig. 4b)", method: "sign of Π̃'' on certified root enclosures", check: s2_12type },
-        Claim { id: "S2.12inOmega", location: "§2, after (2.12)", statement: "the equilibria of (2.5) always lie in Ω", method: "identity U − (a cos θ/A)Π̃' = −g(1 + ma²cos²θ/A)", check: s2_12in_omega },
-        Claim { id: "S2.12components", location: "§2, after (2.12)", statement: "if Ω is disconnected, one equilibrium lies in its left component and the other two (if they exist) in the right one", method: "certified roots of (2.9) and (2.12) at samples with Ω disconnected", check: s2_12components },
-    ]
-}
+/// This section's check functions, by claim id (`claims.toml` holds the rest).
+pub(super) const CHECKS: &[(&str, Check)] = &[
+    ("F2.1", f2_1),
+    ("F2.5", f2_5),
+    ("F2.6", f2_6),
+    ("F2.7", f2_7),
+    ("F2.8", f2_8),
+    ("F2.9", f2_9),
+    ("S2.alpha", s2_alpha),
+    ("F2.10", f2_10),
+    ("F2.12", f2_12),
+    ("S2.omega", s2_omega),
+    ("S2.case1", s2_case1),
+    ("S2.case1fr", s2_case1fr),
+    ("S2.case2", s2_case2),
+    ("S2.case3", s2_case3),
+    ("S2.case4", s2_case4),
+    ("S2.12count", s2_12count),
+    ("S2.12type", s2_12type),
+    ("S2.12inOmega", s2_12in_omega),
+    ("S2.12components", s2_12components),
+];

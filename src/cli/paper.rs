@@ -34,7 +34,7 @@ pub fn run_check_paper(a: &CheckPaperArgs) -> CliResult {
         };
         write("REPORT.md", report::markdown(&results))?;
         write("report.json", report::json(&results))?;
-        write("claims.toml", report::claims_toml())?;
+        write("claims.toml", claims::TABLE.to_string())?;
         for r in results.iter().filter(|r| r.figure.is_some()) {
             let mark = claims::figures::witness_box(&r.witness);
             claims::figures::draw(&r.id, &a.out, mark).map_err(CliError::runtime)?;

@@ -24,14 +24,17 @@ pub enum ClaimFigure {
         names: [&'static str; 2],
         mark: Option<PhaseBox>,
     },
-    /// Curves `(name, points)` and marked points.
-    Lines {
-        title: String,
-        x: &'static str,
-        y: &'static str,
-        series: Vec<(String, Vec<(f64, f64)>)>,
-        marks: Vec<(f64, f64)>,
-    },
+    /// Curves and marked points.
+    Lines(Curves),
+}
+
+/// Curves `(name, points)` on axes `x`, `y`, and marked points.
+pub struct Curves {
+    pub title: String,
+    pub x: &'static str,
+    pub y: &'static str,
+    pub series: Vec<(String, Vec<(f64, f64)>)>,
+    pub marks: Vec<(f64, f64)>,
 }
 
 fn draw_fig<DB: DrawingBackend>(fig: &ClaimFigure, root: &DrawingArea<DB, Shift>) -> DrawResult
@@ -103,13 +106,13 @@ where
                     .map_err(err)?;
             }
         }
-        ClaimFigure::Lines {
+        ClaimFigure::Lines(Curves {
             title,
             x,
             y,
             series,
             marks,
-        } => {
+        }) => {
             let all = series.iter().flat_map(|s| s.1.iter()).chain(marks.iter());
             let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
             for &(a, b) in all {

@@ -95,6 +95,38 @@ fn registry_holds_every_issue_id_once() {
     assert_eq!(sorted.len(), ids.len(), "duplicate ids");
 }
 
+/// The table and the check functions pair one to one; each way a table can
+/// fail to match is refused (tables edited from the built-in one).
+#[test]
+fn claim_table_pairs_with_the_checks_one_to_one() {
+    use claims::{pair, TableError};
+    let checks = claims::checks();
+    let table = claims::TABLE;
+    assert_eq!(pair(table, &checks).unwrap().len(), checks.len());
+    let renamed = table.replacen("id = \"F1.3\"", "id = \"F1.33\"", 1);
+    assert_eq!(
+        pair(&renamed, &checks).err(),
+        Some(TableError::NoCheck("F1.33".into()))
+    );
+    let first = table.find("[[claim]]").unwrap();
+    let second = first + 1 + table[first + 1..].find("[[claim]]").unwrap();
+    let dropped = format!("{}{}", &table[..first], &table[second..]);
+    assert_eq!(
+        pair(&dropped, &checks).err(),
+        Some(TableError::NoRow("F1.3".into()))
+    );
+    let doubled = format!("{table}\n{}", &table[first..second]);
+    assert_eq!(
+        pair(&doubled, &checks).err(),
+        Some(TableError::Repeated("F1.3".into()))
+    );
+    let extra_key = table.replacen("[[claim]]\n", "[[claim]]\nverdict = \"confirmed\"\n", 1);
+    assert!(matches!(
+        pair(&extra_key, &checks),
+        Err(TableError::Syntax(_))
+    ));
+}
+
 #[test]
 fn unknown_id_is_an_error() {
     assert!(claims::run(&["F9.9".into()]).is_err());
