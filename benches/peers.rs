@@ -21,13 +21,14 @@
 
 #[path = "peers/compare.rs"]
 mod compare;
+#[path = "peers/problems.rs"]
+mod problems;
 
 use compare::{cost_exponent, peer_curves, speedup, x_at};
 use detach::figures::chart::{draw_speed_accuracy, Curve, Panel};
-use detach::number::param::enclose_window_end;
 use detach::pave::{run_method, Method, MethodRun, PaveOptions};
-use detach::scene::{Domain, Scene, SceneId, Variant};
-use inari::Interval;
+use detach::scene::{Scene, SceneId, Variant};
+use problems::{problems, Problem};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -41,57 +42,6 @@ const CHEAP_RUNS: usize = 5;
 const BUDGET_S: f64 = 5.0;
 /// A series stops once its undecided area is below this (past every U).
 const FINEST_U: f64 = 0.0015;
-
-struct Problem {
-    key: String,
-    title: String,
-    scene: Scene,
-    variant: Variant,
-    domain: Domain,
-    /// Index into `standard_cells()`: 0 Ω, 1 Ω₀.
-    cell: usize,
-}
-
-fn problems() -> Vec<Problem> {
-    let params: Vec<(String, String)> = [
-        ("g", "9.81"),
-        ("a", "1"),
-        ("A", "0.25"),
-        ("p_phi", "1"),
-        ("p_psi", "0.6"),
-    ]
-    .iter()
-    .map(|(n, v)| (n.to_string(), v.to_string()))
-    .collect();
-    let smooth = Scene::build(SceneId::SmoothDisc, &params)
-        .expect("peer parameters")
-        .0;
-    let off = enclose_window_end("theta", "0.05").expect("decimal");
-    let window = Domain {
-        theta: [off, Interval::PI - off],
-        theta_dot: smooth.domain().theta_dot,
-    };
-    let viscous = Scene::default_of(SceneId::ViscousDisc);
-    let vd = viscous.domain();
-    vec![
-        Problem {
-            key: "omega_2_8".into(),
-            title: "Ω of (2.8), p_φ=1, p_ψ=0.6, θ ∈ [0.05, π−0.05]".into(),
-            scene: smooth,
-            variant: Variant::Printed,
-            domain: window,
-            cell: 0,
-        },
-        Problem {
-            key: "omega0_1_11".into(),
-            title: "Ω₀ of (1.11), Example 1 (printed, defaults)".into(),
-            scene: viscous,
-            variant: Variant::Printed,
-            domain: vd,
-            cell: 1,
-        },
-    ]
-}
 
 /// Ω and Ω₀ of every scene (derived, defaults, whole domain): which method
 /// reaches a given accuracy first.

@@ -1,10 +1,13 @@
 //! Root isolation speed: 10⁴ certified solves of (2.9) over a (κ, α) grid,
 //! and the κ₀ proof.
 
-use criterion::{criterion_group, criterion_main, Criterion};
+#[path = "support/timing.rs"]
+mod timing;
+
 use detach::number::param::enclose_decimal;
 use detach::roots::{prove_kappa0, solve_2_9, Budget};
 use std::hint::black_box;
+use timing::Group;
 
 /// κ = 0.005·i (i = 1..100), α = −0.99 + 0.02·j (j = 0..99), as exact decimals.
 fn grid() -> Vec<(detach::inari::Interval, detach::inari::Interval)> {
@@ -19,26 +22,19 @@ fn grid() -> Vec<(detach::inari::Interval, detach::inari::Interval)> {
     v
 }
 
-fn bench(c: &mut Criterion) {
+fn main() {
     let g = grid();
     let budget = Budget::default();
-    let mut group = c.benchmark_group("roots");
-    group.sample_size(10);
-    group.bench_function("eq_2_9_grid_10k_solves", |b| {
-        b.iter(|| {
-            let mut n = 0usize;
-            for &(k, a) in &g {
-                n += solve_2_9(black_box(k), black_box(a), &budget)
-                    .unwrap()
-                    .roots
-                    .len();
-            }
-            n
-        })
+    let group = Group::new("roots").samples(10);
+    group.bench("eq_2_9_grid_10k_solves", || {
+        let mut n = 0usize;
+        for &(k, a) in &g {
+            n += solve_2_9(black_box(k), black_box(a), &budget)
+                .unwrap()
+                .roots
+                .len();
+        }
+        n
     });
-    group.bench_function("kappa0_proof", |b| b.iter(prove_kappa0));
-    group.finish();
+    group.bench("kappa0_proof", prove_kappa0);
 }
-
-criterion_group!(benches, bench);
-criterion_main!(benches);
