@@ -3,11 +3,7 @@
 
 use crate::common;
 
-use common::detach;
-
-fn assert_bad_input(args: &[&str], needle: &str) {
-    common::assert_bad_input(args, needle);
-}
+use common::{assert_bad_input, detach, json};
 
 #[test]
 fn bad_input_is_a_clear_error_with_exit_code_2() {
@@ -289,4 +285,96 @@ fn cli_reference_matches_the_help() {
         String::from_utf8_lossy(&out.stdout) == committed,
         "docs/cli.md is stale: run docs/gen-cli.sh"
     );
+}
+
+/// Inputs the roots command refuses as usage errors (exit 2, one line): a
+/// missing or out-of-range κ or α, an equation that takes none of the given
+/// inputs, a scene without the equation, an unknown parameter.
+#[test]
+fn roots_refuses_incomplete_or_misplaced_input() {
+    for (args, needle) in [
+        (
+            &["roots", "--equation", "2.9", "--kappa", "0.1"][..],
+            "needs --alpha",
+        ),
+        (
+            &["roots", "--equation", "2.10", "--kappa", "-1"],
+            "κ must be positive",
+        ),
+        (&["roots", "--equation", "2.10"], "needs --kappa"),
+        (&["roots", "--equation", "2.11"], "unknown equation"),
+        (
+            &["roots", "--equation", "3.3", "--scene", "smooth-disc"],
+            "needs scene ice-disc",
+        ),
+        (
+            &["roots", "--equation", "2.12", "--param", "zz=1"],
+            "unknown parameter `zz`",
+        ),
+    ] {
+        let err = assert_bad_input(args, needle);
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    }
+}
+
+/// The documented fields of `roots --json` for (2.10) at κ = 0.1: two
+/// unique roots (the closed form above has two positive roots), each
+/// `lo ≤ hi`, and κ recorded as the text given.
+#[test]
+fn roots_json_has_the_documented_fields() {
+    let v = json(&["roots", "--equation", "2.10", "--kappa", "0.1", "--json"]);
+    assert_eq!(v["variable"], "mu");
+    let roots = v["roots"].as_array().unwrap();
+    assert_eq!(roots.len(), 2);
+    for r in roots {
+        assert_eq!(r["status"], "unique");
+        assert!(r["lo"].as_f64().unwrap() <= r["hi"].as_f64().unwrap());
+    }
+    assert_eq!(v["parameters"][0]["text"], "0.1");
+}
+
+/// critical-curve and tangency write their picture and JSON files, and
+/// refuse a grid that is not a power of two, a figure below 400x300 and an
+/// unknown format.
+#[test]
+fn root_maps_write_their_files_and_refuse_bad_figures() {
+    let dir = std::env::temp_dir().join(format!("detach-root-maps-{}", std::process::id()));
+    let cc = dir.join("cc");
+    let t = dir.join("t");
+    let cc_args = [
+        "critical-curve",
+        "--out",
+        cc.to_str().unwrap(),
+        "--alpha-boxes",
+        "8",
+        "--kappa-boxes",
+        "8",
+    ];
+    assert!(detach(&cc_args).status.success());
+    let t_args = ["tangency", "--out", t.to_str().unwrap(), "--k-max", "2"];
+    assert!(detach(&t_args).status.success());
+    for f in [
+        "cc/critical-curve.svg",
+        "cc/critical-curve.png",
+        "cc/critical-curve.json",
+        "t/tangency.svg",
+        "t/tangency.png",
+        "t/tangency.json",
+    ] {
+        let len = std::fs::metadata(dir.join(f)).map(|m| m.len()).unwrap_or(0);
+        assert!(len > 100, "{f} missing or empty");
+    }
+    let mut bad = cc_args.to_vec();
+    bad[4] = "3";
+    assert_bad_input(&bad, "power of two");
+    for (extra, needle) in [
+        (["--size", "10x10"], "width must be in [400, 8192]"),
+        (["--format", "pdf"], "PDF output is not supported"),
+        (["--format", "gif"], "unknown format `gif`"),
+    ] {
+        let mut bad = t_args.to_vec();
+        bad.extend(extra);
+        assert_bad_input(&bad, needle);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }
