@@ -1,32 +1,10 @@
 //! §3: disc with a sharp edge on ice, (2.8), (3.1)–(3.5).
 //!
-//! # Derivation (the `derived` variant)
-//!
-//! Let `e₁` be the disc's horizontal diameter (the line of nodes), `n` the
-//! horizontal unit vector normal to it and `k` the disc's axis, so the lowest
-//! point is `P = G − a u`, `u = cos θ n + sin θ e_z`. The velocity of the
-//! material point P is `v_G − a θ̇ k + a ω₃ e₁` (`ω₃ = p_φ/C`). The blade
-//! forbids sideways slip: `v_P · n = 0`, i.e. `v_n = −a θ̇ sin θ` for the
-//! centre's velocity component along n. The ice exerts `N e_z + R n` at P;
-//! neither works on the contact motion.
-//!
-//! * Torques `−a u × (N e_z + R n)` are along `e₁`, so `p_φ` and `p_ψ` (2.3)
-//!   stay integrals and `ψ̇ sin θ = τ` as in §2.
-//! * Horizontal momentum along `e₁`: `v̇_x − v_n ψ̇ = 0`, so `dv_x/dθ = −a τ` and
-//!   (3.1) follows by integrating `τ`.
-//! * Along n: `R = m(v̇_n + v_x ψ̇)`. The θ equation:
-//!   `A θ̈ = −A τ τ' − a N cos θ + a R sin θ`; vertical: `m z̈ = N − m g`.
-//!
-//! Eliminating R: `(A + m a² sin²θ) θ̈ = −A τ τ' − a N cos θ − m a² θ̇² sin θ
-//! cos θ + m a v_x τ`, and `Λ̈ = U₀ + V₀ N` with
-//! `V₀ = 1/m + a² cos²θ/(A + m a² sin²θ)` — not the printed `V₀ = 1/m` of (3.4).
-//!
-//! In contact (`Λ̈ = 0`) this gives (3.3),
-//! `(A + m a²) θ̈ = −m g a cos θ + m a v_x τ − A τ τ'`, and the reaction
-//! `N/m = g − a θ̇² sin θ + a cos θ θ̈`; `N ≥ 0` is exactly the printed (3.5).
-//! Ω is Λ̈ in free flight (`N = R = 0`, so `θ̈ = −τ τ'`): `U` of (2.7), as the
-//! paper says. Energy (3.2):
-//! `½(A + m a²) θ̇² + m g a sin θ + ½ m v_x² + ½ A τ²` (+ the constant `p_φ²/2C`).
+//! The Newton–Euler derivation (the `derived` variant: V₀ = 1/m + a²cos²θ/(A +
+//! m a² sin²θ), not the printed 1/m of (3.4); Ω₀ = {N > 0} with θ̈ from (3.3))
+//! is in `scenes/ice-disc.toml`, the printed (2.8), (3.5) in
+//! `scenes/ice-disc-printed.toml`; their regions are the texts of
+//! this scene's [`Model::formulas`].
 
 use super::smooth::{SmoothDisc, SMOOTH_PARAMS};
 use super::{Angle, Constraints, Domain, Formulas, Model, Quadratic, Variant};

@@ -28,7 +28,7 @@ pub use viscous::ViscousDisc;
 pub enum Variant {
     /// The formulas exactly as the paper prints them.
     Printed,
-    /// Re-derived from the mechanics the paper states (see each scene's docs).
+    /// Re-derived from the mechanics the paper states (derivations in `scenes/*.toml`).
     Derived,
 }
 

@@ -1,28 +1,9 @@
 //! §2: thin homogeneous disc on an absolutely smooth horizontal plane, (2.1)–(2.12).
 //!
-//! # Derivation (the `derived` variant)
-//!
-//! With the integrals `p_φ = C(ψ̇ cos θ + φ̇)` and
-//! `p_ψ = A ψ̇ sin²θ + p_φ cos θ` of (2.3), `ψ̇ sin θ = τ`,
-//! `τ = (p_ψ − p_φ cos θ)/(A sin θ)`, and `τ' = dτ/dθ =
-//! (p_φ − p_ψ cos θ)/(A sin²θ)`.
-//!
-//! The θ equation of (2.2) with the reaction `N` at the lowest point
-//! (generalised force `−N a cos θ`, from the height `z − a sin θ` of that point):
-//! `A θ̈ = A ψ̇² sin θ cos θ − p_φ ψ̇ sin θ − N a cos θ = −A τ τ' − N a cos θ`,
-//! and `m z̈ = N − m g`. With `Λ = z − a sin θ`:
-//! `Λ̈ = U + V N`, `U = −g + a θ̇² sin θ + a τ τ' cos θ`,
-//! `V = 1/m + a² cos²θ / A > 0` — (2.6), (2.7), with V made explicit.
-//!
-//! Ω: Λ̈ at zero reaction is `U`, so Ω = `{U < 0}`. Ω₀: in contact
-//! `N = −U/V`, positive exactly when `U < 0`, so Ω₀ = Ω (ideal constraint).
-//! (2.8) divides `U ≤ 0` by `a sin θ > 0` on (0, π): the printed
-//! `θ̇² ≤ Φ(θ)` is the same set; the `printed` variant evaluates (2.8), the
-//! `derived` one (2.7).
-//!
-//! Contact motion (Routh, (2.5)): `J θ̈ + ½ J' θ̇² = −Π̃'` with
-//! `J = A + m a² cos²θ`, `Π̃' = m g a cos θ + A τ τ'` (2.12).
-//! Energy (2.11): `½ J θ̇² + m g a sin θ + ½ A τ²`.
+//! The derivation (the `derived` variant: Ω from (2.7), Ω₀ = Ω since the
+//! reaction coefficient is positive) and how the printed (2.8) relates to
+//! it are in `scenes/smooth-disc.toml` and `scenes/smooth-disc-printed.toml`,
+//! whose regions are the texts of this scene's [`Model::formulas`].
 
 use super::{
     symmetric, theta_range_0_pi, Angle, Constraints, Domain, Formulas, Model, Quadratic, Variant,

@@ -1,37 +1,10 @@
 //! Example 1: heavy non-uniform disc on a plane with viscous friction, (1.3)–(1.11).
 //!
-//! # Derivation (the `derived` variant)
-//!
-//! Coordinates `y` (height of the centre of mass G, which moves on a fixed
-//! vertical line) and θ (angle of the vector CG with the x axis, C the
-//! geometric centre). With `G = C + b(cos θ, sin θ)` the lowest point P of the
-//! rim is at height `y − b sin θ − a`, so `Λ = y − h(θ)`, `h = a + b sin θ` (1.3).
-//!
-//! * Kinetic energy `T = ½ m ẏ² + ½ C θ̇²` (the paper prints `½ m ẏ`), `Π = m g y`.
-//! * Velocity of the material point P: horizontal `θ̇ h` (the slip ν of (1.4)),
-//!   vertical `ẏ − h' θ̇ = Λ̇`.
-//! * Forces at P: normal reaction `N` (generalised force `(N, −N h')` on
-//!   `(y, θ)`) and viscous friction `F = −μ ν` (generalised force
-//!   `(0, −μ h² θ̇)`). The guide of G does no work.
-//! * Equations: `m ÿ = −m g + N`, `C θ̈ = −N h' − μ h² θ̇`, and
-//!   `Λ̈ = ÿ − h' θ̈ − h'' θ̇²` (1.8).
-//!
-//! **Contact** (`Λ̈ = 0`) eliminates `N = m(g + h'' θ̇² + h' θ̈)`:
-//! `(C + m h'²) θ̈ + m h' h'' θ̇² = −m g h' − μ h² θ̇`. The paper's (1.7) has an
-//! extra factor 2 on the left side only; the kinetic-energy theorem (1.6)
-//! with `T = ½(C + m h'²) θ̇²` gives the equation above.
-//!
-//! **Ω**: Λ̈ with zero constraint reaction, i.e. in free flight (no normal force
-//! and, with no contact, no friction either): `ÿ = −g`, `θ̈ = 0`, hence
-//! `Λ̈ = −g − h'' θ̇²` and Ω = `{−g − h'' θ̇² < 0}`.
-//!
-//! **Ω₀**: the contact reaction is positive:
-//! `N (C + m h'²)/m = C(g + h'' θ̇²) − μ h² h' θ̇ > 0`, so Ω₀ =
-//! `{μ h² h' θ̇ − C g − C h'' θ̇² < 0}` (a positive multiple of `−N`).
-//!
-//! The printed (1.10) and (1.11) carry `2C` and `g(2C + m h'²)` instead: they
-//! follow from the printed (1.7) with its factor 2. The sets differ; see the
-//! witnesses in `tests/findings.rs`.
+//! The derivation (the `derived` variant) and where the printed (1.7),
+//! (1.10), (1.11) differ from it are in `scenes/viscous-disc.toml` and
+//! `scenes/viscous-disc-printed.toml`, whose regions are the texts of
+//! this scene's [`Model::formulas`]. The sets differ; see the witnesses in
+//! `tests/it/findings.rs`.
 
 use super::{symmetric, Angle, Constraints, Domain, Formulas, Model, Quadratic, Variant, PI};
 use crate::number::param::{ParamError, ParamSet, ParamSpec, Sign};

@@ -6,7 +6,7 @@ smooth between breakpoints where a root crosses ±10, the discriminant or the
 leading coefficient vanishes; those are found by sign changes on a fine grid
 and refined with findroot, and mpmath's tanh-sinh quadrature runs on each
 piece. Formulas are written from the paper's equations and the derivations in
-the scene docs, not from the Rust code. Run: python3 tests/data/area_reference.py
+scenes/*.toml, not from the Rust code. Run: python3 tests/data/area_reference.py
 """
 import mpmath as mp
 

@@ -3,7 +3,7 @@
 //! leaves is re-checked at 200-bit precision (MPFR through `rug`) at many
 //! points of each leaf (corners, centre, random points). The constraint
 //! formulas are written again here, directly from the paper (PAPER.md) and
-//! the derivations in `src/scene/*.rs`, not through the crate's code. A label
+//! the derivations in `scenes/*.toml`, not through the crate's code. A label
 //! `in` needs `g < 0` at every point, `out` needs `g > 0`.
 
 use detach::pave::{pave_scene_method, Label, Method, MethodOptions, PaveOptions, Paving};
