@@ -425,6 +425,32 @@ mod tests {
     }
 
     #[test]
+    fn powers_and_abs() {
+        let x = Interval::try_from((-2.0, 3.0)).unwrap();
+        // Tightest: x³ = [-8, 27], not x·x·x = [-18, 27].
+        assert_eq!(
+            <Interval as Scalar>::pown(x, 3),
+            Interval::try_from((-8.0, 27.0)).unwrap()
+        );
+        assert_eq!(
+            <Interval as Scalar>::pown(x, 0),
+            Interval::try_from((1.0, 1.0)).unwrap()
+        );
+        assert_eq!(2f64.pown(10), 1024.0);
+        // Duals: d/dx x⁴ = 4x³ at x = 1.5.
+        let d = Dual::<f64>::variable(1.5, 0).pown(4);
+        assert_eq!((d.value, d.grad[0]), (5.0625, 13.5));
+        let a = Dual::<f64>::variable(-1.5, 1).abs();
+        assert_eq!((a.value, a.grad[1]), (1.5, -1.0));
+        let z = DecInterval::new(x);
+        assert_eq!(z.abs_slope().decoration(), Decoration::Trv);
+        assert_eq!(
+            <DecInterval as Scalar>::abs(z).decoration(),
+            Decoration::Com
+        );
+    }
+
+    #[test]
     fn decorated_division_by_zero_is_not_defined() {
         let x = DecInterval::new(Interval::try_from((-1.0, 1.0)).unwrap());
         assert!(!is_defined(<DecInterval as Scalar>::int(1) / x));
