@@ -145,6 +145,13 @@ impl Scalar for Q {
     fn tan(self) -> Self {
         panic!("tan is not rational")
     }
+    fn abs(self) -> Self {
+        Q::new(self.get().abs())
+    }
+    fn abs_slope(self) -> Self {
+        assert!(!self.is_zero(), "abs has no derivative at 0");
+        Q::int(if self.get() > 0 { 1 } else { -1 })
+    }
 }
 
 /// `(sin θ, cos θ)` for `t = tan(θ/2)`.

@@ -287,6 +287,16 @@ impl Scalar for CrDec {
     fn tan(self) -> Self {
         CrDec(dec_tan(self.0))
     }
+    // No CORE-MATH kernel is involved: `inari`'s, as for DecInterval.
+    fn abs(self) -> Self {
+        CrDec(<DecInterval as Scalar>::abs(self.0))
+    }
+    fn abs_slope(self) -> Self {
+        CrDec(self.0.abs_slope())
+    }
+    fn pown(self, n: u32) -> Self {
+        CrDec(<DecInterval as Scalar>::pown(self.0, n))
+    }
     fn sin_cos(self) -> (Self, Self) {
         match self.0.interval() {
             Some(i) if !i.is_empty() => {

@@ -6,7 +6,7 @@
 //! Scene formulas are written once against [`Scalar`]; evaluating on a point, on
 //! a box, or with derivatives is the same code.
 
-use inari::{DecInterval, Decoration, Interval};
+use inari::{const_interval, DecInterval, Decoration, Interval};
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -32,9 +32,65 @@ pub trait Scalar:
     fn cos(self) -> Self;
     fn ln(self) -> Self;
     fn tan(self) -> Self;
+    fn abs(self) -> Self;
+    /// The derivative of `abs` at `self`, for duals: `1` where `self > 0`,
+    /// `-1` where `self < 0`. Where `self` may be 0 there is no derivative:
+    /// interval types return `[-1, 1]` (every slope of `abs` there, so a dual's
+    /// gradient stays an enclosure of the Clarke gradient) and decorated ones
+    /// mark it `trv`, so a check for `≥ dac` on a derivative fails.
+    fn abs_slope(self) -> Self;
+    /// `self^n`, the language's `x^n`. The default multiplies left to right,
+    /// `((x·x)·x)·…`, `n − 1` products (`x^0 = 1`, `x^1 = x`); interval types
+    /// override it with the tightest enclosure (`inari`'s `pown`).
+    fn pown(self, n: u32) -> Self {
+        if n == 0 {
+            return Self::int(1);
+        }
+        let mut p = self;
+        for _ in 1..n {
+            p = p * self;
+        }
+        p
+    }
     /// `(sin, cos)` together; duals reuse both for the derivatives.
     fn sin_cos(self) -> (Self, Self) {
         (self.sin(), self.cos())
+    }
+}
+
+/// `n` as an exact interval (every `u32` is a double).
+fn exact_u32(n: u32) -> Interval {
+    let x = f64::from(n);
+    Interval::try_from((x, x)).expect("a u32 is an exact double")
+}
+
+/// inari's `pown` takes an `i32`; larger exponents are split as
+/// `x^n = (x^(n/2))^2 · x^(n mod 2)`, still outward rounded.
+fn pown_interval(x: Interval, n: u32) -> Interval {
+    match i32::try_from(n) {
+        Ok(k) => x.powi(k),
+        Err(_) => pown_interval(x, n / 2).sqr() * x.powi((n % 2) as i32),
+    }
+}
+
+fn pown_dec(x: DecInterval, n: u32) -> DecInterval {
+    match i32::try_from(n) {
+        Ok(k) => x.powi(k),
+        Err(_) => pown_dec(x, n / 2).sqr() * x.powi((n % 2) as i32),
+    }
+}
+
+/// [`Scalar::abs_slope`] of an interval: `[s, s]` for a fixed sign `s`,
+/// `[-1, 1]` otherwise (empty stays empty).
+fn interval_abs_slope(x: Interval) -> Interval {
+    if x.is_empty() {
+        x
+    } else if x.inf() > 0.0 {
+        const_interval!(1.0, 1.0)
+    } else if x.sup() < 0.0 {
+        const_interval!(-1.0, -1.0)
+    } else {
+        const_interval!(-1.0, 1.0)
     }
 }
 
@@ -62,6 +118,23 @@ impl Scalar for f64 {
     }
     fn tan(self) -> Self {
         f64::tan(self)
+    }
+    fn abs(self) -> Self {
+        f64::abs(self)
+    }
+    /// `signum`, with 0 at 0 (a subgradient; uncertified anyway).
+    fn abs_slope(self) -> Self {
+        if self == 0.0 {
+            0.0
+        } else {
+            self.signum()
+        }
+    }
+    fn pown(self, n: u32) -> Self {
+        match i32::try_from(n) {
+            Ok(k) => self.powi(k),
+            Err(_) => self.powf(f64::from(n)),
+        }
     }
     fn sin_cos(self) -> (Self, Self) {
         f64::sin_cos(self)
@@ -93,6 +166,15 @@ impl Scalar for Interval {
     fn tan(self) -> Self {
         Interval::tan(self)
     }
+    fn abs(self) -> Self {
+        Interval::abs(self)
+    }
+    fn abs_slope(self) -> Self {
+        interval_abs_slope(self)
+    }
+    fn pown(self, n: u32) -> Self {
+        pown_interval(self, n)
+    }
 }
 
 impl Scalar for DecInterval {
@@ -119,6 +201,32 @@ impl Scalar for DecInterval {
     }
     fn tan(self) -> Self {
         DecInterval::tan(self)
+    }
+    fn abs(self) -> Self {
+        DecInterval::abs(self)
+    }
+    fn abs_slope(self) -> Self {
+        dec_abs_slope(self)
+    }
+    fn pown(self, n: u32) -> Self {
+        pown_dec(self, n)
+    }
+}
+
+/// [`Scalar::abs_slope`] decorated: a fixed sign keeps the argument's
+/// decoration, a possible 0 gives `[-1, 1]` decorated `trv` (NaI stays NaI).
+pub fn dec_abs_slope(x: DecInterval) -> DecInterval {
+    match x.interval() {
+        None => x,
+        Some(i) => {
+            let s = interval_abs_slope(i);
+            let d = if i.is_empty() || (i.inf() <= 0.0 && i.sup() >= 0.0) {
+                Decoration::Trv
+            } else {
+                x.decoration()
+            };
+            DecInterval::set_dec(s, d)
+        }
     }
 }
 
@@ -259,6 +367,43 @@ impl<T: Scalar, const N: usize> Scalar for DualN<T, N> {
         let (s, c) = self.value.sin_cos();
         (self.chain(s, c), self.chain(c, -s))
     }
+    /// Chain rule with [`Scalar::abs_slope`]: where the value may be 0 the
+    /// gradient is `g·[-1, 1]` (the hull of ±g), decorated `trv` over
+    /// decorated intervals, so it is never taken for a derivative.
+    fn abs(self) -> Self {
+        self.chain(self.value.abs(), self.value.abs_slope())
+    }
+    /// The slope of `abs` is piecewise constant: gradient `slope·0`, which
+    /// is 0 and inherits `trv` where the slope is undefined.
+    fn abs_slope(self) -> Self {
+        let s = self.value.abs_slope();
+        DualN {
+            value: s,
+            grad: [s * T::int(0); N],
+        }
+    }
+    /// Chain rule with slope `n·x^(n−1)` (`x^(n−1)` by `sqr` when n − 1 = 2,
+    /// as the checker's duals do); `x^0` keeps the value's decoration and
+    /// has gradient 0.
+    fn pown(self, n: u32) -> Self {
+        if n == 0 {
+            return DualN {
+                value: self.value.pown(0),
+                grad: [T::int(0); N],
+            };
+        }
+        let lower = if n == 3 {
+            self.value.sqr()
+        } else {
+            self.value.pown(n - 1)
+        };
+        let value = if n == 2 {
+            self.value.sqr()
+        } else {
+            self.value.pown(n)
+        };
+        self.chain(value, T::lift(exact_u32(n)) * lower)
+    }
 }
 
 #[cfg(test)]
@@ -277,6 +422,32 @@ mod tests {
         // d/dx tan x = 1/cos²x.
         let t = Dual::<f64>::variable(0.7, 0).tan();
         assert!((t.grad[0] - 1.0 / 0.7f64.cos().powi(2)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn powers_and_abs() {
+        let x = Interval::try_from((-2.0, 3.0)).unwrap();
+        // Tightest: x³ = [-8, 27], not x·x·x = [-18, 27].
+        assert_eq!(
+            <Interval as Scalar>::pown(x, 3),
+            Interval::try_from((-8.0, 27.0)).unwrap()
+        );
+        assert_eq!(
+            <Interval as Scalar>::pown(x, 0),
+            Interval::try_from((1.0, 1.0)).unwrap()
+        );
+        assert_eq!(2f64.pown(10), 1024.0);
+        // Duals: d/dx x⁴ = 4x³ at x = 1.5.
+        let d = Dual::<f64>::variable(1.5, 0).pown(4);
+        assert_eq!((d.value, d.grad[0]), (5.0625, 13.5));
+        let a = Dual::<f64>::variable(-1.5, 1).abs();
+        assert_eq!((a.value, a.grad[1]), (1.5, -1.0));
+        let z = DecInterval::new(x);
+        assert_eq!(z.abs_slope().decoration(), Decoration::Trv);
+        assert_eq!(
+            <DecInterval as Scalar>::abs(z).decoration(),
+            Decoration::Com
+        );
     }
 
     #[test]

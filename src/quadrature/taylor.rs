@@ -238,6 +238,23 @@ impl Scalar for Taylor {
         }
         Taylor { c: t }
     }
+    /// `±u` where the sign of `u_0` is fixed; otherwise `abs` is not
+    /// analytic on the argument and every higher coefficient is unbounded.
+    fn abs(self) -> Self {
+        let x = self.c[0];
+        if x.inf() > 0.0 {
+            self
+        } else if x.sup() < 0.0 {
+            -self
+        } else {
+            let mut c = [Interval::ENTIRE; N];
+            c[0] = x.abs();
+            Taylor { c }
+        }
+    }
+    fn abs_slope(self) -> Self {
+        Taylor::constant(<Interval as Scalar>::abs_slope(self.c[0]))
+    }
 }
 
 #[cfg(test)]

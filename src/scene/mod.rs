@@ -6,6 +6,7 @@
 //! lets the paver share every trigonometric and logarithmic value across all
 //! boxes of one θ-slab.
 
+pub mod expr;
 pub mod ice;
 pub mod slab;
 pub mod smooth;
