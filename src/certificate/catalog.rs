@@ -97,7 +97,7 @@ pub fn atlas_proof(id: SceneId, variant: Variant) -> Value {
     let text = id.domain_text().map(|side| side.map(String::from));
     paving_proof(
         &PavingStatement {
-            scene: id,
+            scene: &scene,
             variant,
             params: &params,
             domain: &domain,

@@ -5,7 +5,7 @@
 use super::numbers::{decimal, hex, Round};
 use crate::number::param::ParamSet;
 use crate::pave::{CellSpec, Label, Node, Paving};
-use crate::scene::{Domain, SceneId, Variant, REGION_NAMES};
+use crate::scene::{Domain, Scene, SceneId, Variant, REGION_NAMES};
 use serde_json::{json, Map, Value};
 
 /// Significant digits of claimed area bounds.
@@ -13,7 +13,7 @@ const AREA_DIGITS: usize = 10;
 
 /// What a paving proof is about, besides the paving itself.
 pub struct PavingStatement<'a> {
-    pub scene: SceneId,
+    pub scene: &'a Scene,
     pub variant: Variant,
     pub params: &'a ParamSet,
     /// The true domain (for the part outside the root box) and its text.
@@ -120,7 +120,7 @@ fn cell(i: usize) -> CellSpec {
 
 /// The proof file of a paving of Ω and Ω₀ (and the four cells).
 pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
-    let formulas = st.scene.formulas(st.variant);
+    let formulas = statement_formulas(st.scene, st.variant);
     let mut params = Map::new();
     for (name, text) in st.params.texts() {
         params.insert(name.to_string(), Value::String(text));
@@ -140,20 +140,20 @@ pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
         })
         .collect();
     let r = paving.root;
-    json!({
+    let mut proof = json!({
         "format": "detach-proof/1",
         "claim": "paving",
         "title": st.title,
         "producer": super::producer(),
         "statement": {
             "scene": st.scene.name(),
-            "variant": st.variant.to_string(),
-            "paper": paper_reference(st.scene),
+            "variant": st.scene.id().map(|_| st.variant.to_string()),
+            "paper": st.scene.id().map(paper_reference),
             "parameters": params,
             "definitions": formulas.definitions.iter().map(|(n, e)| json!([n, e])).collect::<Vec<_>>(),
             "constraints": [
-                { "name": "omega", "expr": formulas.omega, "meaning": "Ω: no detachment (Λ̈ < 0 at zero reaction)" },
-                { "name": "omega0", "expr": formulas.omega0, "meaning": "Ω₀: the normal reaction keeps its sign" },
+                { "name": "omega", "expr": formulas.omega, "meaning": formulas.meaning[0] },
+                { "name": "omega0", "expr": formulas.omega0, "meaning": formulas.meaning[1] },
             ],
             "domain": {
                 "t": st.domain_text[0],
@@ -172,7 +172,64 @@ pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
             "resolution": { "eps": paving.eps, "complete": paving.complete },
             "body": base64(&encode_tree(paving)),
         },
-    })
+    });
+    // A scene file has one reading and no place in the paper.
+    if st.scene.id().is_none() {
+        if let Some(s) = proof["statement"].as_object_mut() {
+            s.shift_remove("variant");
+            s.shift_remove("paper");
+        }
+    }
+    proof
+}
+
+/// The formulas a proof states: definitions, Ω and Ω₀ as `{expr < 0}`, and
+/// what each constraint means.
+pub struct StatementFormulas {
+    pub definitions: Vec<(String, String)>,
+    pub omega: String,
+    pub omega0: String,
+    pub meaning: [String; 2],
+}
+
+fn statement_formulas(scene: &Scene, variant: Variant) -> StatementFormulas {
+    match (scene, scene.id()) {
+        (Scene::File(f), _) => {
+            let (definitions, [omega, omega0]) = f.proof_text();
+            StatementFormulas {
+                definitions,
+                omega,
+                omega0,
+                meaning: [
+                    format!(
+                        "Ω: {} (scene file, as c₂θ̇² + c₁θ̇ + c₀)",
+                        f.regions[0].inequality
+                    ),
+                    format!(
+                        "Ω₀: {} (scene file, as c₂θ̇² + c₁θ̇ + c₀)",
+                        f.regions[1].inequality
+                    ),
+                ],
+            }
+        }
+        (_, Some(id)) => {
+            let f = id.formulas(variant);
+            StatementFormulas {
+                definitions: f
+                    .definitions
+                    .iter()
+                    .map(|(n, e)| (n.to_string(), e.to_string()))
+                    .collect(),
+                omega: f.omega.into(),
+                omega0: f.omega0.into(),
+                meaning: [
+                    "Ω: no detachment (Λ̈ < 0 at zero reaction)".into(),
+                    "Ω₀: the normal reaction keeps its sign".into(),
+                ],
+            }
+        }
+        (_, None) => unreachable!("a paper scene has an id"),
+    }
 }
 
 fn paper_reference(id: SceneId) -> &'static str {

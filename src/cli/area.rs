@@ -3,15 +3,14 @@
 use super::{CliError, CliResult};
 use detach::number::param::parse_assignment;
 use detach::quadrature::{cell_area, AreaOptions, CELLS};
-use detach::scene::{Scene, SceneId, Variant, REGION_LABELS, REGION_NAMES};
+use detach::scene::{Variant, REGION_LABELS, REGION_NAMES};
 use serde::Serialize;
 use std::time::Instant;
 
 #[derive(clap::Args, Debug)]
 pub struct AreaArgs {
-    /// The scene: viscous-disc, smooth-disc or ice-disc.
-    #[arg(long)]
-    pub scene: String,
+    #[command(flatten)]
+    pub source: super::SceneSource,
     /// Which reading of the paper: `derived` or `printed`.
     #[arg(long, value_parser = super::variant_parser(), default_value_t = Variant::Derived)]
     pub variant: Variant,
@@ -55,7 +54,7 @@ struct RegionArea {
 #[derive(Serialize)]
 struct AreaReport {
     detach: serde_json::Value,
-    scene: &'static str,
+    scene: String,
     variant: Variant,
     params: serde_json::Map<String, serde_json::Value>,
     /// Target width of each enclosure.
@@ -64,13 +63,12 @@ struct AreaReport {
 }
 
 pub fn run_area(args: &AreaArgs) -> CliResult {
-    let id: SceneId = args.scene.parse().map_err(CliError::usage)?;
     let overrides = args
         .params
         .iter()
         .map(|t| parse_assignment(t).map_err(CliError::usage))
         .collect::<Result<Vec<_>, _>>()?;
-    let (scene, params) = Scene::build(id, &overrides).map_err(CliError::usage)?;
+    let (scene, params) = args.source.build(&overrides, args.variant)?;
     if !(1..=15).contains(&args.digits) {
         return Err(CliError::usage(format!(
             "--digits must be between 1 and 15, got {}",
@@ -122,7 +120,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
     }
     let report = AreaReport {
         detach: detach::provenance(),
-        scene: id.name(),
+        scene: scene.name().to_string(),
         variant: args.variant,
         params: params
             .texts()

@@ -10,7 +10,7 @@ use detach::pave::{
     pave_scene_method, standard_cell_bounds, standard_cells, Emptiness, Method, MethodOptions,
     PaveOptions, Paving,
 };
-use detach::scene::{Domain, Scene, SceneId, Variant, REGION_LABELS, REGION_NAMES};
+use detach::scene::{Domain, FileScene, Scene, SceneId, Variant, REGION_LABELS, REGION_NAMES};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -65,9 +65,13 @@ pub struct AtlasArgs {
     /// Output directory.
     #[arg(long, default_value = "out/atlas")]
     pub out: PathBuf,
-    /// Only these scenes (repeatable); default: all three.
+    /// Only these scenes (repeatable); default: all three, unless scene
+    /// files are given.
     #[arg(long, value_name = "SCENE")]
     pub scene: Vec<String>,
+    /// A scene file to draw (repeatable; TOML, see docs/scene-files.md).
+    #[arg(long = "scene-file", value_name = "FILE")]
+    pub scene_file: Vec<PathBuf>,
     #[command(flatten)]
     pub flags: PaveFlags,
     /// Restrict θ to a window `LO:HI` (decimal text, `pi`, `-pi`, `pi/N`)
@@ -88,9 +92,8 @@ pub struct AtlasArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct PaveArgs {
-    /// The scene: viscous-disc, smooth-disc or ice-disc.
-    #[arg(long)]
-    pub scene: String,
+    #[command(flatten)]
+    pub source: super::SceneSource,
     #[command(flatten)]
     pub flags: PaveFlags,
     /// Restrict θ to a window `LO:HI` (decimal text, `pi`, `-pi`, `pi/N`)
@@ -177,7 +180,7 @@ struct DomainReport {
 pub struct PaveReport {
     /// `{"version", "commit"}` of the program that wrote it.
     detach: serde_json::Value,
-    scene: &'static str,
+    scene: String,
     variant: Variant,
     params: serde_json::Map<String, serde_json::Value>,
     domain: DomainReport,
@@ -230,7 +233,7 @@ fn pave_and_report(
     // Two levels per halving of each axis; 1/eps may be +∞ (eps subnormal),
     // and no double interval halves more than about 1100 times.
     let levels = (2.0 * (1.0 / opts.eps).log2().ceil().clamp(0.0, 1100.0)) as u64 + 1;
-    let bar = progress_bar(levels, scene.id().name());
+    let bar = progress_bar(levels, scene.name());
     let start = Instant::now();
     let paving = pave_scene_method(scene, variant, domain, opts, mo, |level, open, leaves| {
         bar.set_position(level as u64);
@@ -277,7 +280,7 @@ fn summarise(
     let (undefined_area, warnings) = undefined_warnings(paving);
     PaveReport {
         detach: detach::provenance(),
-        scene: scene.id().name(),
+        scene: scene.name().to_string(),
         variant,
         params: params
             .texts()
@@ -470,9 +473,8 @@ fn options(flags: &PaveFlags, default_eps: f64) -> Result<PaveOptions, CliError>
 }
 
 pub fn run_pave(args: &PaveArgs) -> CliResult {
-    let id: SceneId = args.scene.parse().map_err(CliError::usage)?;
     let overrides = parse_overrides(&args.flags.params)?;
-    let (scene, params) = Scene::build(id, &overrides).map_err(CliError::usage)?;
+    let (scene, params) = args.source.build(&overrides, args.flags.variant)?;
     let opts = options(&args.flags, PaveOptions::default().eps)?;
     let (th, thd) = (
         split_window("theta", &args.theta)?,
@@ -508,7 +510,7 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
         let provenance = format!(
             "detach {}; scene {} ({}, method {}); {}; theta in [{:?}, {:?}], theta_dot in [{:?}, {:?}]; eps {}",
             detach::LONG_VERSION,
-            id.name(),
+            scene.name(),
             args.flags.variant,
             args.flags.method,
             params.join(" "),
@@ -522,8 +524,7 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
     }
     if let Some(path) = &args.proof {
         let text = |w: &Option<[String; 2]>, i: usize| {
-            w.clone()
-                .unwrap_or_else(|| id.domain_text()[i].map(String::from))
+            w.clone().unwrap_or_else(|| scene.domain_text()[i].clone())
         };
         super::proofs::write_paving_proof(
             path,
@@ -565,12 +566,28 @@ fn overrides_for(id: SceneId, all: &[(String, String)]) -> Vec<(String, String)>
         .collect()
 }
 
+/// Where a scene file of an atlas run comes from.
+enum FileSource<'a> {
+    Path(&'a Path),
+    Shipped(&'a str),
+}
+
 pub fn run_atlas(args: &AtlasArgs) -> CliResult {
-    let ids: Vec<SceneId> = if args.scene.is_empty() {
+    // Shipped scene files named by --scene are read like --scene-file.
+    let shipped: Vec<&str> = args
+        .scene
+        .iter()
+        .map(String::as_str)
+        .filter(|n| n.parse::<SceneId>().is_err() && FileScene::shipped(n, &[]).is_some())
+        .collect();
+    let ids: Vec<SceneId> = if args.scene.is_empty() && !args.scene_file.is_empty() {
+        Vec::new()
+    } else if args.scene.is_empty() {
         SceneId::ALL.to_vec()
     } else {
         args.scene
             .iter()
+            .filter(|n| !shipped.contains(&n.as_str()))
             .map(|s| s.parse().map_err(CliError::usage))
             .collect::<Result<_, _>>()?
     };
@@ -583,10 +600,45 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
         new
     });
     let overrides = parse_overrides(&args.flags.params)?;
+    if (!args.scene_file.is_empty() || !shipped.is_empty())
+        && args.flags.variant == Variant::Printed
+    {
+        return Err(CliError::usage(
+            "--variant printed applies to the paper's scenes; a scene file has one reading",
+        ));
+    }
+    let load = |src: &FileSource, o: &[(String, String)]| match src {
+        FileSource::Path(p) => FileScene::load(p, o),
+        FileSource::Shipped(n) => FileScene::shipped(n, o).expect("a shipped name"),
+    };
+    // Each file's declared parameters, to route the overrides.
+    let files = shipped
+        .iter()
+        .map(|n| FileSource::Shipped(n))
+        .chain(args.scene_file.iter().map(|p| FileSource::Path(p)))
+        .map(|src| {
+            let names: Vec<String> = load(&src, &[])
+                .map_err(CliError::usage)?
+                .params
+                .specs
+                .iter()
+                .map(|s| s.name.to_string())
+                .collect();
+            Ok((src, names))
+        })
+        .collect::<Result<Vec<_>, CliError>>()?;
+    let for_file = |names: &[String]| -> Vec<(String, String)> {
+        overrides
+            .iter()
+            .filter(|(n, _)| names.contains(n))
+            .cloned()
+            .collect()
+    };
     for (name, _) in &overrides {
         if !ids
             .iter()
             .any(|id| id.params().iter().any(|s| s.name == name))
+            && !files.iter().any(|(_, names)| names.contains(name))
         {
             return Err(CliError::usage(format!(
                 "unknown parameter `{name}` for the scenes paved"
@@ -613,23 +665,30 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
     let opts = options(&args.flags, pixel_eps)?;
     let mo = args.flags.method_options()?;
     // Validate every scene and window before the long work starts.
-    let scenes = ids
+    let built = ids
         .iter()
-        .map(|&id| {
-            let (scene, params) =
-                Scene::build(id, &overrides_for(id, &overrides)).map_err(CliError::usage)?;
+        .map(|&id| Scene::build(id, &overrides_for(id, &overrides)).map_err(CliError::usage))
+        .chain(files.iter().map(|(src, names)| {
+            let f = load(src, &for_file(names)).map_err(CliError::usage)?;
+            let params = f.params.clone();
+            Ok((Scene::File(Box::new(f)), params))
+        }))
+        .collect::<Result<Vec<_>, CliError>>()?;
+    let scenes = built
+        .into_iter()
+        .map(|(scene, params)| {
             fn refs(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
                 w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()])
             }
             let (domain, clipped) = scene
                 .domain()
                 .window_clipped(refs(&th), refs(&thd))
-                .map_err(|e| CliError::usage(format!("{}: {e}", id.name())))?;
+                .map_err(|e| CliError::usage(format!("{}: {e}", scene.name())))?;
             for c in clipped {
                 eprintln!(
                     "detach: note: {}: window end {c} is within rounding of the domain's end; \
                      clipped to the domain",
-                    id.name()
+                    scene.name()
                 );
             }
             Ok((scene, params, domain))
@@ -648,7 +707,7 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
             complete: paving.complete,
             window: window_text(&th, &thd),
         };
-        let stem = args.out.join(scene.id().name());
+        let stem = args.out.join(scene.name());
         // Files first, then the table: a closed stdout never costs a file.
         draw(&paving, &info, &style, formats, &stem)?;
         print_table(&report);
@@ -691,33 +750,42 @@ fn draw(
 pub fn run_scenes(args: &ScenesArgs) -> CliResult {
     #[derive(Serialize)]
     struct SceneInfo {
-        name: &'static str,
-        title: &'static str,
+        name: String,
+        title: String,
         params: &'static [detach::number::param::ParamSpec],
         domain: DomainText,
-        variants: [Variant; 2],
+        /// Empty for a scene file (one reading).
+        variants: Vec<Variant>,
     }
     #[derive(Serialize)]
     struct DomainText {
         theta: [f64; 2],
         theta_dot: [f64; 2],
     }
-    let infos: Vec<SceneInfo> = SceneId::ALL
+    let info = |scene: &Scene, params: &'static [_], variants: Vec<Variant>| {
+        let b = scene.domain().inner_box();
+        SceneInfo {
+            name: scene.name().into(),
+            title: scene.title().into(),
+            params,
+            domain: DomainText {
+                theta: b[0],
+                theta_dot: b[1],
+            },
+            variants,
+        }
+    };
+    let mut infos: Vec<SceneInfo> = SceneId::ALL
         .iter()
         .map(|&id| {
-            let b = Scene::default_of(id).domain().inner_box();
-            SceneInfo {
-                name: id.name(),
-                title: id.title(),
-                params: id.params(),
-                domain: DomainText {
-                    theta: b[0],
-                    theta_dot: b[1],
-                },
-                variants: [Variant::Derived, Variant::Printed],
-            }
+            let variants = vec![Variant::Derived, Variant::Printed];
+            info(&Scene::default_of(id), id.params(), variants)
         })
         .collect();
+    for (name, _) in detach::scene::file::SHIPPED {
+        let (scene, params) = Scene::by_name(name, &[]).map_err(CliError::runtime)?;
+        infos.push(info(&scene, params.specs, Vec::new()));
+    }
     if args.json {
         outln!(
             "{}",
@@ -727,8 +795,13 @@ pub fn run_scenes(args: &ScenesArgs) -> CliResult {
     }
     for s in &infos {
         outln!("{} — {}", s.name, s.title);
+        let variants = if s.variants.is_empty() {
+            "a scene file, one reading"
+        } else {
+            "variants: derived (default), printed"
+        };
         outln!(
-            "  domain θ ∈ [{:.6}, {:.6}], θ̇ ∈ [{}, {}]; variants: derived (default), printed",
+            "  domain θ ∈ [{:.6}, {:.6}], θ̇ ∈ [{}, {}]; {variants}",
             s.domain.theta[0],
             s.domain.theta[1],
             s.domain.theta_dot[0],

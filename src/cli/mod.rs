@@ -138,3 +138,40 @@ pub fn method_parser() -> impl clap::builder::TypedValueParser<Value = detach::p
     use detach::pave::Method;
     PossibleValuesParser::new(Method::ALL.map(|m| m.name())).try_map(|s| s.parse::<Method>())
 }
+
+/// The scene of a single-scene command: a paper's scene by name, or a scene
+/// file.
+#[derive(clap::Args, Debug)]
+#[group(required = true, multiple = false)]
+pub struct SceneSource {
+    /// The scene: viscous-disc, smooth-disc, ice-disc, or painleve-rod (a
+    /// shipped scene file).
+    #[arg(long)]
+    pub scene: Option<String>,
+    /// A scene file (TOML; see docs/scene-files.md) instead of a paper's scene.
+    #[arg(long = "scene-file", value_name = "FILE")]
+    pub scene_file: Option<std::path::PathBuf>,
+}
+
+impl SceneSource {
+    /// The scene with its parameters; a scene file has one reading, so
+    /// `--variant printed` is refused for it.
+    pub fn build(
+        &self,
+        overrides: &[(String, String)],
+        variant: detach::scene::Variant,
+    ) -> Result<(detach::scene::Scene, detach::number::param::ParamSet), CliError> {
+        use detach::scene::{Scene, Variant};
+        let built = match (&self.scene, &self.scene_file) {
+            (Some(name), _) => Scene::by_name(name, overrides).map_err(CliError::usage)?,
+            (None, Some(path)) => Scene::from_file(path, overrides).map_err(CliError::usage)?,
+            (None, None) => return Err(CliError::usage("give --scene NAME or --scene-file FILE")),
+        };
+        if built.0.id().is_none() && variant == Variant::Printed {
+            return Err(CliError::usage(
+                "--variant printed applies to the paper's scenes; a scene file has one reading",
+            ));
+        }
+        Ok(built)
+    }
+}

@@ -186,12 +186,15 @@ pub fn write_paving_proof(
 ) -> CliResult {
     let proof = paving_proof(
         &PavingStatement {
-            scene: scene.id(),
+            scene,
             variant,
             params,
             domain,
             domain_text,
-            title: format!("Ω, Ω₀ and the four cells of the {} ({variant})", scene.id()),
+            title: match scene.id() {
+                Some(id) => format!("Ω, Ω₀ and the four cells of the {id} ({variant})"),
+                None => format!("Ω, Ω₀ and the four cells of {}", scene.title()),
+            },
         },
         paving,
     );

@@ -244,13 +244,13 @@ fn solve(args: &RootsArgs) -> Result<(EquationRoots, RootsOutputParts), CliError
             let disc = match &scene {
                 Scene::Smooth(d) => d,
                 Scene::Ice(i) => &i.disc,
-                Scene::Viscous(_) => {
+                Scene::Viscous(_) | Scene::File(_) => {
                     return Err(CliError::usage(
                         "equation (2.9) needs scene smooth-disc or ice-disc",
                     ))
                 }
             };
-            parts.scene = Some(scene.id().name());
+            parts.scene = scene.id().map(SceneId::name);
             parts.set_params(&set);
             let (k, a) = kappa_alpha(disc).map_err(CliError::usage)?;
             parts.derived.push(param("kappa", "g A^2/(a p_M^2)", k));
@@ -285,7 +285,7 @@ fn solve(args: &RootsArgs) -> Result<(EquationRoots, RootsOutputParts), CliError
                 SceneId::IceDisc
             };
             let (scene, set) = build_scene(args, default)?;
-            parts.scene = Some(scene.id().name());
+            parts.scene = scene.id().map(SceneId::name);
             parts.set_params(&set);
             match (eq, &scene) {
                 (EquationId::E2_12, Scene::Smooth(d)) => solve_2_12(d, &budget),
@@ -299,7 +299,7 @@ fn solve(args: &RootsArgs) -> Result<(EquationRoots, RootsOutputParts), CliError
                         } else {
                             "ice-disc"
                         },
-                        scene.id()
+                        scene.name()
                     )))
                 }
             }

@@ -388,7 +388,7 @@ pub fn run_stability(args: &StabilityArgs) -> CliResult {
         },
         "cases": cases.iter().map(|c| serde_json::json!({
             "case": c.key,
-            "scene": c.scene.id().name(),
+            "scene": c.scene.name(),
             "params": c.params,
             "window": {"theta": c.window[0], "theta_dot": c.window[1]},
             "region": REGIONS[c.region],

@@ -157,6 +157,8 @@ struct Prepared {
     empty: [Option<&'static str>; 6],
     title: String,
     subtitle: String,
+    /// What an undefined leaf means in this scene, for the legend.
+    undefined: &'static str,
     incomplete: bool,
 }
 
@@ -275,10 +277,14 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         .iter()
         .map(|(n, v)| format!("{} = {v}", param_markup(n)))
         .collect();
+    // A scene file has one reading: no variant in its title.
+    let reading = match info.scene.id() {
+        Some(_) => format!(" ({})", info.variant),
+        None => String::new(),
+    };
     let title = format!(
-        "{} ({})   {}",
-        info.scene.id().name(),
-        info.variant,
+        "{}{reading}   {}",
+        info.scene.name(),
         params.join("  ")
     );
     let n = paving.leaves.len();
@@ -289,7 +295,7 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         .unwrap_or_default();
     let subtitle = format!(
         "{}{window}  ·  eps = {}  ·  {n} {}",
-        info.scene.id().title(),
+        info.scene.title(),
         eps_text(paving.eps),
         if n == 1 { "leaf" } else { "leaves" }
     );
@@ -303,6 +309,10 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         empty: empty_classes(paving, info),
         title,
         subtitle,
+        undefined: match info.scene.id() {
+            Some(_) => "formula singular (sin θ = 0); hatched",
+            None => "a formula undefined; hatched",
+        },
         incomplete: !(info.complete && paving.complete),
     }
 }
@@ -692,7 +702,7 @@ fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), AtlasError> {
         area.draw_text(&share, &body.color(&INK), (tx + 110, y))
             .map_err(draw_err)?;
         let meaning = if class == Class::Undefined {
-            "formula singular (sin θ = 0); hatched"
+            prep.undefined
         } else {
             class.meaning()
         };

@@ -17,6 +17,8 @@ pub fn phase_portrait(scene: &Scene, variant: Variant, root: &PhaseBox) -> Vec<P
     let probe = Angle::new(0.5 * (root.theta[0] + root.theta[1]));
     if scene.energy(&probe, 0.0_f64).is_some() {
         level_lines(|t, w| scene.energy(&Angle::new(t), w), root, 320, 240, 21)
+    } else if !scene.has_dynamics() {
+        Vec::new()
     } else {
         trajectories(|t, w| scene.acceleration(variant, &Angle::new(t), w), root)
     }
@@ -436,6 +438,8 @@ pub fn phase_portrait_px(
             .into_iter()
             .map(|(_, piece)| simplify(&piece, 0.1))
             .collect()
+    } else if !scene.has_dynamics() {
+        Vec::new()
     } else {
         let traj =
             trajectories_with_heads(|t, v| scene.acceleration(variant, &Angle::new(t), v), root);

@@ -169,6 +169,17 @@ enum Func {
 }
 
 impl Func {
+    fn name(self) -> &'static str {
+        match self {
+            Func::Sqrt => "sqrt",
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Tan => "tan",
+            Func::Ln => "ln",
+            Func::Abs => "abs",
+        }
+    }
+
     fn of(name: &str) -> Option<Func> {
         Some(match name {
             "sqrt" => Func::Sqrt,
@@ -185,7 +196,8 @@ impl Func {
 /// One step of an expression in postfix order (operands before operators).
 #[derive(Clone, Debug)]
 enum Step<'a> {
-    Num(Interval),
+    /// A literal's enclosure and its text.
+    Num(Interval, &'a str),
     /// A name and its byte offset.
     Name(&'a str, usize),
     Neg,
@@ -316,7 +328,7 @@ impl<'a> Parser<'a> {
             Tok::Num(t) => {
                 let x = enclose_decimal("", t)
                     .map_err(|_| (Some(at), format!("{t} is not a finite decimal number")))?;
-                self.steps.push(Step::Num(x));
+                self.steps.push(Step::Num(x, t));
             }
             Tok::LParen => {
                 self.enter(at)?;
@@ -467,6 +479,9 @@ struct Dag {
     nodes: Vec<Node>,
     index: HashMap<Node, u32>,
     consts: Vec<Interval>,
+    /// Per constant: text that encloses to it exactly (a literal, a
+    /// parameter's name, `pi`), for [`Program::render`].
+    const_text: Vec<String>,
     const_index: HashMap<(u64, u64), u32>,
 }
 
@@ -481,13 +496,14 @@ impl Dag {
         i
     }
 
-    fn constant(&mut self, x: Interval) -> u32 {
+    fn constant(&mut self, x: Interval, text: &str) -> u32 {
         let key = (x.inf().to_bits(), x.sup().to_bits());
         let k = match self.const_index.get(&key) {
             Some(&k) => k,
             None => {
                 let k = self.consts.len() as u32;
                 self.consts.push(x);
+                self.const_text.push(text.to_string());
                 self.const_index.insert(key, k);
                 k
             }
@@ -503,8 +519,8 @@ impl Dag {
         let internal = || (None, "internal: malformed expression".to_string());
         for step in steps {
             let node = match *step {
-                Step::Num(x) => {
-                    stack.push(self.constant(x));
+                Step::Num(x, text) => {
+                    stack.push(self.constant(x, text));
                     continue;
                 }
                 Step::Name(n, at) => {
@@ -545,8 +561,8 @@ impl Dag {
 
     fn coef_node(&mut self, c: Coef) -> u32 {
         match c {
-            Coef::Zero => self.constant(Interval::try_from((0.0, 0.0)).expect("exact")),
-            Coef::One => self.constant(Interval::try_from((1.0, 1.0)).expect("exact")),
+            Coef::Zero => self.constant(Interval::try_from((0.0, 0.0)).expect("exact"), "0"),
+            Coef::One => self.constant(Interval::try_from((1.0, 1.0)).expect("exact"), "1"),
             Coef::Node(n) => n,
         }
     }
@@ -639,6 +655,7 @@ impl Dag {
         let mut const_slot: HashMap<u32, u32> = HashMap::new();
         let mut tape = Vec::new();
         let mut consts = Vec::new();
+        let mut const_text = Vec::new();
         for (i, node) in self.nodes.iter().enumerate() {
             if !needed[i] {
                 continue;
@@ -646,6 +663,7 @@ impl Dag {
             let n = match *node {
                 Node::Const(k) => Node::Const(*const_slot.entry(k).or_insert_with(|| {
                     consts.push(self.consts[k as usize]);
+                    const_text.push(self.const_text[k as usize].clone());
                     consts.len() as u32 - 1
                 })),
                 n => n.map(|a| slot[a as usize]),
@@ -654,7 +672,7 @@ impl Dag {
             tape.push(n);
         }
         let outputs = outputs.iter().map(|&o| slot[o as usize]).collect();
-        Program::new(tape, consts, outputs)
+        Program::new(tape, consts, const_text, outputs)
     }
 }
 
@@ -719,6 +737,7 @@ fn definition_order(
 pub struct Program {
     tape: Vec<Node>,
     consts: Vec<Interval>,
+    const_text: Vec<String>,
     outputs: Vec<u32>,
     /// Per entry: whether it depends on θ̇.
     on_dot: Vec<bool>,
@@ -728,7 +747,12 @@ pub struct Program {
 }
 
 impl Program {
-    fn new(tape: Vec<Node>, consts: Vec<Interval>, outputs: Vec<u32>) -> Program {
+    fn new(
+        tape: Vec<Node>,
+        consts: Vec<Interval>,
+        const_text: Vec<String>,
+        outputs: Vec<u32>,
+    ) -> Program {
         let mut on_dot: Vec<bool> = Vec::with_capacity(tape.len());
         let mut degree: Vec<Option<u32>> = Vec::with_capacity(tape.len());
         for &node in &tape {
@@ -755,6 +779,7 @@ impl Program {
         Program {
             tape,
             consts,
+            const_text,
             outputs,
             on_dot,
             degree,
@@ -772,12 +797,12 @@ impl Program {
         let mut scope: HashMap<&str, u32> = HashMap::new();
         scope.insert(THETA, dag.push(Node::Theta));
         scope.insert(THETA_DOT, dag.push(Node::ThetaDot));
-        scope.insert("pi", dag.constant(Interval::PI));
+        scope.insert("pi", dag.constant(Interval::PI, "pi"));
         let mut declared: HashSet<&str> = HashSet::new();
         for (name, x) in params {
             check_name(name, &declared)?;
             declared.insert(name);
-            scope.insert(name, dag.constant(*x));
+            scope.insert(name, dag.constant(*x, name));
         }
         let mut def_index: HashMap<&str, usize> = HashMap::new();
         for (i, (name, _)) in definitions.iter().enumerate() {
@@ -890,6 +915,50 @@ impl Program {
         self.outputs.get(i).and_then(|&o| self.degree[o as usize])
     }
 
+    /// The tape as text of the expression language, evaluated operation by
+    /// operation exactly as [`Program::eval`] does: one definition
+    /// `{prefix}{k}` per operation (variables as `t` and `w`, constants as
+    /// the text they were enclosed from), and each output as a name or an
+    /// atom. `prefix` must not begin any parameter's name.
+    pub fn render(&self, prefix: &str) -> (Vec<(String, String)>, Vec<String>) {
+        let mut text: Vec<String> = Vec::with_capacity(self.tape.len());
+        let mut defs = Vec::new();
+        for (j, node) in self.tape.iter().enumerate() {
+            let t = |a: u32| text[a as usize].as_str();
+            let body = match *node {
+                Node::Const(k) => {
+                    text.push(self.const_text[k as usize].clone());
+                    continue;
+                }
+                Node::Theta => {
+                    text.push("t".into());
+                    continue;
+                }
+                Node::ThetaDot => {
+                    text.push("w".into());
+                    continue;
+                }
+                Node::Neg(a) => format!("-{}", t(a)),
+                Node::Add(a, b) => format!("{} + {}", t(a), t(b)),
+                Node::Sub(a, b) => format!("{} - {}", t(a), t(b)),
+                Node::Mul(a, b) => format!("{}*{}", t(a), t(b)),
+                Node::Div(a, b) => format!("{}/{}", t(a), t(b)),
+                Node::Sqr(a) => format!("{}^2", t(a)),
+                Node::Pown(a, n) => format!("{}^{n}", t(a)),
+                Node::Call(f, a) => format!("{}({})", f.name(), t(a)),
+            };
+            let name = format!("{prefix}{j}");
+            defs.push((name.clone(), body));
+            text.push(name);
+        }
+        let outputs = self
+            .outputs
+            .iter()
+            .map(|&o| text[o as usize].clone())
+            .collect();
+        (defs, outputs)
+    }
+
     /// For an output of degree ≤ 2 in θ̇, a θ-only program with the three
     /// outputs `c2, c1, c0`: output = c2·θ̇² + c1·θ̇ + c0 as real functions.
     /// Built by polynomial arithmetic on the nodes; θ-only subexpressions
@@ -907,7 +976,9 @@ impl Program {
         for j in 0..=out {
             let node = self.tape[j];
             id.push(match node {
-                Node::Const(k) => dag.constant(self.consts[k as usize]),
+                Node::Const(k) => {
+                    dag.constant(self.consts[k as usize], &self.const_text[k as usize])
+                }
                 n => dag.push(n.map(|a| id[a as usize])),
             });
             let p = |a: u32| poly[a as usize];

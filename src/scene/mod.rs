@@ -1,4 +1,5 @@
-//! The three systems of the paper as reduced phase-plane models.
+//! The three systems of the paper as reduced phase-plane models, and
+//! systems read from scene files ([`file`], compiled by [`expr`]).
 //!
 //! Every region here is `{g(θ, θ̇) < 0}` with `g` quadratic in θ̇ for fixed θ,
 //! so a scene gives each constraint as θ-dependent coefficients
@@ -7,6 +8,7 @@
 //! boxes of one θ-slab.
 
 pub mod expr;
+pub mod file;
 pub mod ice;
 pub mod slab;
 pub mod smooth;
@@ -19,6 +21,7 @@ use serde::Serialize;
 use std::fmt;
 use std::str::FromStr;
 
+pub use file::{FileScene, SceneFileError};
 pub use ice::IceDisc;
 pub use smooth::SmoothDisc;
 pub use viscous::ViscousDisc;
@@ -368,21 +371,25 @@ impl FromStr for SceneId {
     }
 }
 
-/// A scene with validated parameters.
+/// A scene with validated parameters: one of the paper's, or one read from
+/// a scene file (one reading: `variant` does not apply to it).
 #[derive(Clone, Debug)]
 pub enum Scene {
     Viscous(ViscousDisc),
     Smooth(SmoothDisc),
     Ice(IceDisc),
+    File(Box<FileScene>),
 }
 
-/// Calls `$body` with `$m` bound to the concrete model.
+/// Calls `$body` with `$m` bound to the concrete model, or evaluates `$file`
+/// with `$f` bound to a file scene.
 macro_rules! with_model {
-    ($scene:expr, $m:ident => $body:expr) => {
+    ($scene:expr, $m:ident => $body:expr, $f:ident => $file:expr) => {
         match $scene {
             Scene::Viscous($m) => $body,
             Scene::Smooth($m) => $body,
             Scene::Ice($m) => $body,
+            Scene::File($f) => $file,
         }
     };
 }
@@ -407,30 +414,97 @@ impl Scene {
         Scene::build(id, &[]).expect("defaults are valid").0
     }
 
-    pub fn id(&self) -> SceneId {
+    /// A scene by name: one of the paper's, or a shipped scene file
+    /// ([`file::SHIPPED`]).
+    pub fn by_name(
+        name: &str,
+        overrides: &[(String, String)],
+    ) -> Result<(Scene, ParamSet), String> {
+        match (name.parse::<SceneId>(), FileScene::shipped(name, overrides)) {
+            (Ok(id), _) => Scene::build(id, overrides).map_err(|e| e.to_string()),
+            (Err(_), Some(f)) => {
+                let f = f.map_err(|e| e.to_string())?;
+                let params = f.params.clone();
+                Ok((Scene::File(Box::new(f)), params))
+            }
+            (Err(_), None) => Err(format!(
+                "unknown scene `{name}` (known: {}, {})",
+                SceneId::ALL.map(|i| i.name()).join(", "),
+                file::SHIPPED.map(|s| s.0).join(", ")
+            )),
+        }
+    }
+
+    /// Reads a scene file, with `name=value` parameter overrides.
+    pub fn from_file(
+        path: &std::path::Path,
+        overrides: &[(String, String)],
+    ) -> Result<(Scene, ParamSet), SceneFileError> {
+        let f = FileScene::load(path, overrides)?;
+        let params = f.params.clone();
+        Ok((Scene::File(Box::new(f)), params))
+    }
+
+    /// The paper's scene this is, if it is one.
+    pub fn id(&self) -> Option<SceneId> {
         match self {
-            Scene::Viscous(_) => SceneId::ViscousDisc,
-            Scene::Smooth(_) => SceneId::SmoothDisc,
-            Scene::Ice(_) => SceneId::IceDisc,
+            Scene::Viscous(_) => Some(SceneId::ViscousDisc),
+            Scene::Smooth(_) => Some(SceneId::SmoothDisc),
+            Scene::Ice(_) => Some(SceneId::IceDisc),
+            Scene::File(_) => None,
+        }
+    }
+
+    /// `viscous-disc`, …, or the `name` of a scene file.
+    pub fn name(&self) -> &str {
+        match self {
+            Scene::File(f) => &f.name,
+            _ => self.id().expect("a paper scene").name(),
+        }
+    }
+
+    pub fn title(&self) -> &str {
+        match self {
+            Scene::File(f) => &f.title,
+            _ => self.id().expect("a paper scene").title(),
+        }
+    }
+
+    /// The domain's ends as text (`[[θ lo, θ hi], [θ̇ lo, θ̇ hi]]`).
+    pub fn domain_text(&self) -> [[String; 2]; 2] {
+        match (self, self.id()) {
+            (Scene::File(f), _) => f.domain_text.clone(),
+            (_, Some(id)) => id.domain_text().map(|s| s.map(String::from)),
+            (_, None) => unreachable!("a paper scene has an id"),
         }
     }
 
     pub fn domain(&self) -> Domain {
-        with_model!(self, m => m.domain())
+        with_model!(self, m => m.domain(), f => f.domain)
     }
 
     pub fn constraints<T: Scalar>(&self, v: Variant, a: &Angle<T>) -> Constraints<T> {
-        with_model!(self, m => m.constraints(v, a))
+        with_model!(self, m => m.constraints(v, a), f => {
+            let [omega, omega0] = f.quadratics(a.theta);
+            Constraints { omega, omega0 }
+        })
     }
 
-    /// True when Ω₀ ≡ Ω by construction ([`Model::omega0_is_omega`]).
+    /// True when Ω₀ ≡ Ω by construction ([`Model::omega0_is_omega`]; for a
+    /// file, the same region text).
     pub fn omega0_is_omega(&self, v: Variant) -> bool {
-        with_model!(self, m => m.omega0_is_omega(v))
+        with_model!(self, m => m.omega0_is_omega(v), f => f.omega0_is_omega())
     }
 
     /// True when Ω₀ ⊂ Ω is proved ([`Model::omega0_inside_omega`]).
     pub fn omega0_inside_omega(&self, v: Variant) -> bool {
-        with_model!(self, m => m.omega0_inside_omega(v))
+        with_model!(self, m => m.omega0_inside_omega(v), _f => false)
+    }
+
+    /// The scene has an equation of motion for the phase portrait (a file
+    /// only with `[dynamics]`).
+    pub fn has_dynamics(&self) -> bool {
+        with_model!(self, _m => true, f => f.has_dynamics())
     }
 
     /// Certified coefficient enclosures over a θ-interval (decorated: a slab
@@ -439,12 +513,14 @@ impl Scene {
         self.constraints(v, &Angle::new(DecInterval::new(theta)))
     }
 
+    /// θ̈ in contact (for a file without `[dynamics]`: NaN, see
+    /// [`Scene::has_dynamics`]).
     pub fn acceleration<T: Scalar>(&self, v: Variant, a: &Angle<T>, theta_dot: T) -> T {
-        with_model!(self, m => m.acceleration(v, a, theta_dot))
+        with_model!(self, m => m.acceleration(v, a, theta_dot), f => f.acceleration(a.theta, theta_dot))
     }
 
     pub fn energy<T: Scalar>(&self, a: &Angle<T>, theta_dot: T) -> Option<T> {
-        with_model!(self, m => m.energy(a, theta_dot))
+        with_model!(self, m => m.energy(a, theta_dot), _f => None)
     }
 }
 

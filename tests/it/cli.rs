@@ -173,7 +173,10 @@ fn scenes_lists_every_scene_with_defaults() {
         .iter()
         .map(|s| s["name"].as_str().unwrap())
         .collect();
-    assert_eq!(names, ["viscous-disc", "smooth-disc", "ice-disc"]);
+    assert_eq!(
+        names,
+        ["viscous-disc", "smooth-disc", "ice-disc", "painleve-rod"]
+    );
     assert_eq!(v[2]["params"][7]["name"], "c0");
     assert_eq!(v[0]["params"][4]["default"], "0.8");
 }

@@ -25,5 +25,6 @@ mod proof_mutations;
 mod proofs;
 mod reference;
 mod roots;
+mod scene_files;
 mod soundness;
 mod stability;

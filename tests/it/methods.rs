@@ -50,7 +50,7 @@ fn checked_proof(
 ) -> CheckReport {
     let proof = paving_proof(
         &PavingStatement {
-            scene: id,
+            scene,
             variant: v,
             params,
             domain: &scene.domain(),

@@ -133,7 +133,7 @@ fn statement_of(
         .unwrap();
     paving_proof(
         &PavingStatement {
-            scene: scene.id(),
+            scene,
             variant,
             params,
             domain: &domain,

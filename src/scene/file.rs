@@ -1,0 +1,413 @@
+//! Scene files: a planar system with a unilateral constraint written as
+//! TOML (`docs/scene-files.md`), read into a [`FileScene`] whose two regions
+//! are compiled once ([`super::expr`]) and evaluated over any
+//! [`Scalar`](crate::number::scalar::Scalar).
+//!
+//! A file is refused, with one message naming the file, the key and (inside
+//! an expression) the character, when it is not TOML, lacks a key, has an
+//! unknown one, or holds a bad name, number, domain, region or expression.
+
+use super::expr::{ExprError, Program};
+use super::{Domain, Quadratic};
+use crate::number::param::{enclose_decimal, enclose_window_end, ParamSet, ParamSpec, Sign};
+use inari::Interval;
+use serde::Deserialize;
+use std::path::Path;
+
+/// Scene files built into the binary (`scenes/`), by name: `--scene NAME`
+/// reads them like the paper's scenes.
+pub const SHIPPED: [(&str, &str); 1] = [(
+    "painleve-rod",
+    include_str!("../../scenes/painleve-rod.toml"),
+)];
+
+/// A scene file refused: `file: key: message`.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{file}: {message}")]
+pub struct SceneFileError {
+    pub file: String,
+    pub message: String,
+}
+
+/// Names a file may not give a parameter or definition: the variables of
+/// the file and of proof files, the constant and the functions.
+const RESERVED: [&str; 11] = [
+    "theta",
+    "theta_dot",
+    "t",
+    "w",
+    "pi",
+    "sqrt",
+    "sin",
+    "cos",
+    "tan",
+    "ln",
+    "abs",
+];
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Raw {
+    name: String,
+    title: Option<String>,
+    domain: RawDomain,
+    #[serde(default)]
+    parameters: toml::Table,
+    #[serde(default)]
+    definitions: toml::Table,
+    regions: RawRegions,
+    dynamics: Option<RawDynamics>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawDomain {
+    theta: [String; 2],
+    theta_dot: [String; 2],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawRegions {
+    omega: String,
+    omega0: String,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawDynamics {
+    theta_ddot: String,
+}
+
+/// A region `{expr < 0}`: the file's inequality and its normal form.
+#[derive(Clone, Debug)]
+pub struct Region {
+    /// As written in the file.
+    pub inequality: String,
+    /// `expr` of `{expr < 0}`.
+    pub expr: String,
+}
+
+/// A scene read from a file, with its parameters enclosed.
+#[derive(Clone, Debug)]
+pub struct FileScene {
+    pub name: String,
+    pub title: String,
+    pub domain: Domain,
+    /// The domain's ends as written (`[[θ lo, θ hi], [θ̇ lo, θ̇ hi]]`).
+    pub domain_text: [[String; 2]; 2],
+    pub params: ParamSet,
+    /// In an order where each uses only earlier ones.
+    pub definitions: Vec<(String, String)>,
+    /// Ω and Ω₀.
+    pub regions: [Region; 2],
+    /// `c₂, c₁, c₀` of each region as θ-only programs.
+    coefficients: [Program; 2],
+    /// θ̈ for the phase portrait, if given.
+    dynamics: Option<Program>,
+}
+
+impl FileScene {
+    /// Reads and compiles `path`, with `name=value` parameter overrides.
+    pub fn load(path: &Path, overrides: &[(String, String)]) -> Result<FileScene, SceneFileError> {
+        let file = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| SceneFileError {
+            file: file.clone(),
+            message: format!("cannot read: {e}"),
+        })?;
+        FileScene::parse(&text, overrides).map_err(|message| SceneFileError { file, message })
+    }
+
+    /// A shipped scene file by name, if there is one.
+    pub fn shipped(
+        name: &str,
+        overrides: &[(String, String)],
+    ) -> Option<Result<FileScene, SceneFileError>> {
+        let (_, text) = SHIPPED.iter().find(|(n, _)| *n == name)?;
+        Some(
+            FileScene::parse(text, overrides).map_err(|message| SceneFileError {
+                file: format!("scenes/{name}.toml"),
+                message,
+            }),
+        )
+    }
+
+    /// Compiles the text of a scene file (errors without the file name).
+    pub fn parse(text: &str, overrides: &[(String, String)]) -> Result<FileScene, String> {
+        let raw: Raw = toml::from_str(text).map_err(|e| toml_message(text, &e))?;
+        if raw.name.is_empty()
+            || !raw
+                .name
+                .bytes()
+                .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit() || b == b'-')
+        {
+            return Err(format!(
+                "`name`: `{}` must be lowercase letters, digits and `-`",
+                raw.name
+            ));
+        }
+        let domain_text = [raw.domain.theta, raw.domain.theta_dot];
+        let domain = Domain {
+            theta: domain_ends("domain.theta", &domain_text[0])?,
+            theta_dot: domain_ends("domain.theta_dot", &domain_text[1])?,
+        };
+        let params = parameters(&raw.name, &raw.parameters, overrides)?;
+        let enclosed: Vec<(String, Interval)> = params
+            .specs
+            .iter()
+            .zip(&params.values)
+            .map(|(s, p)| (s.name.to_string(), p.value))
+            .collect();
+        let definitions = definitions(&raw.definitions, &params)?;
+        let regions = [
+            region("omega", &raw.regions.omega)?,
+            region("omega0", &raw.regions.omega0)?,
+        ];
+        let compile = |outputs: &[(String, String)]| {
+            Program::compile(&enclosed, &definitions, outputs).map_err(|e| expr_message(&e))
+        };
+        // Each side on its own first, so that a position points into the text
+        // as written.
+        for (key, r) in ["omega", "omega0"].iter().zip(&regions) {
+            let (lhs, rhs, _) = split_inequality(&r.inequality).expect("checked by region");
+            let k = format!("regions.{key}");
+            compile(&[(k.clone(), lhs.to_string())])?;
+            compile(&[(k, rhs.to_string())])?;
+        }
+        let program = compile(&[
+            ("regions.omega".into(), regions[0].expr.clone()),
+            ("regions.omega0".into(), regions[1].expr.clone()),
+        ])?;
+        let coefficients = [0, 1].map(|i| program.quadratic(i));
+        let [Some(c_omega), Some(c_omega0)] = coefficients else {
+            let i = coefficients.iter().position(Option::is_none).unwrap_or(0);
+            return Err(format!(
+                "`regions.{}`: not a polynomial of degree at most 2 in theta_dot with \
+                 coefficients in theta (division only by expressions of theta)",
+                ["omega", "omega0"][i]
+            ));
+        };
+        let dynamics = match raw.dynamics {
+            Some(d) => Some(compile(&[("dynamics.theta_ddot".into(), d.theta_ddot)])?),
+            None => None,
+        };
+        let title = raw.title.unwrap_or_else(|| raw.name.clone());
+        Ok(FileScene {
+            name: raw.name,
+            title,
+            domain,
+            domain_text,
+            params,
+            definitions,
+            regions,
+            coefficients: [c_omega, c_omega0],
+            dynamics,
+        })
+    }
+
+    /// Ω and Ω₀ as `c₂θ̇² + c₁θ̇ + c₀` at θ.
+    pub fn quadratics<T: crate::number::scalar::Scalar>(&self, theta: T) -> [Quadratic<T>; 2] {
+        self.coefficients.each_ref().map(|p| {
+            let mut c = [T::int(0); 3];
+            p.eval(theta, T::int(0), &mut c);
+            Quadratic {
+                c2: c[0],
+                c1: c[1],
+                c0: c[2],
+            }
+        })
+    }
+
+    /// Ω and Ω₀ as a proof file states them (`proofs/FORMAT.md`: variables
+    /// `t`, `w`): one definition per operation of the coefficient programs,
+    /// and each region as `c₂*w^2 + c₁*w + c₀` — the operations the paver
+    /// performs, so a checker's enclosures are at least as tight as the
+    /// paver's. Returns the definitions and the two expressions.
+    pub fn proof_text(&self) -> (Vec<(String, String)>, [String; 2]) {
+        let mut prefix = String::from("q");
+        while self
+            .params
+            .specs
+            .iter()
+            .any(|s| s.name.starts_with(&prefix))
+        {
+            prefix.push('q');
+        }
+        let mut definitions = Vec::new();
+        let exprs = [0, 1].map(|i| {
+            let (defs, c) = self.coefficients[i].render(&format!("{prefix}{}", ["o", "n"][i]));
+            definitions.extend(defs);
+            format!("{}*w^2 + {}*w + {}", c[0], c[1], c[2])
+        });
+        (definitions, exprs)
+    }
+
+    /// True when the two regions are the same text: Ω₀ = Ω by construction.
+    pub fn omega0_is_omega(&self) -> bool {
+        self.regions[0].expr == self.regions[1].expr
+    }
+
+    pub fn has_dynamics(&self) -> bool {
+        self.dynamics.is_some()
+    }
+
+    /// θ̈ from `[dynamics]`; NaN without it.
+    pub fn acceleration<T: crate::number::scalar::Scalar>(&self, theta: T, theta_dot: T) -> T {
+        let mut out = [T::int(0) / T::int(0)];
+        if let Some(p) = &self.dynamics {
+            p.eval(theta, theta_dot, &mut out);
+        }
+        out[0]
+    }
+}
+
+/// `line L, column C: message` from a TOML error.
+fn toml_message(text: &str, e: &toml::de::Error) -> String {
+    let msg = e.message().trim_end().replace('\n', "; ");
+    match e.span() {
+        Some(span) => {
+            let before = &text[..span.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+            format!("line {line}, column {col}: {msg}")
+        }
+        None => msg,
+    }
+}
+
+fn expr_message(e: &ExprError) -> String {
+    e.to_string()
+}
+
+fn domain_ends(key: &str, text: &[String; 2]) -> Result<[Interval; 2], String> {
+    let end = |t: &String| {
+        if t.trim_start().starts_with('+') {
+            return Err(format!("`{key}`: `{t}`: no leading `+`"));
+        }
+        enclose_window_end(key, t).map_err(|e| format!("`{key}`: {e}"))
+    };
+    let ends = [end(&text[0])?, end(&text[1])?];
+    if ends[0].sup() < ends[1].inf() {
+        Ok(ends)
+    } else {
+        Err(format!(
+            "`{key}`: the lower end `{}` must lie below the upper end `{}`",
+            text[0], text[1]
+        ))
+    }
+}
+
+fn check_name(key: &str, name: &str) -> Result<(), String> {
+    let mut c = name.chars();
+    let well_formed = c.next().is_some_and(|f| f.is_ascii_alphabetic())
+        && c.all(|x| x.is_ascii_alphanumeric() || x == '_');
+    if !well_formed {
+        Err(format!(
+            "`{key}`: `{name}` is not a name (a letter, then letters, digits or `_`)"
+        ))
+    } else if RESERVED.contains(&name) {
+        Err(format!("`{key}`: `{name}` is reserved"))
+    } else {
+        Ok(())
+    }
+}
+
+fn string_value<'a>(key: &str, v: &'a toml::Value) -> Result<&'a str, String> {
+    v.as_str()
+        .ok_or_else(|| format!("`{key}`: expected a string in quotes, got {}", v.type_str()))
+}
+
+/// The file's parameters (decimal text), overridden by `name=value` pairs.
+fn parameters(
+    scene: &str,
+    table: &toml::Table,
+    overrides: &[(String, String)],
+) -> Result<ParamSet, String> {
+    let mut specs = Vec::with_capacity(table.len());
+    for (name, v) in table {
+        let key = format!("parameters.{name}");
+        check_name(&key, name)?;
+        let text = string_value(&key, v)?;
+        enclose_decimal(name, text).map_err(|e| format!("`{key}`: {e}"))?;
+        specs.push(ParamSpec {
+            // A file's declarations live as long as the process: a few
+            // bytes per file loaded, so that they share `ParamSet` with the
+            // built-in scenes.
+            name: Box::leak(name.clone().into_boxed_str()),
+            default: Box::leak(text.to_string().into_boxed_str()),
+            sign: Sign::Any,
+            meaning: "",
+        });
+    }
+    ParamSet::build(scene, Box::leak(specs.into_boxed_slice()), overrides)
+        .map_err(|e| e.to_string())
+}
+
+/// The definitions, ordered so that each uses only earlier ones.
+fn definitions(table: &toml::Table, params: &ParamSet) -> Result<Vec<(String, String)>, String> {
+    let mut defs = Vec::with_capacity(table.len());
+    for (name, v) in table {
+        let key = format!("definitions.{name}");
+        check_name(&key, name)?;
+        if params.specs.iter().any(|s| s.name == name) {
+            return Err(format!("`{key}`: `{name}` is also a parameter"));
+        }
+        defs.push((name.clone(), string_value(&key, v)?.to_string()));
+    }
+    Ok(defs)
+}
+
+/// Splits `lhs < rhs` or `lhs > rhs` (exactly one comparison).
+fn split_inequality(text: &str) -> Option<(&str, &str, char)> {
+    let mut at = text.char_indices().filter(|(_, c)| *c == '<' || *c == '>');
+    let (i, op) = at.next()?;
+    if at.next().is_some() {
+        return None;
+    }
+    let (lhs, rhs) = (&text[..i], &text[i + 1..]);
+    (!lhs.trim().is_empty() && !rhs.trim().is_empty()).then_some((lhs, rhs, op))
+}
+
+fn is_zero(s: &str) -> bool {
+    let t = s.trim();
+    !t.is_empty()
+        && t.bytes().all(|b| b == b'0' || b == b'.')
+        && t.bytes().any(|b| b == b'0')
+        && t.bytes().filter(|b| *b == b'.').count() <= 1
+}
+
+/// The normal form `{expr < 0}`: a zero side is dropped, so `g < 0` keeps
+/// the text of `g` (and its exact enclosures); negation is exact.
+fn region(key: &str, text: &str) -> Result<Region, String> {
+    let (lhs, rhs, op) = split_inequality(text).ok_or_else(|| {
+        format!("`regions.{key}`: `{text}` is not one inequality `lhs < rhs` or `lhs > rhs`")
+    })?;
+    let (small, large) = if op == '<' { (lhs, rhs) } else { (rhs, lhs) };
+    let expr = match (is_zero(small), is_zero(large)) {
+        (_, true) => small.trim().to_string(),
+        (true, false) => format!("-({})", large.trim()),
+        (false, false) => format!("({}) - ({})", small.trim(), large.trim()),
+    };
+    Ok(Region {
+        inequality: text.to_string(),
+        expr,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn inequalities_take_their_normal_form() {
+        let e = |t: &str| region("omega", t).map(|r| r.expr);
+        assert_eq!(e("U < 0").unwrap(), "U");
+        assert_eq!(e("U > 0.0").unwrap(), "-(U)");
+        assert_eq!(e("0 < N").unwrap(), "-(N)");
+        assert_eq!(e("a*x > b").unwrap(), "(b) - (a*x)");
+        assert_eq!(e("a < b").unwrap(), "(a) - (b)");
+        for bad in ["U", "U < 0 < 1", "< 0", "U >", "U = 0"] {
+            assert!(e(bad).is_err(), "{bad}");
+        }
+    }
+}

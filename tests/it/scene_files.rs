@@ -1,0 +1,377 @@
+//! Scene files: the Painlevé rod against its closed form, the paper's scenes
+//! from their files against the built-in ones, proofs from a file, and bad
+//! files refused with exit 2 and a message naming the file and the key.
+
+use crate::common::{assert_bad_input, detach, json, Rng};
+use detach::pave::{pave_scene, standard_cells, Label, PaveOptions};
+use detach::quadrature::{cell_area, AreaOptions, CELLS};
+use detach::scene::{FileScene, Scene, SceneId, Variant};
+use std::path::{Path, PathBuf};
+
+fn scene_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(format!("{name}.toml"))
+}
+
+fn rod(mu: &str) -> Scene {
+    Scene::from_file(&scene_path("painleve-rod"), &[("mu".into(), mu.into())])
+        .unwrap()
+        .0
+}
+
+fn reference() -> serde_json::Value {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/painleve-reference.json"
+    ))
+    .unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
+fn num(v: &serde_json::Value) -> f64 {
+    v.as_str().unwrap().parse().unwrap()
+}
+
+/// The rod against the mpmath values of `tests/data/painleve_reference.py`
+/// (closed form in θ, 50 digits): `area` certifies Ω and Ω₀ to 10⁻⁶ around
+/// them; the paving's inner and outer bounds of all six sets contain them;
+/// and the paradox cells have positive certified area exactly when μ > 4/3
+/// (below, they stay within the undecided band along the boundary, where Ω₀
+/// and Ω share it).
+#[test]
+fn painleve_rod_areas_contain_the_closed_form() {
+    let names = [
+        "omega",
+        "omega0",
+        "omega_and_omega0",
+        "not_omega_and_not_omega0",
+        "not_omega_and_omega0",
+        "omega_and_not_omega0",
+    ];
+    for case in reference()["cases"].as_array().unwrap() {
+        let mu = case["parameters"]["mu"].as_str().unwrap();
+        let scene = rod(mu);
+        let domain = scene.domain();
+        let paradox = !case["paradox_band"].is_null();
+        for (i, name) in names.iter().enumerate().take(2) {
+            let e = cell_area(
+                &scene,
+                Variant::Derived,
+                &domain,
+                CELLS[i],
+                AreaOptions {
+                    tol: 1e-6,
+                    max_pieces: 1 << 16,
+                },
+            )
+            .unwrap();
+            let want = num(&case["areas"][name]);
+            assert!(
+                e.area.inf() <= want && want <= e.area.sup() && e.area.wid() <= 1e-6,
+                "mu={mu} {name}: {want} vs {:?}",
+                e.area
+            );
+        }
+        let p = pave_scene(
+            &scene,
+            Variant::Derived,
+            PaveOptions {
+                eps: 1.0 / 512.0,
+                ..PaveOptions::default()
+            },
+            |_, _, _| {},
+        )
+        .unwrap();
+        for (i, name) in names.iter().enumerate() {
+            let b = p.area_bounds(&standard_cells()[i], domain.uncovered_area_sup());
+            let want = num(&case["areas"][name]);
+            assert!(
+                b.inner_area <= want && want <= b.outer_area,
+                "mu={mu} {name}: {want} not in [{}, {}]",
+                b.inner_area,
+                b.outer_area
+            );
+            if i >= 4 {
+                assert_eq!(b.inner_area > 0.0, paradox, "mu={mu} {name}");
+                if !paradox {
+                    assert!(b.outer_area < 0.5, "mu={mu} {name}: {}", b.outer_area);
+                }
+            }
+        }
+    }
+}
+
+/// Every leaf proved in a paradox cell (Ω̄∩Ω₀ or Ω∩Ω̄₀) lies where tan θ is
+/// between the roots of t² − 3μt + 4 (the reference band), and such leaves
+/// exist for μ = 2.
+#[test]
+fn painleve_paradox_leaves_lie_in_the_band() {
+    let all = reference();
+    let case = &all["cases"][3];
+    let mu = case["parameters"]["mu"].as_str().unwrap();
+    assert_eq!(mu, "2");
+    let band = &case["paradox_band"]["theta"];
+    let (lo, hi) = (num(&band[0]), num(&band[1]));
+    let scene = rod(mu);
+    let p = pave_scene(
+        &scene,
+        Variant::Derived,
+        PaveOptions {
+            eps: 1.0 / 256.0,
+            ..PaveOptions::default()
+        },
+        |_, _, _| {},
+    )
+    .unwrap();
+    let mut paradox = 0;
+    for leaf in &p.leaves {
+        let [o, o0] = [leaf.labels[0], leaf.labels[1]];
+        let cell = matches!(
+            (o, o0),
+            (Label::ProvedOut, Label::ProvedIn) | (Label::ProvedIn, Label::ProvedOut)
+        );
+        if cell {
+            paradox += 1;
+            assert!(
+                leaf.bx.theta[0] >= lo - 1e-12 && leaf.bx.theta[1] <= hi + 1e-12,
+                "{:?} outside ({lo}, {hi})",
+                leaf.bx
+            );
+        }
+    }
+    assert!(paradox > 100, "{paradox} paradox leaves");
+}
+
+/// The paper's scenes from `scenes/*.toml` pave exactly as the built-in
+/// scenes: the same leaves and labels at the same ε and method.
+#[test]
+fn paper_scene_files_pave_as_the_built_in_scenes() {
+    for id in SceneId::ALL {
+        for v in Variant::ALL {
+            let file = match v {
+                Variant::Derived => id.name().to_string(),
+                Variant::Printed => format!("{}-printed", id.name()),
+            };
+            let from_file = Scene::from_file(&scene_path(&file), &[]).unwrap().0;
+            let built_in = Scene::default_of(id);
+            let opts = PaveOptions {
+                eps: 1.0 / 128.0,
+                ..PaveOptions::default()
+            };
+            let a = pave_scene(&from_file, Variant::Derived, opts, |_, _, _| {}).unwrap();
+            let b = pave_scene(&built_in, v, opts, |_, _, _| {}).unwrap();
+            assert_eq!(a.leaves.len(), b.leaves.len(), "{file}");
+            for (x, y) in a.leaves.iter().zip(&b.leaves) {
+                assert_eq!(x.bx, y.bx, "{file}");
+                assert_eq!(x.labels, y.labels, "{file} at {:?}", x.bx);
+            }
+        }
+    }
+}
+
+/// `pave --scene-file … --proof` writes a proof that `detach verify`
+/// accepts; the atlas and area commands take the file too.
+#[test]
+fn scene_file_runs_through_every_command() {
+    let dir = std::env::temp_dir().join(format!("detach-scene-file-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = scene_path("painleve-rod");
+    let f = file.to_str().unwrap();
+    let proof = dir.join("rod.json");
+    let v = json(&[
+        "pave",
+        "--scene-file",
+        f,
+        "--eps",
+        "0.01",
+        "--json",
+        "--proof",
+        proof.to_str().unwrap(),
+    ]);
+    assert_eq!(v["scene"], "painleve-rod");
+    let shipped = json(&["pave", "--scene", "painleve-rod", "--eps", "0.01", "--json"]);
+    assert_eq!(shipped["regions"], v["regions"]);
+    let out = detach(&["verify", proof.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    let a = json(&[
+        "area",
+        "--scene-file",
+        f,
+        "--param",
+        "mu=2",
+        "--digits",
+        "6",
+        "--json",
+    ]);
+    assert_eq!(a["regions"].as_array().unwrap().len(), 6);
+    let out = detach(&[
+        "atlas",
+        "--scene-file",
+        f,
+        "--out",
+        dir.to_str().unwrap(),
+        "--eps",
+        "0.02",
+        "--format",
+        "svg",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(dir.join("painleve-rod.svg").exists());
+    assert_bad_input(
+        &["pave", "--scene-file", f, "--variant", "printed"],
+        "one reading",
+    );
+    assert_bad_input(
+        &["pave", "--scene-file", f, "--param", "zz=1"],
+        "unknown parameter `zz`",
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+const GOOD: &str = r#"
+name = "rod"
+[domain]
+theta = ["0", "pi/2"]
+theta_dot = ["-10", "10"]
+[parameters]
+g = "9.81"
+mu = "1.5"
+[definitions]
+V = "1 + 3*cos(theta)^2 - 3*mu*sin(theta)*cos(theta)"
+U = "sin(theta)*theta_dot^2 - g"
+[regions]
+omega = "U < 0"
+omega0 = "U/V < 0"
+"#;
+
+/// Each kind of bad file gets one line naming the file and the key (and the
+/// character in an expression), exit code 2, no panic.
+#[test]
+fn bad_scene_files_are_refused_clearly() {
+    assert!(FileScene::parse(GOOD, &[]).is_ok());
+    let dir = std::env::temp_dir().join(format!("detach-bad-scenes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cases: [(&str, String, &str); 16] = [
+        ("empty", String::new(), "missing field `name`"),
+        ("not-toml", "name = ".into(), "line 1"),
+        (
+            "syntax",
+            GOOD.replace("U/V < 0", "U/(V < 0"),
+            "regions.omega0",
+        ),
+        (
+            "unknown-name",
+            GOOD.replace("U < 0", "Q < 0"),
+            "unknown name `Q`",
+        ),
+        (
+            "unknown-fn",
+            GOOD.replace("cos(theta)^2", "cosh(theta)^2"),
+            "cosh",
+        ),
+        ("cycle", GOOD.replace("- g\"", "- g + U\""), "cycle"),
+        (
+            "no-region",
+            GOOD.replace("omega0 = \"U/V < 0\"", ""),
+            "omega0",
+        ),
+        (
+            "no-domain",
+            GOOD.replace("theta_dot = [\"-10\", \"10\"]", ""),
+            "theta_dot",
+        ),
+        ("no-comparison", GOOD.replace("U < 0", "U"), "regions.omega"),
+        (
+            "bad-number",
+            GOOD.replace("\"9.81\"", "\"9,81\""),
+            "parameters.g",
+        ),
+        (
+            "float-number",
+            GOOD.replace("\"9.81\"", "9.81"),
+            "parameters.g",
+        ),
+        (
+            "inverted",
+            GOOD.replace("[\"-10\", \"10\"]", "[\"10\", \"-10\"]"),
+            "domain.theta_dot",
+        ),
+        (
+            "too-long",
+            GOOD.replace("U/V < 0", &format!("U/V + {}0 < 0", "0*".repeat(5000))),
+            "longer than 10000",
+        ),
+        (
+            "reserved",
+            GOOD.replace("\nV = ", "\nw = ").replace("U/V", "U/w"),
+            "reserved",
+        ),
+        (
+            "bad-name",
+            GOOD.replace("name = \"rod\"", "name = \"Rod\""),
+            "`name`",
+        ),
+        (
+            "not-quadratic",
+            GOOD.replace("U < 0", "U/theta_dot < 0"),
+            "degree",
+        ),
+    ];
+    for (stem, text, needle) in cases {
+        let path = dir.join(format!("{stem}.toml"));
+        std::fs::write(&path, &text).unwrap();
+        let p = path.to_str().unwrap();
+        let err = assert_bad_input(&["pave", "--scene-file", p, "--eps", "0.1"], needle);
+        assert!(err.contains(p), "{stem}: file not named in {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{stem}: {err}");
+    }
+    let missing = dir.join("missing.toml");
+    assert_bad_input(
+        &["area", "--scene-file", missing.to_str().unwrap()],
+        "cannot read",
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Random edits of a good file (deleted, repeated and replaced characters)
+/// are either read or refused with a message: never a panic.
+#[test]
+fn edited_scene_files_never_panic() {
+    let mut rng = Rng(0x5eed_f11e);
+    let bytes = GOOD.as_bytes();
+    let alphabet = b"()<>=+-*/^.,\"[]#\n 0123456789abcdefgtuvwxyz_";
+    let mut refused = 0;
+    for _ in 0..600 {
+        let mut b = bytes.to_vec();
+        for _ in 0..1 + (rng.unit() * 4.0) as usize {
+            let i = (rng.unit() * b.len() as f64) as usize % b.len();
+            match (rng.unit() * 3.0) as u32 {
+                0 => {
+                    b.remove(i);
+                }
+                1 => b.insert(i, b[i]),
+                _ => b[i] = alphabet[(rng.unit() * alphabet.len() as f64) as usize],
+            }
+        }
+        let text = String::from_utf8_lossy(&b).into_owned();
+        let r = std::panic::catch_unwind(|| FileScene::parse(&text, &[]));
+        match r {
+            Ok(Ok(_)) => {}
+            Ok(Err(msg)) => {
+                refused += 1;
+                assert!(!msg.is_empty() && !msg.contains('\n'), "{msg:?}");
+            }
+            Err(_) => panic!("panicked on {text:?}"),
+        }
+    }
+    assert!(refused > 100, "only {refused} of 600 edits refused");
+}
