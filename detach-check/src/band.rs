@@ -86,9 +86,7 @@ pub fn check(root: &Obj) -> Result<Outcome, Unreadable> {
     let mut checked = 0u64;
     let mut verdict = Verdict::Valid;
     for (k, cell) in cells.iter().enumerate() {
-        if let Err(e) = verify_cell(cell, |kappa| {
-            compile(&cell.alpha, kappa).map_err(|e| e.0)
-        }) {
+        if let Err(e) = verify_cell(cell, |kappa| compile(&cell.alpha, kappa).map_err(|e| e.0)) {
             verdict = Verdict::Invalid(format!(
                 "cell {} (alpha in [{}, {}]): {e}",
                 k + 1,
