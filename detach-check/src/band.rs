@@ -5,17 +5,18 @@
 use inari::Interval;
 
 use super::encoding::{decimal_enclosure, parse_hex_f64};
-use super::eval::{continuous, show};
+use super::eval::{continuous, parameter_enclosure, show};
 use super::json::{arr_of, as_obj, decls, obj_of, opt_str, pair_of, str_of, Obj};
 use super::pieces::{self, Kind};
 use super::roots::OneVar;
 use super::{Outcome, Unreadable, Verdict};
 
-/// One claimed cell: the alpha box and the kappa bounds (decimal text).
+/// One claimed cell: the alpha box and the kappa bounds (decimal text, with
+/// their enclosures).
 struct Cell {
     alpha: (String, String),
-    lower: String,
-    upper: String,
+    lower: (String, Interval),
+    upper: (String, Interval),
     points: Vec<f64>,
     pieces: Vec<pieces::Piece>,
 }
@@ -45,6 +46,13 @@ pub fn check(root: &Obj) -> Result<Outcome, Unreadable> {
         let c = as_obj(c, "a cell")?;
         let w = as_obj(w, "a cell's evidence")?;
         let (a0, a1) = pair_of(c.get("alpha").unwrap_or(&serde_json::Value::Null), "alpha")?;
+        // A parameter box: decimal ends (`-inf`, `inf` allowed), not inverted.
+        parameter_enclosure(&format!("[{a0},{a1}]")).map_err(|e| at(format!("alpha: {e}")))?;
+        let bound = |key: &str| -> Result<(String, Interval), Unreadable> {
+            let text = str_of(c, key)?;
+            let x = decimal_enclosure(text).map_err(|e| at(format!("{key}: {e}")))?;
+            Ok((text.to_string(), x))
+        };
         let points = arr_of(w, "points")?
             .iter()
             .map(|p| {
@@ -55,19 +63,21 @@ pub fn check(root: &Obj) -> Result<Outcome, Unreadable> {
             .collect::<Result<Vec<_>, _>>()?;
         cells.push(Cell {
             alpha: (a0.to_string(), a1.to_string()),
-            lower: str_of(c, "lower")?.to_string(),
-            upper: str_of(c, "upper")?.to_string(),
+            lower: bound("lower")?,
+            upper: bound("upper")?,
             points,
             pieces: pieces::parse(arr_of(w, "pieces")?, "piece").map_err(|e| at(e.0))?,
         });
     }
-    // Every cell compiles (names, grammar) before any verdict.
     let compile = |alpha: &(String, String), kappa: String| {
         let mut p = params.clone();
         p.push(("alpha".into(), format!("[{},{}]", alpha.0, alpha.1)));
         p.push(("kappa".into(), kappa));
         OneVar::new(variable, &p, &defs, function).map(|(f, _)| f)
     };
+    // The function compiles (names, grammar) before any verdict, even with
+    // no cells; the boxes of each cell are then known to be well formed.
+    compile(&("0".into(), "0".into()), "0".into())?;
     let claim = format!(
         "critical band {}: {} alpha boxes",
         opt_str(st, "equation")?.unwrap_or(""),
@@ -76,9 +86,7 @@ pub fn check(root: &Obj) -> Result<Outcome, Unreadable> {
     let mut checked = 0u64;
     let mut verdict = Verdict::Valid;
     for (k, cell) in cells.iter().enumerate() {
-        let below = compile(&cell.alpha, format!("[0,{}]", cell.lower))?;
-        let above = compile(&cell.alpha, format!("[{},inf]", cell.upper))?;
-        if let Err(e) = verify_cell(&below, &above, cell) {
+        if let Err(e) = verify_cell(cell, |kappa| compile(&cell.alpha, kappa).map_err(|e| e.0)) {
             verdict = Verdict::Invalid(format!(
                 "cell {} (alpha in [{}, {}]): {e}",
                 k + 1,
@@ -97,15 +105,19 @@ pub fn check(root: &Obj) -> Result<Outcome, Unreadable> {
     })
 }
 
-fn verify_cell(below: &OneVar, above: &OneVar, cell: &Cell) -> Result<(), String> {
-    let lower = decimal_enclosure(&cell.lower)?;
-    let upper = decimal_enclosure(&cell.upper)?;
+/// Checks one cell; `compile` gives P with `kappa` the box it is passed.
+fn verify_cell(
+    cell: &Cell,
+    compile: impl Fn(String) -> Result<OneVar, String>,
+) -> Result<(), String> {
+    let ((lower_text, lower), (upper_text, upper)) = (&cell.lower, &cell.upper);
     if lower.inf() < 0.0 || lower.sup() > upper.inf() {
         return Err(format!(
-            "need 0 ≤ lower ≤ upper, got {} and {}",
-            cell.lower, cell.upper
+            "need 0 ≤ lower ≤ upper, got {lower_text} and {upper_text}"
         ));
     }
+    let below = compile(format!("[0,{lower_text}]"))?;
+    let above = compile(format!("[{upper_text},inf]"))?;
     // (i) Signs +, −, + at x0 < x1 < x2 with x0 ≥ 0, f continuous on [x0, x2]:
     // two zeros in (x0, x2) ⊂ (0, ∞) for every alpha and kappa ∈ [0, lower].
     // lower = 0 claims nothing and needs no points.
@@ -152,7 +164,7 @@ fn verify_cell(below: &OneVar, above: &OneVar, cell: &Cell) -> Result<(), String
                 k + 1
             ));
         }
-        pieces::check_piece(above, k + 1, q, false)?;
+        pieces::check_piece(&above, k + 1, q, false)?;
     }
     Ok(())
 }

@@ -171,8 +171,8 @@ pub fn parse_hex_f64(s: &str, allow_inf: bool) -> Result<f64, String> {
 }
 
 /// Checks `s` against the decimal-text grammar
-/// `[+-]digits[.digits][(e|E)[+-]digits]` (at least one significand digit)
-/// and the size limits.
+/// `[+-](digits[.[digits]] | .digits)[(e|E)[+-]digits]` (at least one
+/// digit before or after the point) and the size limits.
 fn validate_decimal(s: &str) -> Result<(), String> {
     let err = |why: &str| format!("{s:?} is not decimal text ({why})");
     if s.len() > MAX_DECIMAL_LEN {

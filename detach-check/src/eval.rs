@@ -521,11 +521,11 @@ pub fn parameter_enclosure(text: &str) -> Result<Interval, String> {
     let (a, b) = inner
         .split_once(',')
         .ok_or_else(|| format!("parameter box {text:?} must be [lo,hi]"))?;
-    let lo = match a.trim() {
+    let lo = match a {
         "-inf" => f64::NEG_INFINITY,
         t => decimal_enclosure(t)?.inf(),
     };
-    let hi = match b.trim() {
+    let hi = match b {
         "inf" => f64::INFINITY,
         t => decimal_enclosure(t)?.sup(),
     };

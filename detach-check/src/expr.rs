@@ -9,6 +9,7 @@
 //! unary   := "-" unary | power
 //! power   := atom ("^" integer)?
 //! atom    := number | name | name "(" expr ")" | "(" expr ")"
+//! number  := (digits ["." [digits]] | "." digits) [("e"|"E") ["+"|"-"] digits]
 //! ```
 
 use inari::DecInterval;
@@ -58,13 +59,16 @@ fn lex(s: &str) -> Result<Vec<Tok<'_>>, String> {
             b'^' => Tok::Caret,
             b'(' => Tok::LParen,
             b')' => Tok::RParen,
-            b'0'..=b'9' => {
+            // A number: digits with an optional point, at least one digit
+            // before or after it (`1`, `1.5`, `1.`, `.5`), as decimal text.
+            b'0'..=b'9' | b'.' => {
                 let start = i;
                 i = digits(i);
+                let before = i - start;
                 if i < b.len() && b[i] == b'.' {
                     let j = digits(i + 1);
-                    if j == i + 1 {
-                        return Err(format!("digits expected after '.' at {}", i + 1));
+                    if before == 0 && j == i + 1 {
+                        return Err(format!("digits expected before or after '.' at {i}"));
                     }
                     i = j;
                 }

@@ -33,6 +33,8 @@ fn precedence_and_associativity() {
     assert_eq!(at("t^0", 3.0, 0.0), iv(1.0, 1.0));
     assert_eq!(at("w^3", -2.0, -2.0), iv(-8.0, -8.0));
     assert_eq!(at("1e2 + 2.5E-1", 0.0, 0.0), iv(100.25, 100.25));
+    // Literals follow the decimal-text grammar: a digit before or after the point.
+    assert_eq!(at("1. + .5 + 5.e-1", 0.0, 0.0), iv(2.0, 2.0));
     assert_eq!(at("abs(t - w)", 1.0, 4.0), iv(3.0, 3.0));
 }
 
@@ -48,8 +50,8 @@ fn parse_errors() {
         "t^1.5",
         "t^w",
         "2t",
-        "1.",
-        ".5",
+        ".",
+        "1.2.3",
         "sin t",
         "sin()",
         "foo(t)",
