@@ -282,11 +282,7 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         Some(_) => format!(" ({})", info.variant),
         None => String::new(),
     };
-    let title = format!(
-        "{}{reading}   {}",
-        info.scene.name(),
-        params.join("  ")
-    );
+    let title = format!("{}{reading}   {}", info.scene.name(), params.join("  "));
     let n = paving.leaves.len();
     let window = info
         .window
