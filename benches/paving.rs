@@ -114,8 +114,42 @@ fn one_box() {
     }
 }
 
+/// Each paper scene paved from its built-in formulas and from its scene
+/// file (`scenes/`, compiled to a tape), per method, derived reading,
+/// ε = 1e-4: the ratio is the tape's cost.
+fn scene_files() {
+    let g = Group::new("scene-file").samples(5);
+    for id in SceneId::ALL {
+        let path = format!("{}/scenes/{}.toml", env!("CARGO_MANIFEST_DIR"), id.name());
+        let file = Scene::from_file(path.as_ref(), &[])
+            .expect("shipped file")
+            .0;
+        let built_in = Scene::default_of(id);
+        for m in Method::ALL {
+            for (source, s) in [("built-in", &built_in), ("file", &file)] {
+                let d = s.domain();
+                g.bench(&format!("{}/{m}/{source}", id.name()), || {
+                    pave_scene_method(
+                        s,
+                        Variant::Derived,
+                        &d,
+                        PaveOptions {
+                            eps: 1e-4,
+                            max_boxes: 10_000_000,
+                        },
+                        &MethodOptions::new(m),
+                        |_, _, _| {},
+                    )
+                    .unwrap()
+                });
+            }
+        }
+    }
+}
+
 fn main() {
     paving();
     methods();
     one_box();
+    scene_files();
 }

@@ -744,6 +744,38 @@ pub struct Program {
     /// Per entry: its degree in θ̇ when it is a polynomial in θ̇ with θ-only
     /// coefficients (written so: see [`Program::theta_dot_degree`]).
     degree: Vec<Option<u32>>,
+    /// Per entry: whether it is half of a `sin`/`cos` pair on one operand.
+    fused: Vec<Fused>,
+}
+
+/// `sin(a)` and `cos(a)` both on the tape: the first of the two computes
+/// both slots, the second is skipped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Fused {
+    Alone,
+    SinCos { a: u32, sin: u32, cos: u32 },
+    Done,
+}
+
+fn fuse_sin_cos(tape: &[Node]) -> Vec<Fused> {
+    let mut fused = vec![Fused::Alone; tape.len()];
+    let mut sin_of: HashMap<u32, u32> = HashMap::new();
+    for (j, node) in tape.iter().enumerate() {
+        if let Node::Call(Func::Sin, a) = *node {
+            sin_of.insert(a, j as u32);
+        }
+    }
+    for (j, node) in tape.iter().enumerate() {
+        if let Node::Call(Func::Cos, a) = *node {
+            if let Some(&sin) = sin_of.get(&a) {
+                let cos = j as u32;
+                let (first, second) = (sin.min(cos), sin.max(cos));
+                fused[first as usize] = Fused::SinCos { a, sin, cos };
+                fused[second as usize] = Fused::Done;
+            }
+        }
+    }
+    fused
 }
 
 impl Program {
@@ -776,11 +808,13 @@ impl Program {
             on_dot.push(o);
             degree.push(d);
         }
+        let fused = fuse_sin_cos(&tape);
         Program {
             tape,
             consts,
             const_text,
             outputs,
+            fused,
             on_dot,
             degree,
         }
@@ -864,16 +898,64 @@ impl Program {
 
     /// Evaluates every output at (θ, θ̇) into `out` (length [`Self::outputs`]).
     pub fn eval<T: Scalar>(&self, theta: T, theta_dot: T, out: &mut [T]) {
-        let mut slots = Vec::with_capacity(self.tape.len());
-        self.eval_with(theta, theta_dot, &mut slots, out);
+        self.eval_angle(theta, None, theta_dot, out);
+    }
+
+    /// [`Program::eval`] with `(sin θ, cos θ)` already computed (as
+    /// [`Scalar::sin_cos`] gives them): `sin(theta)` and `cos(theta)` on the
+    /// tape take them instead of computing them again.
+    pub fn eval_angle<T: Scalar>(
+        &self,
+        theta: T,
+        trig: Option<(T, T)>,
+        theta_dot: T,
+        out: &mut [T],
+    ) {
+        // Small tapes (every shipped scene's) evaluate without allocating.
+        const STACK: usize = 96;
+        if self.tape.len() <= STACK {
+            let mut slots = [T::int(0); STACK];
+            self.eval_into(theta, trig, theta_dot, &mut slots[..self.tape.len()], out);
+        } else {
+            let mut slots = vec![T::int(0); self.tape.len()];
+            self.eval_into(theta, trig, theta_dot, &mut slots, out);
+        }
     }
 
     /// [`Self::eval`] with a caller-owned buffer for the tape values, reused
     /// across calls.
     pub fn eval_with<T: Scalar>(&self, theta: T, theta_dot: T, slots: &mut Vec<T>, out: &mut [T]) {
-        assert_eq!(out.len(), self.outputs.len(), "one slot per output");
         slots.clear();
-        for &node in &self.tape {
+        slots.resize(self.tape.len(), T::int(0));
+        self.eval_into(theta, None, theta_dot, slots, out);
+    }
+
+    /// [`Program::eval`] into `slots` (one per tape entry). `sin` and `cos`
+    /// of the same operand are computed together ([`Scalar::sin_cos`]: the
+    /// same enclosures, one kernel call, and duals reuse both).
+    fn eval_into<T: Scalar>(
+        &self,
+        theta: T,
+        trig: Option<(T, T)>,
+        theta_dot: T,
+        slots: &mut [T],
+        out: &mut [T],
+    ) {
+        assert_eq!(out.len(), self.outputs.len(), "one slot per output");
+        for (j, &node) in self.tape.iter().enumerate() {
+            match self.fused[j] {
+                Fused::Alone => {}
+                Fused::Done => continue,
+                Fused::SinCos { a, sin, cos } => {
+                    let (sv, cv) = match (trig, self.tape[a as usize]) {
+                        (Some(sc), Node::Theta) => sc,
+                        _ => slots[a as usize].sin_cos(),
+                    };
+                    slots[sin as usize] = sv;
+                    slots[cos as usize] = cv;
+                    continue;
+                }
+            }
             // Operands are earlier entries, already computed.
             let s = |a: u32| slots[a as usize];
             let v = match node {
@@ -887,6 +969,16 @@ impl Program {
                 Node::Div(a, b) => s(a) / s(b),
                 Node::Sqr(a) => s(a).sqr(),
                 Node::Pown(a, n) => s(a).pown(n),
+                Node::Call(f @ (Func::Sin | Func::Cos), a)
+                    if trig.is_some() && self.tape[a as usize] == Node::Theta =>
+                {
+                    let (sv, cv) = trig.expect("checked");
+                    if f == Func::Sin {
+                        sv
+                    } else {
+                        cv
+                    }
+                }
                 Node::Call(f, a) => {
                     let x = s(a);
                     match f {
@@ -899,7 +991,7 @@ impl Program {
                     }
                 }
             };
-            slots.push(v);
+            slots[j] = v;
         }
         for (o, &i) in out.iter_mut().zip(&self.outputs) {
             *o = slots[i as usize];
@@ -966,10 +1058,21 @@ impl Program {
     /// multiplied, so `A*theta_dot^2 + B*theta_dot + C` gives the nodes A, B,
     /// C themselves. A missing coefficient is the constant 0.
     pub fn quadratic(&self, i: usize) -> Option<Program> {
-        let out = *self.outputs.get(i)? as usize;
-        if self.degree[out]? > 2 {
-            return None;
+        self.quadratics(&[i])
+    }
+
+    /// [`Program::quadratic`] of several outputs in one program (outputs
+    /// `c2, c1, c0` of each in turn), so that they share subexpressions.
+    pub fn quadratics(&self, which: &[usize]) -> Option<Program> {
+        let mut outs = Vec::with_capacity(which.len());
+        for &i in which {
+            let out = *self.outputs.get(i)? as usize;
+            if self.degree[out]? > 2 {
+                return None;
+            }
+            outs.push(out);
         }
+        let out = *outs.iter().max()?;
         let mut dag = Dag::default();
         let mut id: Vec<u32> = Vec::with_capacity(out + 1);
         let mut poly: Vec<Option<Poly>> = Vec::with_capacity(out + 1);
@@ -1021,8 +1124,11 @@ impl Program {
             };
             poly.push(q);
         }
-        let [c0, c1, c2] = poly[out]?;
-        let coefs = [c2, c1, c0].map(|c| dag.coef_node(c));
+        let mut coefs = Vec::with_capacity(3 * outs.len());
+        for o in outs {
+            let [c0, c1, c2] = poly[o]?;
+            coefs.extend([c2, c1, c0].map(|c| dag.coef_node(c)));
+        }
         Some(dag.program(&coefs))
     }
 }

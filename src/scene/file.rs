@@ -8,7 +8,7 @@
 //! unknown one, or holds a bad name, number, domain, region or expression.
 
 use super::expr::{ExprError, Program};
-use super::{Domain, Quadratic};
+use super::{Angle, Domain, Quadratic};
 use crate::number::param::{enclose_decimal, enclose_window_end, ParamSet, ParamSpec, Sign};
 use inari::Interval;
 use serde::Deserialize;
@@ -101,8 +101,8 @@ pub struct FileScene {
     pub definitions: Vec<(String, String)>,
     /// Ω and Ω₀.
     pub regions: [Region; 2],
-    /// `c₂, c₁, c₀` of each region as θ-only programs.
-    coefficients: [Program; 2],
+    /// `c₂, c₁, c₀` of Ω, then of Ω₀: one θ-only program.
+    coefficients: Program,
     /// θ̈ for the phase portrait, if given.
     dynamics: Option<Program>,
 }
@@ -178,14 +178,17 @@ impl FileScene {
             ("regions.omega".into(), regions[0].expr.clone()),
             ("regions.omega0".into(), regions[1].expr.clone()),
         ])?;
-        let coefficients = [0, 1].map(|i| program.quadratic(i));
-        let [Some(c_omega), Some(c_omega0)] = coefficients else {
-            let i = coefficients.iter().position(Option::is_none).unwrap_or(0);
-            return Err(format!(
-                "`regions.{}`: not a polynomial of degree at most 2 in theta_dot with \
+        let not_quadratic = (0..2).find(|&i| program.quadratic(i).is_none());
+        let coefficients = match (not_quadratic, program.quadratics(&[0, 1])) {
+            (None, Some(c)) => c,
+            (i, _) => {
+                let i = i.unwrap_or(0);
+                return Err(format!(
+                    "`regions.{}`: not a polynomial of degree at most 2 in theta_dot with \
                  coefficients in theta (division only by expressions of theta)",
-                ["omega", "omega0"][i]
-            ));
+                    ["omega", "omega0"][i]
+                ));
+            }
         };
         let dynamics = match raw.dynamics {
             Some(d) => Some(compile(&[("dynamics.theta_ddot".into(), d.theta_ddot)])?),
@@ -200,21 +203,20 @@ impl FileScene {
             params,
             definitions,
             regions,
-            coefficients: [c_omega, c_omega0],
+            coefficients,
             dynamics,
         })
     }
 
-    /// Ω and Ω₀ as `c₂θ̇² + c₁θ̇ + c₀` at θ.
-    pub fn quadratics<T: crate::number::scalar::Scalar>(&self, theta: T) -> [Quadratic<T>; 2] {
-        self.coefficients.each_ref().map(|p| {
-            let mut c = [T::int(0); 3];
-            p.eval(theta, T::int(0), &mut c);
-            Quadratic {
-                c2: c[0],
-                c1: c[1],
-                c0: c[2],
-            }
+    /// Ω and Ω₀ as `c₂θ̇² + c₁θ̇ + c₀` at θ (its sine and cosine reused).
+    pub fn quadratics<T: crate::number::scalar::Scalar>(&self, a: &Angle<T>) -> [Quadratic<T>; 2] {
+        let mut c = [T::int(0); 6];
+        self.coefficients
+            .eval_angle(a.theta, Some((a.sin, a.cos)), T::int(0), &mut c);
+        [0, 3].map(|k| Quadratic {
+            c2: c[k],
+            c1: c[k + 1],
+            c0: c[k + 2],
         })
     }
 
@@ -233,12 +235,8 @@ impl FileScene {
         {
             prefix.push('q');
         }
-        let mut definitions = Vec::new();
-        let exprs = [0, 1].map(|i| {
-            let (defs, c) = self.coefficients[i].render(&format!("{prefix}{}", ["o", "n"][i]));
-            definitions.extend(defs);
-            format!("{}*w^2 + {}*w + {}", c[0], c[1], c[2])
-        });
+        let (definitions, c) = self.coefficients.render(&prefix);
+        let exprs = [0, 3].map(|k| format!("{}*w^2 + {}*w + {}", c[k], c[k + 1], c[k + 2]));
         (definitions, exprs)
     }
 

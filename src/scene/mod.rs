@@ -485,7 +485,7 @@ impl Scene {
 
     pub fn constraints<T: Scalar>(&self, v: Variant, a: &Angle<T>) -> Constraints<T> {
         with_model!(self, m => m.constraints(v, a), f => {
-            let [omega, omega0] = f.quadratics(a.theta);
+            let [omega, omega0] = f.quadratics(a);
             Constraints { omega, omega0 }
         })
     }
