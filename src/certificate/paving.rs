@@ -196,19 +196,18 @@ fn statement_formulas(scene: &Scene, variant: Variant) -> StatementFormulas {
     match (scene, scene.id()) {
         (Scene::File(f), _) => {
             let (definitions, [omega, omega0]) = f.proof_text();
+            let form = if f.is_quadratic() {
+                "scene file, as c₂θ̇² + c₁θ̇ + c₀"
+            } else {
+                "scene file"
+            };
             StatementFormulas {
                 definitions,
                 omega,
                 omega0,
                 meaning: [
-                    format!(
-                        "Ω: {} (scene file, as c₂θ̇² + c₁θ̇ + c₀)",
-                        f.regions[0].inequality
-                    ),
-                    format!(
-                        "Ω₀: {} (scene file, as c₂θ̇² + c₁θ̇ + c₀)",
-                        f.regions[1].inequality
-                    ),
+                    format!("Ω: {} ({form})", f.regions[0].inequality),
+                    format!("Ω₀: {} ({form})", f.regions[1].inequality),
                 ],
             }
         }

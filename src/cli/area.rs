@@ -2,8 +2,9 @@
 
 use super::{CliError, CliResult};
 use detach::number::param::parse_assignment;
-use detach::quadrature::{cell_area, AreaOptions, CELLS};
-use detach::scene::{Variant, REGION_LABELS, REGION_NAMES};
+use detach::pave::{pave_scene, standard_cells, PaveOptions};
+use detach::quadrature::{cell_area, AreaEnclosure, AreaOptions, CELLS};
+use detach::scene::{Scene, Variant, REGION_LABELS, REGION_NAMES};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -60,6 +61,9 @@ struct AreaReport {
     /// Target width of each enclosure.
     tol: f64,
     regions: Vec<RegionArea>,
+    /// Why the enclosures are a paving's bounds, when they are.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    note: Option<String>,
 }
 
 pub fn run_area(args: &AreaArgs) -> CliResult {
@@ -100,11 +104,41 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
         max_pieces: args.max_pieces,
     };
     let domain = scene.domain();
+    // A scene file with a region of another form than degree ≤ 2 in θ̇:
+    // the quadrature does not apply; a paving's bounds stand in.
+    let paved = match &scene {
+        Scene::File(f) if !f.is_quadratic() => {
+            let eps = 1.0 / 1024.0;
+            let p = pave_scene(
+                &scene,
+                args.variant,
+                PaveOptions {
+                    eps,
+                    ..PaveOptions::default()
+                },
+                |_, _, _| {},
+            )
+            .map_err(|e| CliError::runtime(format!("paving failed: {e:?}")))?;
+            let why = format!(
+                "region `{}` is not of degree at most 2 in theta_dot: bounds from a paving at eps = 1/1024, not certified to the target width",
+                f.not_quadratic().unwrap_or("omega")
+            );
+            Some((p, why))
+        }
+        _ => None,
+    };
     let mut regions = Vec::new();
     for i in wanted {
         let start = Instant::now();
-        let e =
-            cell_area(&scene, args.variant, &domain, CELLS[i], opts).map_err(CliError::usage)?;
+        let e = match &paved {
+            Some((p, _)) => {
+                let b = p.area_bounds(&standard_cells()[i], domain.uncovered_area_sup());
+                AreaEnclosure::bounds(b.inner_area, b.outer_area, p.leaves.len())
+            }
+            None => {
+                cell_area(&scene, args.variant, &domain, CELLS[i], opts).map_err(CliError::usage)?
+            }
+        };
         regions.push(RegionArea {
             name: REGION_NAMES[i],
             label: REGION_LABELS[i],
@@ -129,6 +163,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
             .collect(),
         tol,
         regions,
+        note: paved.map(|(_, why)| why),
     };
     if args.json {
         outln!(
@@ -176,6 +211,9 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
             r.elapsed_s,
             p = places
         );
+    }
+    if let Some(why) = &report.note {
+        eprintln!("detach: note: {why}");
     }
     if report.regions.iter().any(|r| !r.target_met) {
         eprintln!(

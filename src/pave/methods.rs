@@ -150,6 +150,15 @@ pub fn pave_with<S: ConstraintSet>(
         Method::Natural => engine::pave(&Natural { scope, grid }, root, opts, names, progress),
         Method::Centred => engine::pave(&Centred { scope, grid }, root, opts, names, progress),
         Method::Contract => engine::pave(&Contract { scope, grid }, root, opts, names, progress),
+        // Slices solve each θ-slab's quadratics in θ̇: a set without
+        // coefficients is bisected as `natural` does.
+        Method::Slices
+            if set
+                .steer_at(0.5 * (root.theta[0] + root.theta[1]))
+                .is_none() =>
+        {
+            engine::pave(&Natural { scope, grid }, root, opts, names, progress)
+        }
         Method::Slices => {
             let method = Slices::new(scope, root, opts.eps);
             engine::pave(&method, root, opts, names, progress)

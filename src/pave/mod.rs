@@ -290,6 +290,30 @@ impl SlabEnds {
     }
 }
 
+/// Ω and Ω₀ of a scene file whose regions are not both of degree ≤ 2 in
+/// θ̇: each box evaluates the expressions as written (natural labels; the
+/// quadratic methods then refine by bisection).
+pub struct FileRegions<'a> {
+    pub file: &'a crate::scene::FileScene,
+}
+
+impl ConstraintSet for FileRegions<'_> {
+    type Slab = DecInterval;
+    fn names(&self) -> Vec<String> {
+        vec!["omega".into(), "omega0".into()]
+    }
+    fn slab(&self, theta: Interval) -> DecInterval {
+        DecInterval::new(theta)
+    }
+    fn enclose(&self, theta: &DecInterval, theta_dot: Interval) -> PerConstraint<DecInterval> {
+        let r = self.file.regions_at(*theta, DecInterval::new(theta_dot));
+        PerConstraint::new(&r).expect("two constraints")
+    }
+    fn same_as(&self) -> Vec<Option<usize>> {
+        vec![None, self.file.omega0_is_omega().then_some(0)]
+    }
+}
+
 /// Ω and Ω₀ of a scene, in one reading of the paper.
 pub struct SceneConstraints<'a> {
     pub scene: &'a Scene,
@@ -554,12 +578,17 @@ pub fn pave_scene_in(
     opts: PaveOptions,
     progress: impl FnMut(u32, usize, usize),
 ) -> Result<Paving, PaveError> {
-    pave(
-        &SceneConstraints { scene, variant },
-        root_box(domain)?,
-        opts,
-        progress,
-    )
+    match scene {
+        Scene::File(file) if !file.is_quadratic() => {
+            pave(&FileRegions { file }, root_box(domain)?, opts, progress)
+        }
+        _ => pave(
+            &SceneConstraints { scene, variant },
+            root_box(domain)?,
+            opts,
+            progress,
+        ),
+    }
 }
 
 /// The largest double box inside a non-empty domain: where pavings start.
@@ -583,11 +612,16 @@ pub fn pave_scene_method(
     mo: &MethodOptions,
     progress: impl FnMut(u32, usize, usize),
 ) -> Result<Paving, PaveError> {
-    pave_with(
-        &SceneConstraints { scene, variant },
-        root_box(domain)?,
-        opts,
-        mo,
-        progress,
-    )
+    match scene {
+        Scene::File(file) if !file.is_quadratic() => {
+            pave_with(&FileRegions { file }, root_box(domain)?, opts, mo, progress)
+        }
+        _ => pave_with(
+            &SceneConstraints { scene, variant },
+            root_box(domain)?,
+            opts,
+            mo,
+            progress,
+        ),
+    }
 }

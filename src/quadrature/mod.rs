@@ -67,6 +67,20 @@ pub struct AreaEnclosure {
 }
 
 impl AreaEnclosure {
+    /// An enclosure from other bounds (a paving's inner and outer areas),
+    /// `pieces` the leaves behind them.
+    pub fn bounds(inner: f64, outer: f64, pieces: usize) -> AreaEnclosure {
+        AreaEnclosure {
+            area: Interval::try_from((inner, outer)).unwrap_or(Interval::ENTIRE),
+            pieces,
+            undecided_pieces: 0,
+            rounds: 0,
+            proved_empty: false,
+        }
+    }
+}
+
+impl AreaEnclosure {
     pub fn width(&self) -> f64 {
         self.area.wid()
     }

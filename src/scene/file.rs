@@ -101,8 +101,11 @@ pub struct FileScene {
     pub definitions: Vec<(String, String)>,
     /// Ω and Ω₀.
     pub regions: [Region; 2],
-    /// `c₂, c₁, c₀` of Ω, then of Ω₀: one θ-only program.
-    coefficients: Program,
+    /// Ω and Ω₀ as written (their `expr` of `{expr < 0}`).
+    program: Program,
+    /// `c₂, c₁, c₀` of Ω, then of Ω₀, as one θ-only program, when both are
+    /// of degree ≤ 2 in θ̇ with θ-only coefficients.
+    coefficients: Option<Program>,
     /// θ̈ for the phase portrait, if given.
     dynamics: Option<Program>,
 }
@@ -178,18 +181,7 @@ impl FileScene {
             ("regions.omega".into(), regions[0].expr.clone()),
             ("regions.omega0".into(), regions[1].expr.clone()),
         ])?;
-        let not_quadratic = (0..2).find(|&i| program.quadratic(i).is_none());
-        let coefficients = match (not_quadratic, program.quadratics(&[0, 1])) {
-            (None, Some(c)) => c,
-            (i, _) => {
-                let i = i.unwrap_or(0);
-                return Err(format!(
-                    "`regions.{}`: not a polynomial of degree at most 2 in theta_dot with \
-                 coefficients in theta (division only by expressions of theta)",
-                    ["omega", "omega0"][i]
-                ));
-            }
-        };
+        let coefficients = program.quadratics(&[0, 1]);
         let dynamics = match raw.dynamics {
             Some(d) => Some(compile(&[("dynamics.theta_ddot".into(), d.theta_ddot)])?),
             None => None,
@@ -203,15 +195,20 @@ impl FileScene {
             params,
             definitions,
             regions,
+            program,
             coefficients,
             dynamics,
         })
     }
 
     /// Ω and Ω₀ as `c₂θ̇² + c₁θ̇ + c₀` at θ (its sine and cosine reused).
+    /// Panics for a scene that is not [`FileScene::is_quadratic`]: the
+    /// pavers and `area` go through [`FileScene::regions_at`] for those.
     pub fn quadratics<T: crate::number::scalar::Scalar>(&self, a: &Angle<T>) -> [Quadratic<T>; 2] {
         let mut c = [T::int(0); 6];
         self.coefficients
+            .as_ref()
+            .expect("regions of degree at most 2 in theta_dot")
             .eval_angle(a.theta, Some((a.sin, a.cos)), T::int(0), &mut c);
         [0, 3].map(|k| Quadratic {
             c2: c[k],
@@ -220,11 +217,33 @@ impl FileScene {
         })
     }
 
+    /// Both regions are of degree ≤ 2 in θ̇ with θ-only coefficients
+    /// (detected from the expressions): the quadratic pavers' shortcuts and
+    /// `area`'s quadrature apply.
+    pub fn is_quadratic(&self) -> bool {
+        self.coefficients.is_some()
+    }
+
+    /// A region not of degree ≤ 2 in θ̇, if there is one.
+    pub fn not_quadratic(&self) -> Option<&'static str> {
+        (0..2)
+            .find(|&i| self.program.theta_dot_degree(i).is_none_or(|d| d > 2))
+            .map(|i| ["omega", "omega0"][i])
+    }
+
+    /// `expr` of Ω and Ω₀ at a point or over a box, as written.
+    pub fn regions_at<T: crate::number::scalar::Scalar>(&self, theta: T, theta_dot: T) -> [T; 2] {
+        let mut out = [T::int(0); 2];
+        self.program.eval(theta, theta_dot, &mut out);
+        out
+    }
+
     /// Ω and Ω₀ as a proof file states them (`proofs/FORMAT.md`: variables
-    /// `t`, `w`): one definition per operation of the coefficient programs,
-    /// and each region as `c₂*w^2 + c₁*w + c₀` — the operations the paver
-    /// performs, so a checker's enclosures are at least as tight as the
-    /// paver's. Returns the definitions and the two expressions.
+    /// `t`, `w`): one definition per operation of the compiled program, and
+    /// each region as `c₂*w^2 + c₁*w + c₀` (as written, for regions of
+    /// another form) — the operations the paver performs, so a checker's
+    /// enclosures are at least as tight as the paver's. Returns the
+    /// definitions and the two expressions.
     pub fn proof_text(&self) -> (Vec<(String, String)>, [String; 2]) {
         let mut prefix = String::from("q");
         while self
@@ -235,9 +254,18 @@ impl FileScene {
         {
             prefix.push('q');
         }
-        let (definitions, c) = self.coefficients.render(&prefix);
-        let exprs = [0, 3].map(|k| format!("{}*w^2 + {}*w + {}", c[k], c[k + 1], c[k + 2]));
-        (definitions, exprs)
+        match &self.coefficients {
+            Some(q) => {
+                let (definitions, c) = q.render(&prefix);
+                let exprs = [0, 3].map(|k| format!("{}*w^2 + {}*w + {}", c[k], c[k + 1], c[k + 2]));
+                (definitions, exprs)
+            }
+            // The regions as written, evaluated as the paver does.
+            None => {
+                let (definitions, e) = self.program.render(&prefix);
+                (definitions, [e[0].clone(), e[1].clone()])
+            }
+        }
     }
 
     /// True when the two regions are the same text: Ω₀ = Ω by construction.
