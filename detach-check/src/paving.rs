@@ -267,12 +267,12 @@ fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
     }
     let nodes = u64_of(ev, "nodes")?;
     let body = base64_decode(str_of(ev, "body")?).map_err(|e| format!("body: {e}"))?;
-    let claim = format!(
-        "paving {}/{}: {} areas",
-        opt_str(st, "scene")?.unwrap_or("?"),
-        opt_str(st, "variant")?.unwrap_or("?"),
-        areas.len()
-    );
+    // `scene/variant`, or the scene alone (a scene file has no variant).
+    let scene = opt_str(st, "scene")?.unwrap_or("?");
+    let claim = match opt_str(st, "variant")? {
+        Some(v) => format!("paving {scene}/{v}: {} areas", areas.len()),
+        None => format!("paving {scene}: {} areas", areas.len()),
+    };
     Ok((
         Statement {
             prog,

@@ -2,7 +2,7 @@
 
 use super::{CliError, CliResult};
 use detach::number::param::parse_assignment;
-use detach::pave::{pave_scene, standard_cells, PaveOptions};
+use detach::pave::{pave_scene_method, standard_cells, Method, MethodOptions, PaveOptions, Paving};
 use detach::quadrature::{cell_area, AreaEnclosure, AreaOptions, CELLS};
 use detach::scene::{Scene, Variant, REGION_LABELS, REGION_NAMES};
 use serde::Serialize;
@@ -56,7 +56,9 @@ struct RegionArea {
 struct AreaReport {
     detach: serde_json::Value,
     scene: String,
-    variant: Variant,
+    /// The reading of the paper (absent for a scene file).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    variant: Option<Variant>,
     params: serde_json::Map<String, serde_json::Value>,
     /// Target width of each enclosure.
     tol: f64,
@@ -65,6 +67,10 @@ struct AreaReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     note: Option<String>,
 }
+
+/// Resolution of the paving whose bounds stand in for, or narrow, the
+/// quadrature's.
+const FALLBACK_EPS: f64 = 1.0 / 1024.0;
 
 pub fn run_area(args: &AreaArgs) -> CliResult {
     let overrides = args
@@ -104,39 +110,55 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
         max_pieces: args.max_pieces,
     };
     let domain = scene.domain();
-    // A scene file with a region of another form than degree ≤ 2 in θ̇:
-    // the quadrature does not apply; a paving's bounds stand in.
-    let paved = match &scene {
-        Scene::File(f) if !f.is_quadratic() => {
-            let eps = 1.0 / 1024.0;
-            let p = pave_scene(
-                &scene,
-                args.variant,
-                PaveOptions {
-                    eps,
-                    ..PaveOptions::default()
-                },
-                |_, _, _| {},
-            )
-            .map_err(|e| CliError::runtime(format!("paving failed: {e:?}")))?;
-            let why = format!(
-                "region `{}` is not of degree at most 2 in theta_dot: bounds from a paving at eps = 1/1024, not certified to the target width",
-                f.not_quadratic().unwrap_or("omega")
-            );
-            Some((p, why))
-        }
+    // A paving's bounds stand in where the quadrature does not apply (a
+    // scene file's region of another form than degree ≤ 2 in θ̇), and narrow
+    // its enclosure where it missed the target (a cell whose two boundaries
+    // coincide along a curve): both enclose the area.
+    let pave_once = || {
+        let opts = PaveOptions {
+            eps: FALLBACK_EPS,
+            ..PaveOptions::default()
+        };
+        // The default method: for a region not quadratic in θ̇ it bisects.
+        let mo = MethodOptions::new(Method::default());
+        pave_scene_method(&scene, args.variant, &domain, opts, &mo, |_, _, _| {})
+            .map_err(|e| CliError::runtime(format!("paving failed: {e:?}")))
+    };
+    let not_quadratic = match &scene {
+        Scene::File(f) => f.not_quadratic(),
         _ => None,
     };
+    let mut paving = None;
+    let mut notes = Vec::new();
+    if let Some(region) = not_quadratic {
+        paving = Some(pave_once()?);
+        notes.push(format!(
+            "region `{region}` is not of degree at most 2 in theta_dot: bounds from a paving at eps = 1/1024"
+        ));
+    }
     let mut regions = Vec::new();
     for i in wanted {
         let start = Instant::now();
-        let e = match &paved {
-            Some((p, _)) => {
-                let b = p.area_bounds(&standard_cells()[i], domain.uncovered_area_sup());
-                AreaEnclosure::bounds(b.inner_area, b.outer_area, p.leaves.len())
-            }
-            None => {
-                cell_area(&scene, args.variant, &domain, CELLS[i], opts).map_err(CliError::usage)?
+        let bounds = |p: &Paving| {
+            let b = p.area_bounds(&standard_cells()[i], domain.uncovered_area_sup());
+            AreaEnclosure::bounds(b.inner_area, b.outer_area, p.leaves.len())
+        };
+        let e = match (&paving, not_quadratic) {
+            (Some(p), Some(_)) => bounds(p),
+            _ => {
+                let e = cell_area(&scene, args.variant, &domain, CELLS[i], opts)
+                    .map_err(CliError::usage)?;
+                if e.width() <= tol {
+                    e
+                } else {
+                    if paving.is_none() {
+                        paving = Some(pave_once()?);
+                        notes.push(
+                            "where the quadrature missed its target (e.g. a cell whose two boundaries coincide along a curve), its enclosure is intersected with a paving's bounds at eps = 1/1024".into(),
+                        );
+                    }
+                    e.intersect(&bounds(paving.as_ref().expect("just paved")))
+                }
             }
         };
         regions.push(RegionArea {
@@ -155,7 +177,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
     let report = AreaReport {
         detach: detach::provenance(),
         scene: scene.name().to_string(),
-        variant: args.variant,
+        variant: scene.id().map(|_| args.variant),
         params: params
             .texts()
             .into_iter()
@@ -163,7 +185,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
             .collect(),
         tol,
         regions,
-        note: paved.map(|(_, why)| why),
+        note: (!notes.is_empty()).then(|| notes.join("; ")),
     };
     if args.json {
         outln!(
@@ -178,9 +200,9 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
         .map(|(k, v)| format!("{k}={}", v.as_str().unwrap_or("")))
         .collect();
     outln!(
-        "{} ({})  {}  certified areas, target width {:.0e}",
+        "{}{}  {}  certified areas, target width {:.0e}",
         report.scene,
-        report.variant,
+        super::reading(report.variant),
         params.join(" "),
         tol
     );

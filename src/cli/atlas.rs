@@ -181,7 +181,9 @@ pub struct PaveReport {
     /// `{"version", "commit"}` of the program that wrote it.
     detach: serde_json::Value,
     scene: String,
-    variant: Variant,
+    /// The reading of the paper (absent for a scene file).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    variant: Option<Variant>,
     params: serde_json::Map<String, serde_json::Value>,
     domain: DomainReport,
     /// The paving method (`--method`).
@@ -281,7 +283,7 @@ fn summarise(
     PaveReport {
         detach: detach::provenance(),
         scene: scene.name().to_string(),
-        variant,
+        variant: scene.id().map(|_| variant),
         params: params
             .texts()
             .into_iter()
@@ -384,9 +386,9 @@ fn print_table(r: &PaveReport) {
         .map(|(k, v)| format!("{k}={}", v.as_str().unwrap_or("")))
         .collect();
     outln!(
-        "{} ({})  {}{}  eps={:.3e}  {} leaves  {:.2} s  stop: {} ({})",
+        "{}{}  {}{}  eps={:.3e}  {} leaves  {:.2} s  stop: {} ({})",
         r.scene,
-        r.variant,
+        super::reading(r.variant),
         params.join(" "),
         if r.method == Method::default() {
             String::new()

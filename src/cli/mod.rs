@@ -139,6 +139,11 @@ pub fn method_parser() -> impl clap::builder::TypedValueParser<Value = detach::p
     PossibleValuesParser::new(Method::ALL.map(|m| m.name())).try_map(|s| s.parse::<Method>())
 }
 
+/// ` (derived)` after a paper scene's name; nothing for a scene file.
+pub fn reading(v: Option<detach::scene::Variant>) -> String {
+    v.map(|v| format!(" ({v})")).unwrap_or_default()
+}
+
 /// The scene of a single-scene command: a paper's scene by name, or a scene
 /// file.
 #[derive(clap::Args, Debug)]

@@ -78,6 +78,16 @@ impl AreaEnclosure {
             proved_empty: false,
         }
     }
+
+    /// The intersection with another enclosure of the same area (both
+    /// contain it, so the intersection is not empty unless one is wrong).
+    pub fn intersect(&self, other: &AreaEnclosure) -> AreaEnclosure {
+        let area = self.area.intersection(other.area);
+        AreaEnclosure {
+            area: if area.is_empty() { self.area } else { area },
+            ..*self
+        }
+    }
 }
 
 impl AreaEnclosure {

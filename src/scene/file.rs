@@ -137,6 +137,24 @@ impl FileScene {
 
     /// Compiles the text of a scene file (errors without the file name).
     pub fn parse(text: &str, overrides: &[(String, String)]) -> Result<FileScene, String> {
+        let table: toml::Table = toml::from_str(text).map_err(|e| toml_message(text, &e))?;
+        for path in [
+            "name",
+            "domain.theta",
+            "domain.theta_dot",
+            "regions.omega",
+            "regions.omega0",
+        ] {
+            let mut at = Some(&table);
+            let mut found = None;
+            for part in path.split('.') {
+                found = at.and_then(|t| t.get(part));
+                at = found.and_then(toml::Value::as_table);
+            }
+            if found.is_none() {
+                return Err(format!("`{path}`: missing"));
+            }
+        }
         let raw: Raw = toml::from_str(text).map_err(|e| toml_message(text, &e))?;
         if raw.name.is_empty()
             || !raw
@@ -166,16 +184,17 @@ impl FileScene {
             region("omega", &raw.regions.omega)?,
             region("omega0", &raw.regions.omega0)?,
         ];
-        let compile = |outputs: &[(String, String)]| {
-            Program::compile(&enclosed, &definitions, outputs).map_err(|e| expr_message(&e))
+        let compile_at = |outputs: &[(String, String)], shift: usize| {
+            Program::compile(&enclosed, &definitions, outputs).map_err(|e| expr_message(e, shift))
         };
+        let compile = |outputs: &[(String, String)]| compile_at(outputs, 0);
         // Each side on its own first, so that a position points into the text
-        // as written.
+        // as written (the right side starts after the comparison).
         for (key, r) in ["omega", "omega0"].iter().zip(&regions) {
             let (lhs, rhs, _) = split_inequality(&r.inequality).expect("checked by region");
             let k = format!("regions.{key}");
             compile(&[(k.clone(), lhs.to_string())])?;
-            compile(&[(k, rhs.to_string())])?;
+            compile_at(&[(k, rhs.to_string())], lhs.chars().count() + 1)?;
         }
         let program = compile(&[
             ("regions.omega".into(), regions[0].expr.clone()),
@@ -301,7 +320,13 @@ fn toml_message(text: &str, e: &toml::de::Error) -> String {
     }
 }
 
-fn expr_message(e: &ExprError) -> String {
+/// An expression error with its key as written in the file (a definition's
+/// under `definitions.`), its position moved by `shift` characters.
+fn expr_message(mut e: ExprError, shift: usize) -> String {
+    if !e.key.contains('.') {
+        e.key = format!("definitions.{}", e.key);
+    }
+    e.offset = e.offset.map(|n| n + shift);
     e.to_string()
 }
 
@@ -310,7 +335,12 @@ fn domain_ends(key: &str, text: &[String; 2]) -> Result<[Interval; 2], String> {
         if t.trim_start().starts_with('+') {
             return Err(format!("`{key}`: `{t}`: no leading `+`"));
         }
-        enclose_window_end(key, t).map_err(|e| format!("`{key}`: {e}"))
+        enclose_window_end(key, t).map_err(|e| {
+            // The message names the key itself, not a "parameter".
+            let e = e.to_string();
+            let prefix = format!("parameter `{key}`: ");
+            format!("`{key}`: {}", e.strip_prefix(&prefix).unwrap_or(&e))
+        })
     };
     let ends = [end(&text[0])?, end(&text[1])?];
     if ends[0].sup() < ends[1].inf() {

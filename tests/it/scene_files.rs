@@ -209,6 +209,20 @@ fn scene_file_runs_through_every_command() {
         "--json",
     ]);
     assert_eq!(a["regions"].as_array().unwrap().len(), 6);
+    // Ω∩Ω₀ of the rod: the two boundaries coincide where V > 0, so the
+    // quadrature's enclosure is narrowed by a paving's; the mpmath value
+    // (tests/data/painleve-reference.json, μ = 2) stays inside.
+    let cell = &a["regions"][2];
+    let want = num(&reference()["cases"][3]["areas"]["omega_and_omega0"]);
+    let (lo, hi) = (
+        cell["lower"].as_f64().unwrap(),
+        cell["upper"].as_f64().unwrap(),
+    );
+    assert!(
+        lo <= want && want <= hi && hi - lo < 0.5,
+        "[{lo}, {hi}] vs {want}"
+    );
+    assert!(a["note"].as_str().unwrap().contains("intersected"));
     let out = detach(&[
         "atlas",
         "--scene-file",
@@ -260,8 +274,13 @@ fn bad_scene_files_are_refused_clearly() {
     assert!(FileScene::parse(GOOD, &[]).is_ok());
     let dir = std::env::temp_dir().join(format!("detach-bad-scenes-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let cases: [(&str, String, &str); 15] = [
-        ("empty", String::new(), "missing field `name`"),
+    let cases: [(&str, String, &str); 16] = [
+        (
+            "position",
+            GOOD.replace("U < 0", "U <= 0"),
+            "`regions.omega` at character 4",
+        ),
+        ("empty", String::new(), "`name`: missing"),
         ("not-toml", "name = ".into(), "line 1"),
         (
             "syntax",
@@ -278,16 +297,20 @@ fn bad_scene_files_are_refused_clearly() {
             GOOD.replace("cos(theta)^2", "cosh(theta)^2"),
             "cosh",
         ),
-        ("cycle", GOOD.replace("- g\"", "- g + U\""), "cycle"),
+        (
+            "cycle",
+            GOOD.replace("- g\"", "- g + U\""),
+            "`definitions.U` at character",
+        ),
         (
             "no-region",
             GOOD.replace("omega0 = \"U/V < 0\"", ""),
-            "omega0",
+            "`regions.omega0`: missing",
         ),
         (
             "no-domain",
             GOOD.replace("theta_dot = [\"-10\", \"10\"]", ""),
-            "theta_dot",
+            "`domain.theta_dot`: missing",
         ),
         ("no-comparison", GOOD.replace("U < 0", "U"), "regions.omega"),
         (
