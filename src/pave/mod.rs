@@ -290,6 +290,22 @@ impl SlabEnds {
     }
 }
 
+/// How many ulps each θ-slab is widened at each end before its labels are
+/// proved: a label then still holds for a checker whose rounding is correct
+/// but a few ulps looser than ours, also beside a pole (tan(θ/2) next to
+/// θ = π), where a last-bit difference in θ would change definedness.
+pub const THETA_SLACK_ULPS: u32 = 8;
+
+/// `theta` widened by [`THETA_SLACK_ULPS`] at each end (a point too).
+fn with_slack(theta: Interval) -> Interval {
+    let (mut lo, mut hi) = (theta.inf(), theta.sup());
+    for _ in 0..THETA_SLACK_ULPS {
+        lo = lo.next_down();
+        hi = hi.next_up();
+    }
+    Interval::try_from((lo, hi)).unwrap_or(theta)
+}
+
 /// Ω and Ω₀ of a scene file whose regions are not both of degree ≤ 2 in
 /// θ̇: each box evaluates the expressions as written (natural labels; the
 /// quadratic methods then refine by bisection).
@@ -303,7 +319,7 @@ impl ConstraintSet for FileRegions<'_> {
         vec!["omega".into(), "omega0".into()]
     }
     fn slab(&self, theta: Interval) -> DecInterval {
-        DecInterval::new(theta)
+        DecInterval::new(with_slack(theta))
     }
     fn enclose(&self, theta: &DecInterval, theta_dot: Interval) -> PerConstraint<DecInterval> {
         let r = self.file.regions_at(*theta, DecInterval::new(theta_dot));
@@ -327,9 +343,10 @@ impl ConstraintSet for SceneConstraints<'_> {
     }
     /// The θ-slab coefficients with correctly rounded trigonometry widened by
     /// an ulp ([`crate::number::elementary`]): enclosures at most a few ulp wider than
-    /// inari's, so a checker evaluating with inari confirms every label.
+    /// inari's, so a checker evaluating with inari confirms every label. The
+    /// slab is taken [`THETA_SLACK_ULPS`] wider at each end.
     fn slab(&self, theta: Interval) -> Self::Slab {
-        crate::scene::slab::constraints_on(self.scene, self.variant, theta)
+        crate::scene::slab::constraints_on(self.scene, self.variant, with_slack(theta))
     }
     fn enclose(&self, c: &Self::Slab, theta_dot: Interval) -> PerConstraint<DecInterval> {
         let w = DecInterval::new(theta_dot);
@@ -360,7 +377,8 @@ impl ConstraintSet for SceneConstraints<'_> {
     /// The dual slab's values are the slab itself (the same operations on
     /// the same enclosures), so the natural slab comes free.
     fn slab_and_ends(&self, theta: Interval) -> (Self::Slab, Option<PerConstraint<SlabEnds>>) {
-        let d = crate::scene::slab::dual_constraints_on(self.scene, self.variant, theta);
+        let d =
+            crate::scene::slab::dual_constraints_on(self.scene, self.variant, with_slack(theta));
         let slab = d.map(|x| x.value);
         let end = |x: f64| Interval::try_from((x, x)).ok().map(|p| self.slab(p));
         let ends = end(theta.inf()).zip(end(theta.sup())).and_then(|(lo, hi)| {
@@ -374,6 +392,7 @@ impl ConstraintSet for SceneConstraints<'_> {
     fn centred_coefficients(&self, theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {
         use crate::number::scalar::DualTheta;
         use crate::scene::Angle;
+        let theta = with_slack(theta);
         let t = DecInterval::new(theta);
         let m = Interval::try_from((theta.mid(), theta.mid())).ok()?;
         let d = self

@@ -665,14 +665,17 @@ fn ice_omega0_inside_omega_makes_its_paradox_cell_exactly_empty() {
 #[test]
 fn ice_omega0_is_decided_next_to_theta_pi() {
     // ln tg(θ/2) through tan(θ/2) stays defined up to θ = π (a form through
-    // ln(1 + cos θ) left the whole last θ-column undefined): next to π every
-    // leaf is decided and none is undefined.
+    // ln(1 + cos θ) left the whole last θ-column, 0.01 of the window,
+    // undefined). Only the sliver whose labels would rest on the last bits
+    // of θ (θ/2 within ulps of tan's pole; slabs are widened by
+    // THETA_SLACK_ULPS) stays undefined: a positive area far below a column.
     let out = detach(&[
         "pave", "--scene", "ice-disc", "--theta", "3.09:pi", "--eps", "0.01", "--json",
     ]);
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["undefined_area"].as_f64(), Some(0.0));
+    let undefined = v["undefined_area"].as_f64().unwrap();
+    assert!(undefined > 0.0 && undefined < 1e-3, "{undefined}");
     let omega0 = v["regions"]
         .as_array()
         .unwrap()
@@ -684,7 +687,7 @@ fn ice_omega0_is_decided_next_to_theta_pi() {
         omega0["inner_area"].as_f64().unwrap(),
         omega0["outer_area"].as_f64().unwrap(),
     );
-    assert!(inner > 1.0 && outer - inner < 1e-9, "[{inner}, {outer}]");
+    assert!(inner > 1.0 && outer - inner < 1e-3, "[{inner}, {outer}]");
 }
 
 /// `slices` (the default) in a window two ulps wide in θ: its slabs cannot
