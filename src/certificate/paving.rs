@@ -193,8 +193,8 @@ pub struct StatementFormulas {
 }
 
 fn statement_formulas(scene: &Scene, variant: Variant) -> StatementFormulas {
-    match (scene, scene.id()) {
-        (Scene::File(f), _) => {
+    match scene {
+        Scene::File(f) => {
             let (definitions, [omega, omega0]) = f.proof_text();
             let form = if f.is_quadratic() {
                 "scene file, as c₂θ̇² + c₁θ̇ + c₀"
@@ -211,8 +211,8 @@ fn statement_formulas(scene: &Scene, variant: Variant) -> StatementFormulas {
                 ],
             }
         }
-        (_, Some(id)) => {
-            let f = id.formulas(variant);
+        _ => {
+            let f = scene.id().expect("a paper scene").formulas(variant);
             StatementFormulas {
                 definitions: f
                     .definitions
@@ -227,7 +227,6 @@ fn statement_formulas(scene: &Scene, variant: Variant) -> StatementFormulas {
                 ],
             }
         }
-        (_, None) => unreachable!("a paper scene has an id"),
     }
 }
 

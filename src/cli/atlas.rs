@@ -602,12 +602,8 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
         new
     });
     let overrides = parse_overrides(&args.flags.params)?;
-    if (!args.scene_file.is_empty() || !shipped.is_empty())
-        && args.flags.variant == Variant::Printed
-    {
-        return Err(CliError::usage(
-            "--variant printed applies to the paper's scenes; a scene file has one reading",
-        ));
+    if !args.scene_file.is_empty() || !shipped.is_empty() {
+        super::one_reading(args.flags.variant)?;
     }
     let load = |src: &FileSource, o: &[(String, String)]| match src {
         FileSource::Path(p) => FileScene::load(p, o),

@@ -166,17 +166,25 @@ impl SceneSource {
         overrides: &[(String, String)],
         variant: detach::scene::Variant,
     ) -> Result<(detach::scene::Scene, detach::number::param::ParamSet), CliError> {
-        use detach::scene::{Scene, Variant};
+        use detach::scene::Scene;
         let built = match (&self.scene, &self.scene_file) {
             (Some(name), _) => Scene::by_name(name, overrides).map_err(CliError::usage)?,
             (None, Some(path)) => Scene::from_file(path, overrides).map_err(CliError::usage)?,
             (None, None) => return Err(CliError::usage("give --scene NAME or --scene-file FILE")),
         };
-        if built.0.id().is_none() && variant == Variant::Printed {
-            return Err(CliError::usage(
-                "--variant printed applies to the paper's scenes; a scene file has one reading",
-            ));
+        if built.0.id().is_none() {
+            one_reading(variant)?;
         }
         Ok(built)
+    }
+}
+
+/// A scene file has one reading: `--variant printed` is refused for it.
+pub fn one_reading(variant: detach::scene::Variant) -> CliResult {
+    match variant {
+        detach::scene::Variant::Printed => Err(CliError::usage(
+            "--variant printed applies to the paper's scenes; a scene file has one reading",
+        )),
+        detach::scene::Variant::Derived => Ok(()),
     }
 }

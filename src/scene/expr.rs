@@ -922,14 +922,6 @@ impl Program {
         }
     }
 
-    /// [`Self::eval`] with a caller-owned buffer for the tape values, reused
-    /// across calls.
-    pub fn eval_with<T: Scalar>(&self, theta: T, theta_dot: T, slots: &mut Vec<T>, out: &mut [T]) {
-        slots.clear();
-        slots.resize(self.tape.len(), T::int(0));
-        self.eval_into(theta, None, theta_dot, slots, out);
-    }
-
     /// [`Program::eval`] into `slots` (one per tape entry). `sin` and `cos`
     /// of the same operand are computed together ([`Scalar::sin_cos`]: the
     /// same enclosures, one kernel call, and duals reuse both).

@@ -472,10 +472,13 @@ impl Scene {
 
     /// The domain's ends as text (`[[θ lo, θ hi], [θ̇ lo, θ̇ hi]]`).
     pub fn domain_text(&self) -> [[String; 2]; 2] {
-        match (self, self.id()) {
-            (Scene::File(f), _) => f.domain_text.clone(),
-            (_, Some(id)) => id.domain_text().map(|s| s.map(String::from)),
-            (_, None) => unreachable!("a paper scene has an id"),
+        match self {
+            Scene::File(f) => f.domain_text.clone(),
+            _ => self
+                .id()
+                .expect("a paper scene")
+                .domain_text()
+                .map(|s| s.map(String::from)),
         }
     }
 
