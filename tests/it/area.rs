@@ -155,3 +155,67 @@ fn bad_options_are_errors() {
     let coarse = bad(1e-12, 70).unwrap();
     assert!(contains(coarse.area, SMOOTH_OMEGA) && coarse.pieces <= 70);
 }
+
+/// Twelve decimal places by the method's order, not by piece count: the
+/// enclosures hold the mpmath references above and take at most a few
+/// thousand θ-pieces (binary64 summation over a million pieces would
+/// itself leave a width near 10⁻⁸).
+#[test]
+fn twelve_places_in_a_few_thousand_pieces() {
+    let (t, n) = (Some(true), None);
+    let tol = 1e-12;
+    for (id, cell, r) in [
+        (SceneId::ViscousDisc, [t, n], VISCOUS_OMEGA),
+        (SceneId::ViscousDisc, [n, t], VISCOUS_OMEGA0),
+        (SceneId::SmoothDisc, [t, n], SMOOTH_OMEGA),
+        (SceneId::IceDisc, [n, t], ICE_OMEGA0),
+    ] {
+        let s = Scene::default_of(id);
+        let opts = AreaOptions {
+            tol,
+            ..AreaOptions::default()
+        };
+        let e = cell_area(&s, Variant::Derived, &s.domain(), cell, opts).unwrap();
+        assert!(
+            contains(e.area, r),
+            "{id} {cell:?}: {:?} misses {r}",
+            e.area
+        );
+        assert!(e.area.wid() <= tol, "{id} {cell:?}: width {}", e.area.wid());
+        assert!(e.pieces <= 4000, "{id} {cell:?}: {} pieces", e.pieces);
+    }
+    // The four cells of every paper scene too.
+    for id in SceneId::ALL {
+        let s = Scene::default_of(id);
+        for cell in &CELLS[2..] {
+            let opts = AreaOptions {
+                tol,
+                ..AreaOptions::default()
+            };
+            let e = cell_area(&s, Variant::Derived, &s.domain(), *cell, opts).unwrap();
+            assert!(e.area.wid() <= tol, "{id} {cell:?}: width {}", e.area.wid());
+        }
+    }
+}
+
+/// A width below what binary64 can certify for the area is refused before
+/// any refinement, with the width it could reach.
+#[test]
+fn targets_below_binary64_rounding_are_refused() {
+    let s = Scene::default_of(SceneId::ViscousDisc);
+    let d = s.domain();
+    for tol in [1e-13, 1e-14] {
+        let opts = AreaOptions {
+            tol,
+            max_pieces: 1 << 20,
+        };
+        match cell_area(&s, Variant::Derived, &d, CELLS[0], opts) {
+            Err(AreaError::BelowRounding { floor, least, .. }) => {
+                // Ω ≈ 101.4: a few units of 2⁻⁵² × 101 × 2.
+                assert!(floor > 1e-14 && floor < 1e-12, "floor {floor}");
+                assert!(least >= 2.0 * floor && least <= 1e-11, "least {least}");
+            }
+            other => panic!("tol {tol}: {other:?}"),
+        }
+    }
+}

@@ -381,3 +381,13 @@ fn root_maps_write_their_files_and_refuse_bad_figures() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `area` refuses at once a width binary64 cannot certify, naming the set.
+#[test]
+fn area_refuses_places_below_binary64_rounding() {
+    let err = assert_bad_input(
+        &["area", "--scene", "viscous-disc", "--digits", "14"],
+        "below what binary64 arithmetic certifies",
+    );
+    assert!(err.contains("Ω (omega)"), "{err}");
+}
