@@ -645,13 +645,16 @@ pub fn s2_case2(mutant: bool) -> Outcome {
 }
 
 /// S2.case3: α ∈ (0, 1): by the unimodality lemma of G(s, α) = κ-level of
-/// (2.9) (checked on 32 α-boxes), κ > κ_crit(α) gives no root (Φ > 0, one
+/// (2.9) (checked on the α-boxes of [0, 1] of the band proof, the last one
+/// included), κ > κ_crit(α) gives no root (Φ > 0, one
 /// component) and κ < κ_crit(α) two simple roots (Φ < 0 between, two
 /// components); κ_crit(α) > 0 since G(s, α) > 0 for s ∈ (√((1−α)/(1+α)), 1).
 /// Certified sample: α = 0.5, κ_crit ∈ band, both sides solved with (2.9).
 /// Mutant: α = 0, where κ_crit = 0 and only one form exists.
 pub fn s2_case3(mutant: bool) -> Outcome {
-    let n = 32;
+    // the band proof's α-boxes: [0, 1] in `n` parts, the last left to κ₀
+    let n = crate::certificate::catalog::BAND_BOXES;
+    let in_proof = n - 1;
     let cells: Vec<_> = (0..n)
         .map(|i| {
             band_cell(
@@ -679,11 +682,11 @@ pub fn s2_case3(mutant: bool) -> Outcome {
         && above
             .as_ref()
             .is_some_and(|r| r.complete && r.unique_count() == 0);
-    let w = json!({"lemma_on_32_alpha_boxes": lemma, "alpha": alpha_text, "kappa_crit_band": [cell.lower, cell.upper],
+    let w = json!({"lemma_alpha_boxes": n, "lemma_holds": lemma, "band_proof_alpha_boxes": in_proof, "alpha": alpha_text, "kappa_crit_band": [cell.lower, cell.upper],
         "G(0.9, alpha)": enc(g_pos), "below_band_half": below.as_ref().map(roots_json), "above_band": above.as_ref().map(roots_json)});
     if lemma && two_forms && g_pos.inf() > 0.0 {
         Outcome::new(Verdict::Confirmed, Strength::Argument,
-            format!("unimodality lemma certified on all 32 α-boxes of [0, 1]: for each α ∈ (0, 1) one component when κ > κ_crit(α), two when κ < κ_crit(α) (κ_crit > 0); α = 0.5: κ_crit ∈ [{:.6}, {:.6}], 2 roots below, 0 above (certified)", cell.lower, cell.upper), w)
+            format!("unimodality lemma certified on all {n} α-boxes of [0, 1]: for each α ∈ (0, 1) one component when κ > κ_crit(α), two when κ < κ_crit(α) (κ_crit > 0); the band proof covers {in_proof} α-boxes of [0, {in_proof}/{n}] and α = 1 is the κ₀ proof; α = 0.5: κ_crit ∈ [{:.6}, {:.6}], 2 roots below, 0 above (certified)", cell.lower, cell.upper), w)
     } else {
         Outcome::new(
             Verdict::False,
