@@ -22,7 +22,7 @@ use super::smooth::{
     dt_dtheta, free_lambda_ddot, spin_rates, t_rot_printed, tau_printed, u_printed, P2,
 };
 use super::witness::{find_difference, window};
-use super::{dec, enc, Check, Outcome, Strength, Verdict};
+use super::{dec, enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::roots::isolate::{isolate, point, RealFn};
 use crate::roots::{solve_3_3, Budget};
@@ -299,7 +299,16 @@ pub fn f3_4(mutant: bool) -> Outcome {
             rhs: ud * v,
         }
     });
-    let w = json!({"V0": v0.json(), "U0": u0.json(), "U0_over_V0": ratio.json()});
+    // shown at the defaults, sin θ = 4/5, cos θ = 3/5, θ̇ = 1, v_x = 1
+    let qp = P2::exact(super::smooth::DEFAULTS);
+    let (qs, qc, qw, qv) = (Q::ratio(4, 5), Q::ratio(3, 5), Q::int(1), Q::int(1));
+    let at = json!({"params": super::smooth::params_json(&super::smooth::DEFAULTS), "sin_theta": "4/5", "cos_theta": "3/5", "theta_dot": "1", "v_x": "1"});
+    let ud = lambda_ddot_given_n(&qp, qs, qc, qw, qv, Q::int(0));
+    let vd = lambda_ddot_given_n(&qp, qs, qc, qw, qv, Q::int(1)) - ud;
+    let (up, vp) = printed(&qp, qs, qc, qw, qv);
+    let reading = json!({"at": at, "V": vd.get().to_string(), "U": ud.get().to_string(),
+        "printed_V": vp.get().to_string(), "printed_U": up.get().to_string()});
+    let w = json!({"V0": shown_at(&v0, at.clone(), vp, vd), "U0": shown_at(&u0, at.clone(), up, ud), "U0_over_V0": ratio.json(), "reading": reading});
     if v0.agrees() && u0.agrees() {
         return Outcome::new(
             Verdict::Confirmed,
@@ -316,7 +325,7 @@ pub fn f3_4(mutant: bool) -> Outcome {
     let vp = DecInterval::new(point(1.0)) / p.m;
     let (vd, vp) = (vd.interval().unwrap(), vp.interval().unwrap());
     Outcome::new(Verdict::Error, Strength::Certified,
-        format!("V₀ at θ = 1 (m = 1, a = 1, A = 0.25): printed {:.4} vs Newton–Euler {:.4}, certified disjoint; U₀ also differs, but U₀/V₀ agrees exactly ({}), so N = −U₀/V₀, (3.5) and Ω₀ are unaffected", vp.mid(), vd.mid(), if ratio.agrees() { "identity test" } else { "NOT" }),
+        format!("under the report's reading (N free, the blade reaction kept): V₀ = ∂Λ̈/∂N at θ = 1 (m = 1, a = 1, A = 0.25): printed {:.4} vs Newton–Euler {:.4}, certified disjoint; U₀ (Λ̈ at N = 0) also differs, but U₀/V₀ agrees exactly ({}), so N = −U₀/V₀, (3.5) and Ω₀ are unaffected; the printed pair is the other reading (coefficient 1/m)", vp.mid(), vd.mid(), if ratio.agrees() { "identity test" } else { "NOT" }),
         json!({"identity": w, "theta": "1", "V0_printed": enc(vp), "V0_newton_euler": enc(vd), "disjoint": vp.disjoint(vd)}))
         .correct("Λ̈ = U₀ + V₀ N with V₀ = 1/m + a² cos²θ/(A + m a² sin²θ) and U₀ = m V₀ × (the printed U₀): the printed (3.4) is the true Λ̈ divided by m V₀ > 0, so its sign, the reaction N = −U₀/V₀ and the condition (3.5) are right")
 }
@@ -530,7 +539,7 @@ pub fn s3_c0anypoint(mutant: bool) -> Outcome {
     let (l1, l2) = (Q::ratio(-11, 10), Q::ratio(-1, 2));
     let slope = rhs_exact(&p, t, Q::int(1), l1, l2) - rhs_exact(&p, t, Q::int(0), l1, l2);
     let base = rhs_exact(&p, t, Q::int(0), l1, l2);
-    let w = json!({"params": super::smooth::params_json(&["1", "1", "0.25", "0.5", "9.81", "2.5", "2"]), "tan_half_theta": t.text(), "theta_dot": "0",
+    let w = json!({"params": super::smooth::params_json(&["1", "1", "0.25", "0.5", "9.81", "2.5", "2"]), "tan_half_theta": t.get().to_string(), "theta_dot": "0",
         "tau": tau.text(), "rhs_slope_in_c0": slope.text(), "rhs_at_c0=0": base.text()});
     if slope.is_zero() && base.signum() > 0 {
         Outcome::new(Verdict::False, Strength::Exact,

@@ -340,3 +340,25 @@ pub(crate) fn dec(text: &str) -> inari::Interval {
 pub(crate) fn enc(x: inari::Interval) -> serde_json::Value {
     serde_json::json!([x.inf(), x.sup()])
 }
+
+/// The witness of an identity: as the test reports it when the two sides
+/// agree; when they differ, the exact values of both sides at `point` (short
+/// decimals and the default parameters, named in `point`) rather than at the
+/// test's random rationals. Falls back to the test's own point if the two
+/// sides happen to agree at `point`.
+pub(crate) fn shown_at(
+    id: &exact::Identity,
+    point: serde_json::Value,
+    printed: exact::Q,
+    derived: exact::Q,
+) -> serde_json::Value {
+    if id.agrees() || printed == derived {
+        return id.json();
+    }
+    serde_json::json!({
+        "identity": "differ",
+        "point": point,
+        "printed": printed.get().to_string(),
+        "derived": derived.get().to_string(),
+    })
+}
