@@ -382,6 +382,40 @@ pub fn f1_5(mutant: bool) -> Outcome {
     }
 }
 
+/// F1.6: the kinetic-energy theorem along the contact motion. With the
+/// kinetic energy `T = ½ m ẏ² + ½ C θ̇²`, `ẏ = h'θ̇` in contact, `Π = m g y`
+/// and θ̈ from the Newton equations, `dT/dt + dΠ/dt = F ν` with ν the
+/// horizontal velocity of the material contact point (N does no work: that
+/// point has no vertical velocity in contact). Mutant: the power `F θ̇ a`.
+pub fn f1_6(mutant: bool) -> Outcome {
+    let id = identity_test(16, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        let an = Angle {
+            theta: Q::int(0),
+            sin: s,
+            cos: c,
+        };
+        let (_, h1, h2) = h_jet(&p, s, c);
+        let thdd = newton(&p, s, c, w, 1).0;
+        let (yd, ydd) = (h1 * w, h2 * w.sqr() + h1 * thdd);
+        let (nu, vz) = contact_velocity(&p, &an, yd, w);
+        let f = -(p.mu * nu);
+        let power = if mutant { f * w * p.a } else { f * nu };
+        // the reaction's power N v_Pz, zero in contact
+        let n = Q::from_f64(r.positive());
+        Sample {
+            point: pt,
+            lhs: p.m * yd * ydd + p.c * w * thdd + p.m * p.g * yd,
+            rhs: power + n * vz,
+        }
+    });
+    formula_verdict(
+        id,
+        "d(½mẏ² + ½Cθ̇²)/dt + d(mgy)/dt = Fν along the contact motion (Newton θ̈, ẏ = h'θ̇), and the contact point has no vertical velocity, so N does no work",
+        "dT = −dΠ + F ν dt",
+    )
+}
+
 /// F1.7: θ̈ of (1.7) against the Newton equations. Mutant: factor 1 (i.e.
 /// the corrected equation).
 pub fn f1_7(mutant: bool) -> Outcome {
@@ -671,6 +705,56 @@ pub fn s1_friction(mutant: bool) -> Outcome {
     }
 }
 
+/// S1.contact: a motion without detachment lies in Ω ∩ Ω₀. Under the
+/// report's reading `Λ̈ = U + V N` with `V = 1/m + h'²/C > 0` (exact, N
+/// free), so contact (Λ̈ = 0) has `N = −U/V` and keeps `N ≥ 0` exactly on the
+/// closure of Ω₀; at zero reaction Λ̈ is the free-flight value, so outside
+/// the closure of Ω a detachment is possible. The stable equilibrium θ = −π/2
+/// lies in Ω ∩ Ω₀ (exact, defaults): such motions exist. Mutant: V without
+/// the term h'²/C.
+pub fn s1_contact(mutant: bool) -> Outcome {
+    let v_closed = |p: &P1<Q>, h1: Q| {
+        if mutant {
+            Q::int(1) / p.m
+        } else {
+            Q::int(1) / p.m + h1.sqr() / p.c
+        }
+    };
+    let v = identity_test(118, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        let (_, h1, _) = h_jet(&p, s, c);
+        let n = newton(&p, s, c, w, 1).1;
+        let (u, _) = u_v(&p, s, c, w);
+        // N = −U/V in contact, for the stated V
+        Sample {
+            point: pt,
+            lhs: u + v_closed(&p, h1) * n,
+            rhs: Q::int(0),
+        }
+    });
+    // θ = −π/2, θ̇ = 0 at the defaults: N and the free-flight Λ̈
+    let p = P1::exact(DEFAULTS);
+    let (s, c, w) = (Q::int(-1), Q::int(0), Q::int(0));
+    let n = newton(&p, s, c, w, 1).1;
+    let free = derived_omega(&p, s, c, w);
+    let rest = newton(&p, s, c, w, 1).0;
+    let inside = n.signum() > 0 && free.signum() < 0 && rest.is_zero();
+    let wit = json!({"U_plus_VN_in_contact": v.json(), "params": params_json(DEFAULTS),
+        "equilibrium_theta=-pi/2": {"N": n.get().to_string(), "free_flight_lambda_ddot": free.get().to_string(), "theta_ddot": rest.get().to_string()}});
+    if v.agrees() && inside {
+        Outcome::new(Verdict::Confirmed, Strength::Argument,
+            format!("in contact U + V N = 0 with V = 1/m + h'²/C > 0 (identity test, N free): N ≥ 0 exactly on the closure of Ω₀; at zero reaction Λ̈ is the free-flight value, so detachment is possible outside Ω; a contact motion without detachment therefore stays in Ω ∩ Ω₀; the rest state θ = −π/2 has N = {} > 0 and free-flight Λ̈ = {} < 0 (exact, defaults)", n.get(), free.get()),
+            wit)
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "N is not −U/V with V > 0, or no motion without detachment found",
+            wit,
+        )
+    }
+}
+
 /// S1.12: exact identity `−N (C + m h'²)/m = C·Λ̈_free + μ h² b (θ̇ cos θ)`
 /// (and the same split for the printed (1.10)/(1.11)); with C > 0, μ, b ≥ 0
 /// the inclusions follow. Mutant: friction with the wrong sign.
@@ -934,6 +1018,7 @@ pub(super) const CHECKS: &[(&str, Check)] = &[
     ("F1.3", f1_3),
     ("F1.4", f1_4),
     ("F1.5", f1_5),
+    ("F1.6", f1_6),
     ("F1.7", f1_7),
     ("F1.8", f1_8),
     ("F1.9", f1_9),
@@ -941,6 +1026,7 @@ pub(super) const CHECKS: &[(&str, Check)] = &[
     ("F1.11", f1_11),
     ("S1.ideal", s1_ideal),
     ("S1.friction", s1_friction),
+    ("S1.contact", s1_contact),
     ("S1.12", s1_12),
     ("S1.12mu", s1_12mu),
     ("S1.eq", s1_eq),

@@ -649,6 +649,35 @@ pub fn f2_10(mutant: bool) -> Outcome {
     verdict_of(&[("tan_half_substitution", &id)], "(2.9) at α = 1 times (1+μ²)³ = 8μ³(κ − μ(1−μ)(1+μ)/2), μ = tan(θ/2) > 0: positive roots of (2.10) ↔ roots of (2.9)", "2κ = μ(1 − μ)(1 + μ)")
 }
 
+/// F2.11: the reduced energy `T̃ + Π̃` is constant along the contact motion:
+/// its time derivative `θ̇ (J θ̈ + ½ J' θ̇² + Π̃')` vanishes with θ̈ from the
+/// Lagrange equations in contact (J = A + m a² cos²θ), so the phase curves
+/// are its level lines; a contact motion keeps contact while N ≥ 0, i.e. in
+/// Ω₀ = Ω (S2.omega). Mutant: Π̃ with `A sin θ` in the denominator.
+pub fn f2_11(mutant: bool) -> Outcome {
+    let id = identity_test(2110, |r| {
+        let (p, s, c, w, pt) = rp(r);
+        let an = angle_d(s, c);
+        let pd = p.map(Dual::constant);
+        let jj = pd.big_a + pd.m * pd.a.sqr() * an.cos.sqr();
+        let pi = if mutant {
+            pd.m * pd.g * pd.a * an.sin
+                + (pd.ps - pd.pf * an.cos).sqr() / (Dual::int(2) * pd.big_a * an.sin)
+        } else {
+            pi_tilde(&pd, an.sin, an.cos)
+        };
+        let thdd = lagrange(&p, s, c, w).0;
+        Sample {
+            point: pt,
+            lhs: w * (jj.value * thdd + jj.grad[0] * w.sqr() / Q::int(2) + pi.grad[0]),
+            rhs: Q::int(0),
+        }
+    });
+    verdict_of(&[("reduced_energy_rate", &id)],
+        "d(T̃ + Π̃)/dt = θ̇(Jθ̈ + ½J'θ̇² + Π̃') = 0 with θ̈ from the Lagrange equations in contact: phase curves are level lines of T̃ + Π̃; with Ω = Ω₀ (S2.omega) a motion without detachment is one that stays in Ω",
+        "T̃ + Π̃ = const")
+}
+
 /// F2.12: Π̃' of (2.12) against the derivative of Π̃ (2.5). Mutant: `− Aττ'`.
 pub fn f2_12(mutant: bool) -> Outcome {
     let id = identity_test(212, |r| {
@@ -669,6 +698,52 @@ pub fn f2_12(mutant: bool) -> Outcome {
 }
 
 // ---------------------------------------------------------------- statements
+
+/// S2.integrals: (2.3) and (2.4) in contact. The reaction N e_z at the
+/// lowest point has no moment about the vertical through G nor about the
+/// disc axis (exact vectors), so p_ψ and p_φ stay constant (p_x, p_y too:
+/// N is vertical); and `d(T + Π)/dt = 0` along the contact motion, T of
+/// (2.1) with `ż = a cos θ θ̇` and the integrals' spin rates, θ̈ from the
+/// Lagrange equations (N does no work: Λ̇ = 0). Mutant: Π = m g z dropped.
+pub fn s2_integrals(mutant: bool) -> Outcome {
+    let moment = identity_test(2201, |r| {
+        let (p, s, c, _, pt) = rp(r);
+        let (spsi, cpsi) = sin_cos_of_tan_half(r.tan_half());
+        let lambda = Q::from_f64(r.signed());
+        let n = Q::from_f64(r.positive());
+        let (mz, mk) = reaction_moment(p.a, s, c, spsi, cpsi, n, Q::int(0));
+        Sample {
+            point: pt,
+            lhs: mz + lambda * mk,
+            rhs: Q::int(0),
+        }
+    });
+    let energy = identity_test(2202, |r| {
+        let (p, s, c, w, pt) = rp(r);
+        let thdd = lagrange(&p, s, c, w).0;
+        let (zd, zdd) = (p.a * c * w, p.a * c * thdd - p.a * s * w.sqr());
+        let gravity = if mutant { Q::int(0) } else { p.m * p.g * zd };
+        Sample {
+            point: pt,
+            lhs: p.m * zd * zdd + p.big_a * w * thdd + w * spin_energy_slope(&p, s, c) + gravity,
+            rhs: Q::int(0),
+        }
+    });
+    let w =
+        json!({"reaction_moment_vertical_and_axial": moment.json(), "energy_rate": energy.json()});
+    if moment.agrees() && energy.agrees() {
+        Outcome::new(Verdict::Confirmed, Strength::IdentityTest,
+            "the reaction N e_z at the lowest point has no moment about the vertical through G nor about the disc axis (p_ψ, p_φ constant; p_x, p_y since N is vertical), and d(T + Π)/dt = 0 along the contact motion (Lagrange θ̈, ż = a cos θ θ̇): exact agreement at random rational points",
+            w)
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "an integral changes along the contact motion",
+            w,
+        )
+    }
+}
 
 /// S2.omega: U + V N = 0 in contact with V > 0 (F2.7) and `θ̇² − Φ = U/(a sin θ)`
 /// (F2.8), so (2.8) ⟺ N ≥ 0 ⟺ U ≤ 0: Ω = Ω₀. Mutant: V with `−a²cos²θ/A`.
@@ -1140,7 +1215,9 @@ pub(super) const CHECKS: &[(&str, Check)] = &[
     ("F2.9", f2_9),
     ("S2.alpha", s2_alpha),
     ("F2.10", f2_10),
+    ("F2.11", f2_11),
     ("F2.12", f2_12),
+    ("S2.integrals", s2_integrals),
     ("S2.omega", s2_omega),
     ("S2.case1", s2_case1),
     ("S2.case1fr", s2_case1fr),
