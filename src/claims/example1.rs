@@ -14,7 +14,7 @@ use super::exact::{
     RationalPath, Rng, Sample, Q,
 };
 use super::witness::{find_difference, find_leaf, labels_on, window};
-use super::{dec, enc, Check, Outcome, Strength, Verdict};
+use super::{dec, enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::pave::Label;
 use crate::scene::Angle;
@@ -207,6 +207,45 @@ fn id_json(i: &Identity) -> serde_json::Value {
     i.json()
 }
 
+/// The point where differences are shown: default parameters, θ = 0
+/// (sin θ = 0, cos θ = 1), θ̇ = 1.
+fn shown_point() -> (P1<Q>, Q, Q, Q) {
+    (P1::exact(DEFAULTS), Q::int(0), Q::int(1), Q::int(1))
+}
+
+fn shown_json(extra: &[(&str, &str)]) -> serde_json::Value {
+    let mut m = json!({"params": params_json(DEFAULTS), "theta": "0", "theta_dot": "1"});
+    for (k, v) in extra {
+        m[*k] = json!(v);
+    }
+    m
+}
+
+/// Λ̈ for a given normal reaction N (a free force): the Newton equations
+/// `m ÿ = −m g + N`, `C θ̈ = F h + N·(∂v_Pz/∂θ̇)` (viscous friction does not
+/// depend on N) solved for the accelerations, then (1.8).
+pub fn lambda_ddot_given_n<T: Scalar>(p: &P1<T>, s: T, c: T, w: T, n: T) -> T {
+    let an = Angle {
+        theta: T::int(0),
+        sin: s,
+        cos: c,
+    };
+    let (_, h1, h2) = h_jet(p, s, c);
+    let (zero, one) = (T::int(0), T::int(1));
+    let (jx_y, jz_y) = contact_velocity(p, &an, one, zero);
+    let (jx_w, jz_w) = contact_velocity(p, &an, zero, one);
+    let f = -(p.mu * contact_velocity(p, &an, zero, w).0);
+    let ydd = (-(p.m * p.g) + f * jx_y + n * jz_y) / p.m;
+    let thdd = (f * jx_w + n * jz_w) / p.c;
+    ydd - h2 * w.sqr() - h1 * thdd
+}
+
+/// `(U, V)` of `Λ̈ = U + V N` under the report's reading (N free).
+pub fn u_v<T: Scalar>(p: &P1<T>, s: T, c: T, w: T) -> (T, T) {
+    let u = lambda_ddot_given_n(p, s, c, w, T::int(0));
+    (u, lambda_ddot_given_n(p, s, c, w, T::int(1)) - u)
+}
+
 // ---------------------------------------------------------------- formulas
 
 /// F1.3: `Λ = y − h(θ)` equals the height of the lowest rim point.
@@ -316,7 +355,18 @@ pub fn f1_5(mutant: bool) -> Outcome {
             rhs: thdd,
         }
     });
-    let witness = json!({"printed_T_vs_mechanics": t_id.json(), "printed_1_7_vs_energy_theorem_with_printed_T": used.json()});
+    // shown at θ = 0, θ̇ = 1, ẏ = 2 (defaults)
+    let (p, s0, c0, w0) = shown_point();
+    let yd = Q::int(2);
+    let t_printed = half(p.m * yd) + half(p.c * w0.sqr());
+    let t_derived = half(p.m * yd.sqr()) + half(p.c * w0.sqr());
+    let (hh, h1, h2) = h_jet(&p, s0, c0);
+    let thdd_printed_t =
+        (-(p.m * p.g * h1 * w0) - p.mu * hh.sqr() * w0.sqr() - half(p.m * h2 * w0.sqr()))
+            / (half(p.m * h1) + p.c * w0);
+    let witness = json!({
+        "printed_T_vs_mechanics": shown_at(&t_id, shown_json(&[("y_dot", "2")]), t_printed, t_derived),
+        "printed_1_7_vs_energy_theorem_with_printed_T": shown_at(&used, shown_json(&[]), printed_1_7(&p, s0, c0, w0, 2), thdd_printed_t)});
     if used.agrees() {
         Outcome::new(
             Verdict::Error,
@@ -327,9 +377,43 @@ pub fn f1_5(mutant: bool) -> Outcome {
         .correct("T = ½ m ẏ² + ½ C θ̇²")
     } else {
         Outcome::new(Verdict::Typo, Strength::Exact,
-            "printed T = ½mẏ + ½Cθ̇² is not the kinetic energy (½mẏ² + ½Cθ̇², exact difference at a rational point); (1.7) does not follow from the printed T either, so the slip does not propagate (the error of (1.7) is separate, see F1.7)",
+            format!("printed T = ½mẏ + ½Cθ̇² is not the kinetic energy ½mẏ² + ½Cθ̇² ({} vs {} at ẏ = 2, θ̇ = 1, defaults, exact); (1.7) does not follow from the printed T either, so the slip does not propagate (the error of (1.7) is separate, see F1.7)", t_printed.get().to_f64(), t_derived.get().to_f64()),
             witness).correct("T = ½ m ẏ² + ½ C θ̇²")
     }
+}
+
+/// F1.6: the kinetic-energy theorem along the contact motion. With the
+/// kinetic energy `T = ½ m ẏ² + ½ C θ̇²`, `ẏ = h'θ̇` in contact, `Π = m g y`
+/// and θ̈ from the Newton equations, `dT/dt + dΠ/dt = F ν` with ν the
+/// horizontal velocity of the material contact point (N does no work: that
+/// point has no vertical velocity in contact). Mutant: the power `F θ̇ a`.
+pub fn f1_6(mutant: bool) -> Outcome {
+    let id = identity_test(16, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        let an = Angle {
+            theta: Q::int(0),
+            sin: s,
+            cos: c,
+        };
+        let (_, h1, h2) = h_jet(&p, s, c);
+        let thdd = newton(&p, s, c, w, 1).0;
+        let (yd, ydd) = (h1 * w, h2 * w.sqr() + h1 * thdd);
+        let (nu, vz) = contact_velocity(&p, &an, yd, w);
+        let f = -(p.mu * nu);
+        let power = if mutant { f * w * p.a } else { f * nu };
+        // the reaction's power N v_Pz, zero in contact
+        let n = Q::from_f64(r.positive());
+        Sample {
+            point: pt,
+            lhs: p.m * yd * ydd + p.c * w * thdd + p.m * p.g * yd,
+            rhs: power + n * vz,
+        }
+    });
+    formula_verdict(
+        id,
+        "d(½mẏ² + ½Cθ̇²)/dt + d(mgy)/dt = Fν along the contact motion (Newton θ̈, ẏ = h'θ̇), and the contact point has no vertical velocity, so N does no work",
+        "dT = −dΠ + F ν dt",
+    )
 }
 
 /// F1.7: θ̈ of (1.7) against the Newton equations. Mutant: factor 1 (i.e.
@@ -362,11 +446,13 @@ pub fn f1_7(mutant: bool) -> Outcome {
     let one = DecInterval::new(iv(1.0, 1.0));
     let pr = printed_1_7(&p, s, c, one, k).interval().unwrap();
     let de = newton(&p, s, c, one, 1).0.interval().unwrap();
+    let (qp, qs, qc, qw) = shown_point();
     Outcome::new(Verdict::Error, Strength::Certified,
         format!("θ̈ at θ = 0, θ̇ = 1 (default parameters): printed {:.4} vs Newton {:.4}, certified disjoint; removing the factor 2 on the left {} the Newton equations", pr.mid(), de.mid(), if corrected.agrees() { "reproduces" } else { "does not reproduce" }),
         json!({"params": params_json(DEFAULTS), "theta": "0", "theta_dot": "1",
                "printed_theta_ddot": enc(pr), "newton_theta_ddot": enc(de), "disjoint": pr.disjoint(de),
-               "identity": id.json(), "without_factor_2": corrected.json()}))
+               "identity": shown_at(&id, shown_json(&[]), printed_1_7(&qp, qs, qc, qw, k), newton(&qp, qs, qc, qw, 1).0),
+               "without_factor_2": corrected.json()}))
         .correct("(C + m h'²) θ̈ + m h' h'' θ̇² = −m g h' − μ h² θ̇ (no factor 2 on the left); it changes (1.9)–(1.11), see F1.9–F1.11")
 }
 
@@ -409,34 +495,54 @@ pub fn f1_8(mutant: bool) -> Outcome {
     formula_verdict(id, "Λ̈ = ÿ − h''θ̇² − h'θ̈ against d²Λ/dt² along rational paths (ÿ = N/m − g is the vertical Newton equation)", "Λ̈ = ÿ − h''θ̇² − h'θ̈")
 }
 
-/// F1.9: (1.9) against `N/m − g − h''θ̇² − h'θ̈` with θ̈ from the Newton
-/// equations; then whether it follows from the printed (1.7). Mutant: θ̈ of
-/// the corrected (1.7) on the printed side.
+/// F1.9 under the report's reading of `Λ̈ = U + V N` ([`super::READING`]):
+/// the coefficient of N and the rest of (1.9) against V = ∂Λ̈/∂N and U = Λ̈
+/// at N = 0 from the Newton equations with N free; then whether (1.9)
+/// follows from the printed (1.7) with θ̈ substituted before N is free (the
+/// other reading). Mutant: the printed side replaced by the reading's
+/// closed form `(1/m + h'²/C) N + μ h² h' θ̇/C − g − h'' θ̇²`.
 pub fn f1_9(mutant: bool) -> Outcome {
-    let lhs = |p: &P1<Q>, s: Q, c: Q, w: Q, n: Q| {
+    let printed = |p: &P1<Q>, s: Q, c: Q, w: Q, n: Q| {
         if mutant {
-            let (_, h1, h2) = h_jet(p, s, c);
-            n / p.m - p.g - h2 * w.sqr() - h1 * printed_1_7(p, s, c, w, 1)
+            let (hh, h1, h2) = h_jet(p, s, c);
+            (Q::int(1) / p.m + h1.sqr() / p.c) * n + p.mu * hh.sqr() * h1 * w / p.c
+                - p.g
+                - h2 * w.sqr()
         } else {
             printed_1_9(p, s, c, w, n)
         }
     };
-    let id = identity_test(19, |r| {
+    let v = identity_test(19, |r| {
         let (p, s, c, w, pt) = rand_point(r);
-        let n = Q::from_f64(r.positive());
-        let (_, h1, h2) = h_jet(&p, s, c);
-        let rhs = n / p.m - p.g - h2 * w.sqr() - h1 * newton(&p, s, c, w, 1).0;
         Sample {
             point: pt,
-            lhs: lhs(&p, s, c, w, n),
-            rhs,
+            lhs: printed(&p, s, c, w, Q::int(1)) - printed(&p, s, c, w, Q::int(0)),
+            rhs: u_v(&p, s, c, w).1,
         }
     });
-    if id.agrees() {
-        return formula_verdict(
-            id,
-            "(1.9) against (1.8) with θ̈ from the Newton equations",
-            "",
+    let u = identity_test(192, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        Sample {
+            point: pt,
+            lhs: printed(&p, s, c, w, Q::int(0)),
+            rhs: u_v(&p, s, c, w).0,
+        }
+    });
+    let (qp, qs, qc, qw) = shown_point();
+    let (u0, v0) = u_v(&qp, qs, qc, qw);
+    let (pu, pv) = {
+        let pu = printed(&qp, qs, qc, qw, Q::int(0));
+        (pu, printed(&qp, qs, qc, qw, Q::int(1)) - pu)
+    };
+    let reading = json!({"params": params_json(DEFAULTS), "theta": "0", "theta_dot": "1",
+        "V": v0.get().to_string(), "U": u0.get().to_string(),
+        "printed_V": pv.get().to_string(), "printed_U": pu.get().to_string()});
+    if v.agrees() && u.agrees() {
+        return Outcome::new(
+            Verdict::Confirmed,
+            Strength::IdentityTest,
+            "(1.9) is U + V N with V = ∂Λ̈/∂N and U = Λ̈ at N = 0 (N free): exact agreement at random rational points",
+            json!({"V": v.json(), "U": u.json(), "reading": reading}),
         );
     }
     let follows = identity_test(191, |r| {
@@ -450,10 +556,13 @@ pub fn f1_9(mutant: bool) -> Outcome {
             rhs,
         }
     });
-    Outcome::new(Verdict::Error, Strength::IdentityTest,
-        format!("(1.9) differs exactly from (1.8) with the Newton θ̈; it {} from the printed (1.7) (inherits its factor 2)", if follows.agrees() { "follows exactly" } else { "does not follow" }),
-        json!({"against_newton": id.json(), "from_printed_1_7": follows.json()}))
-        .correct("Λ̈ = N/m + (μ h² h' θ̇ − C g − C h'' θ̇²)/(C + m h'²)")
+    let f = |x: Q| x.get().to_f64();
+    Outcome::new(Verdict::Error, Strength::Exact,
+        format!("under the report's reading (N free): at θ = 0, θ̇ = 1 (defaults) the coefficient of N in (1.9) is {} but V = 1/m + h'²/C = {} = {:.4}, and the rest is {:.4} but U = Λ̈ at N = 0 is {:.4} (exact); (1.9) {} from the printed (1.7) with θ̈ substituted before N is free (the other reading), and inherits its factor 2",
+            pv.get(), v0.get(), f(v0), f(pu), f(u0), if follows.agrees() { "follows exactly" } else { "does not follow" }),
+        json!({"V": shown_at(&v, shown_json(&[]), pv, v0), "U": shown_at(&u, shown_json(&[]), pu, u0),
+               "reading": reading, "from_printed_1_7": follows.json()}))
+        .correct("Λ̈ = U + V N with V = 1/m + h'²/C and U = μ h² h' θ̇/C − g − h'' θ̇² (N free; in contact N = −U/V); substituting θ̈ of the corrected (1.7) before N is free gives N/m + (μ h² h' θ̇ − C g − C h'' θ̇²)/(C + m h'²), which is U/(mV) + N/m: the same N at contact")
 }
 
 fn viscous_pair(
@@ -593,6 +702,56 @@ pub fn s1_friction(mutant: bool) -> Outcome {
             format!("μ = {mu}: box θ ∈ [{:.4}, {:.4}], θ̇ ∈ [{:.4}, {:.4}] lies in Ω ∩ Ω̄₀ (paradox of non-existence)", b.bx.theta[0], b.bx.theta[1], b.bx.theta_dot[0], b.bx.theta_dot[1]),
             json!({"params": params_json(t), "witness": b.json(), "first": "Ω", "second": "Ω₀"})),
         None => Outcome::new(Verdict::False, Strength::Certified, format!("μ = {mu}: no box of Ω ∖ Ω₀ found"), json!({"params": params_json(t)})),
+    }
+}
+
+/// S1.contact: a motion without detachment lies in Ω ∩ Ω₀. Under the
+/// report's reading `Λ̈ = U + V N` with `V = 1/m + h'²/C > 0` (exact, N
+/// free), so contact (Λ̈ = 0) has `N = −U/V` and keeps `N ≥ 0` exactly on the
+/// closure of Ω₀; at zero reaction Λ̈ is the free-flight value, so outside
+/// the closure of Ω a detachment is possible. The stable equilibrium θ = −π/2
+/// lies in Ω ∩ Ω₀ (exact, defaults): such motions exist. Mutant: V without
+/// the term h'²/C.
+pub fn s1_contact(mutant: bool) -> Outcome {
+    let v_closed = |p: &P1<Q>, h1: Q| {
+        if mutant {
+            Q::int(1) / p.m
+        } else {
+            Q::int(1) / p.m + h1.sqr() / p.c
+        }
+    };
+    let v = identity_test(118, |r| {
+        let (p, s, c, w, pt) = rand_point(r);
+        let (_, h1, _) = h_jet(&p, s, c);
+        let n = newton(&p, s, c, w, 1).1;
+        let (u, _) = u_v(&p, s, c, w);
+        // N = −U/V in contact, for the stated V
+        Sample {
+            point: pt,
+            lhs: u + v_closed(&p, h1) * n,
+            rhs: Q::int(0),
+        }
+    });
+    // θ = −π/2, θ̇ = 0 at the defaults: N and the free-flight Λ̈
+    let p = P1::exact(DEFAULTS);
+    let (s, c, w) = (Q::int(-1), Q::int(0), Q::int(0));
+    let n = newton(&p, s, c, w, 1).1;
+    let free = derived_omega(&p, s, c, w);
+    let rest = newton(&p, s, c, w, 1).0;
+    let inside = n.signum() > 0 && free.signum() < 0 && rest.is_zero();
+    let wit = json!({"U_plus_VN_in_contact": v.json(), "params": params_json(DEFAULTS),
+        "equilibrium_theta=-pi/2": {"N": n.get().to_string(), "free_flight_lambda_ddot": free.get().to_string(), "theta_ddot": rest.get().to_string()}});
+    if v.agrees() && inside {
+        Outcome::new(Verdict::Confirmed, Strength::Argument,
+            format!("in contact U + V N = 0 with V = 1/m + h'²/C > 0 (identity test, N free): N ≥ 0 exactly on the closure of Ω₀; at zero reaction Λ̈ is the free-flight value, so detachment is possible outside Ω; a contact motion without detachment therefore stays in Ω ∩ Ω₀; the rest state θ = −π/2 has N = {} > 0 and free-flight Λ̈ = {} < 0 (exact, defaults)", n.get(), free.get()),
+            wit)
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "N is not −U/V with V > 0, or no motion without detachment found",
+            wit,
+        )
     }
 }
 
@@ -859,6 +1018,7 @@ pub(super) const CHECKS: &[(&str, Check)] = &[
     ("F1.3", f1_3),
     ("F1.4", f1_4),
     ("F1.5", f1_5),
+    ("F1.6", f1_6),
     ("F1.7", f1_7),
     ("F1.8", f1_8),
     ("F1.9", f1_9),
@@ -866,6 +1026,7 @@ pub(super) const CHECKS: &[(&str, Check)] = &[
     ("F1.11", f1_11),
     ("S1.ideal", s1_ideal),
     ("S1.friction", s1_friction),
+    ("S1.contact", s1_contact),
     ("S1.12", s1_12),
     ("S1.12mu", s1_12mu),
     ("S1.eq", s1_eq),

@@ -22,7 +22,7 @@ use super::smooth::{
     dt_dtheta, free_lambda_ddot, spin_rates, t_rot_printed, tau_printed, u_printed, P2,
 };
 use super::witness::{find_difference, window};
-use super::{dec, enc, Check, Outcome, Strength, Verdict};
+use super::{dec, enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::roots::isolate::{isolate, point, RealFn};
 use crate::roots::{solve_3_3, Budget};
@@ -299,7 +299,16 @@ pub fn f3_4(mutant: bool) -> Outcome {
             rhs: ud * v,
         }
     });
-    let w = json!({"V0": v0.json(), "U0": u0.json(), "U0_over_V0": ratio.json()});
+    // shown at the defaults, sin θ = 4/5, cos θ = 3/5, θ̇ = 1, v_x = 1
+    let qp = P2::exact(super::smooth::DEFAULTS);
+    let (qs, qc, qw, qv) = (Q::ratio(4, 5), Q::ratio(3, 5), Q::int(1), Q::int(1));
+    let at = json!({"params": super::smooth::params_json(&super::smooth::DEFAULTS), "sin_theta": "4/5", "cos_theta": "3/5", "theta_dot": "1", "v_x": "1"});
+    let ud = lambda_ddot_given_n(&qp, qs, qc, qw, qv, Q::int(0));
+    let vd = lambda_ddot_given_n(&qp, qs, qc, qw, qv, Q::int(1)) - ud;
+    let (up, vp) = printed(&qp, qs, qc, qw, qv);
+    let reading = json!({"at": at, "V": vd.get().to_string(), "U": ud.get().to_string(),
+        "printed_V": vp.get().to_string(), "printed_U": up.get().to_string()});
+    let w = json!({"V0": shown_at(&v0, at.clone(), vp, vd), "U0": shown_at(&u0, at.clone(), up, ud), "U0_over_V0": ratio.json(), "reading": reading});
     if v0.agrees() && u0.agrees() {
         return Outcome::new(
             Verdict::Confirmed,
@@ -316,7 +325,7 @@ pub fn f3_4(mutant: bool) -> Outcome {
     let vp = DecInterval::new(point(1.0)) / p.m;
     let (vd, vp) = (vd.interval().unwrap(), vp.interval().unwrap());
     Outcome::new(Verdict::Error, Strength::Certified,
-        format!("V₀ at θ = 1 (m = 1, a = 1, A = 0.25): printed {:.4} vs Newton–Euler {:.4}, certified disjoint; U₀ also differs, but U₀/V₀ agrees exactly ({}), so N = −U₀/V₀, (3.5) and Ω₀ are unaffected", vp.mid(), vd.mid(), if ratio.agrees() { "identity test" } else { "NOT" }),
+        format!("under the report's reading (N free, the blade reaction kept): V₀ = ∂Λ̈/∂N at θ = 1 (m = 1, a = 1, A = 0.25): printed {:.4} vs Newton–Euler {:.4}, certified disjoint; U₀ (Λ̈ at N = 0) also differs, but U₀/V₀ agrees exactly ({}), so N = −U₀/V₀, (3.5) and Ω₀ are unaffected; the printed pair is the other reading (coefficient 1/m)", vp.mid(), vd.mid(), if ratio.agrees() { "identity test" } else { "NOT" }),
         json!({"identity": w, "theta": "1", "V0_printed": enc(vp), "V0_newton_euler": enc(vd), "disjoint": vp.disjoint(vd)}))
         .correct("Λ̈ = U₀ + V₀ N with V₀ = 1/m + a² cos²θ/(A + m a² sin²θ) and U₀ = m V₀ × (the printed U₀): the printed (3.4) is the true Λ̈ divided by m V₀ > 0, so its sign, the reaction N = −U₀/V₀ and the condition (3.5) are right")
 }
@@ -341,6 +350,61 @@ pub fn f3_5(mutant: bool) -> Outcome {
         "g − a cos θ/(A+ma²)(…) − a θ̇² sin θ = N/m from Newton–Euler: (3.5) ⟺ N ≥ 0",
         "",
     )
+}
+
+/// S3.integrals: energy (2.4) and p_φ, p_ψ (2.3) on ice. The reaction
+/// `N e_z + R n` at the lowest point has no moment about the vertical through
+/// G nor about the disc axis (exact vectors): p_ψ, p_φ stay constant; and
+/// `d(T + Π)/dt = 0` along the Newton–Euler contact motion, with
+/// `T = ½m(v_x² + v_n² + ż²) + ½Aθ̇² +` spin energy, `v̇_x = v_n ψ̇`,
+/// `v_n = −aθ̇ sin θ`, `ż = a cos θ θ̇` (neither N nor R does work: the
+/// contact point moves only along e₁). Mutant: v̇_x = 0 in the energy rate.
+pub fn s3_integrals(mutant: bool) -> Outcome {
+    let moment = identity_test(3101, |r| {
+        let x = rp(r);
+        let (spsi, cpsi) = sin_cos_of_tan_half(r.tan_half());
+        let lambda = Q::from_f64(r.signed());
+        let (n, rr) = (Q::from_f64(r.positive()), Q::from_f64(r.signed()));
+        let (mz, mk) = super::smooth::reaction_moment(x.p.a, x.s, x.c, spsi, cpsi, n, rr);
+        Sample {
+            point: x.pt,
+            lhs: mz + lambda * mk,
+            rhs: Q::int(0),
+        }
+    });
+    let energy = identity_test(3102, |r| {
+        let x = rp(r);
+        let (p, s, c, w, vx) = (x.p, x.s, x.c, x.w, x.c0);
+        let thdd = newton_euler(&p, s, c, w, vx).0;
+        let (psid, _) = spin_rates(&p, s, c);
+        let vn = -(p.a * w * s);
+        let vn_dot = -(p.a * thdd * s) - p.a * w.sqr() * c;
+        let vx_dot = if mutant { Q::int(0) } else { vn * psid };
+        let (zd, zdd) = (p.a * c * w, p.a * c * thdd - p.a * s * w.sqr());
+        let lhs = p.m * (vx * vx_dot + vn * vn_dot + zd * zdd)
+            + p.big_a * w * thdd
+            + w * super::smooth::spin_energy_slope(&p, s, c)
+            + p.m * p.g * zd;
+        Sample {
+            point: x.pt,
+            lhs,
+            rhs: Q::int(0),
+        }
+    });
+    let w =
+        json!({"reaction_moment_vertical_and_axial": moment.json(), "energy_rate": energy.json()});
+    if moment.agrees() && energy.agrees() {
+        Outcome::new(Verdict::Confirmed, Strength::IdentityTest,
+            "the reaction N e_z + R n at the lowest point has no moment about the vertical through G nor about the disc axis (p_ψ, p_φ constant), and d(T + Π)/dt = 0 along the Newton–Euler contact motion: exact agreement at random rational points",
+            w)
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "an integral changes along the contact motion on ice",
+            w,
+        )
+    }
 }
 
 // ---------------------------------------------------------------- statements
@@ -530,7 +594,7 @@ pub fn s3_c0anypoint(mutant: bool) -> Outcome {
     let (l1, l2) = (Q::ratio(-11, 10), Q::ratio(-1, 2));
     let slope = rhs_exact(&p, t, Q::int(1), l1, l2) - rhs_exact(&p, t, Q::int(0), l1, l2);
     let base = rhs_exact(&p, t, Q::int(0), l1, l2);
-    let w = json!({"params": super::smooth::params_json(&["1", "1", "0.25", "0.5", "9.81", "2.5", "2"]), "tan_half_theta": t.text(), "theta_dot": "0",
+    let w = json!({"params": super::smooth::params_json(&["1", "1", "0.25", "0.5", "9.81", "2.5", "2"]), "tan_half_theta": t.get().to_string(), "theta_dot": "0",
         "tau": tau.text(), "rhs_slope_in_c0": slope.text(), "rhs_at_c0=0": base.text()});
     if slope.is_zero() && base.signum() > 0 {
         Outcome::new(Verdict::False, Strength::Exact,
@@ -702,6 +766,62 @@ pub fn s3_symmetry(mutant: bool) -> Outcome {
             Verdict::False,
             Strength::Exact,
             "the map does not leave the equations invariant",
+            w,
+        )
+    }
+}
+
+/// S3.symreduce: "so p_φ ≥ 0, p_ψ ≥ 0 suffices". The mirror of S3.symmetry
+/// changes the sign of p_ψ only. The sign of p_φ matters (p_φ → −p_φ alone
+/// changes θ̈ of (3.3): exact), and it is reached by the time reversal
+/// `t → −t`: θ̇, p_φ, p_ψ, v_x and c₀ change sign, θ̈ of (3.3) and the slack
+/// of (3.5) do not (exact). Mutant: the reversal without c₀ → −c₀.
+pub fn s3_symreduce(mutant: bool) -> Outcome {
+    let reversal = identity_test(393, |r| {
+        let x = rp(r);
+        let mut q = x.p;
+        q.pf = -x.p.pf;
+        q.ps = -x.p.ps;
+        let c0 = if mutant { x.c0 } else { -x.c0 };
+        let v1 = vx_printed(&x.p, x.c0, x.l1, x.l2, 1);
+        let v2 = vx_printed(&q, c0, x.l1, x.l2, 1);
+        let k = [Q::from_f64(r.signed()), Q::from_f64(r.signed())];
+        let slack = |p: &P2<Q>, v: Q, w: Q| rhs_3_5(p, x.s, x.c, v) - p.a * w.sqr() * x.s;
+        Sample {
+            point: x.pt,
+            lhs: v1 + k[0] * thdd_3_3(&x.p, x.s, x.c, v1, 1) + k[1] * slack(&x.p, v1, x.w),
+            rhs: -v2 + k[0] * thdd_3_3(&q, x.s, x.c, v2, 1) + k[1] * slack(&q, v2, -x.w),
+        }
+    });
+    // p_φ → −p_φ alone, at the same θ, θ̇ and v_x
+    let flipped = |p: &P2<Q>| {
+        let mut q = *p;
+        q.pf = -p.pf;
+        q
+    };
+    let flip_alone = identity_test(394, |r| {
+        let x = rp(r);
+        Sample {
+            point: x.pt,
+            lhs: thdd_3_3(&x.p, x.s, x.c, x.c0, 1),
+            rhs: thdd_3_3(&flipped(&x.p), x.s, x.c, x.c0, 1),
+        }
+    });
+    let qp = P2::exact(super::smooth::DEFAULTS);
+    let (qs, qc, qv) = (Q::ratio(4, 5), Q::ratio(3, 5), Q::int(1));
+    let at = json!({"params": super::smooth::params_json(&super::smooth::DEFAULTS), "sin_theta": "4/5", "cos_theta": "3/5", "v_x": "1", "flipped": "p_phi = -2.5"});
+    let w = json!({"time_reversal": reversal.json(),
+        "p_phi_sign_alone": shown_at(&flip_alone, at, thdd_3_3(&qp, qs, qc, qv, 1), thdd_3_3(&flipped(&qp), qs, qc, qv, 1))});
+    if reversal.agrees() && !flip_alone.agrees() {
+        Outcome::new(Verdict::Typo, Strength::IdentityTest,
+            "the stated mirror changes only the sign of p_ψ, and the sign of p_φ alone changes θ̈ of (3.3) at the same θ and v_x (exact difference); the time reversal t → −t (θ̇, p_φ, p_ψ, v_x, c₀ → −) leaves θ̈ of (3.3) and (3.5) unchanged (identity test), so with it p_φ ≥ 0, p_ψ ≥ 0 does suffice",
+            w)
+            .correct("p_ψ → −p_ψ, θ → π − θ gives p_ψ ≥ 0; p_φ ≥ 0 needs in addition the time reversal t → −t (θ̇, p_φ, p_ψ, v_x, c₀ change sign), which leaves (3.3) and (3.5) unchanged; together they reduce to p_φ, p_ψ ≥ 0")
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "the time reversal is not a symmetry, or p_φ's sign does not matter",
             w,
         )
     }
@@ -923,6 +1043,95 @@ pub fn s3_sub3(mutant: bool) -> Outcome {
     }
 }
 
+/// Equilibria of (3.3) and their types: `θ̈ = 0`, a centre where `dθ̈/dθ < 0`
+/// (a minimum of the energy's potential part), a saddle where `> 0`; the
+/// sign is that of `d(sin³θ θ̈)/dθ` on the certified root enclosure.
+fn ice_types(pf: &str, ps: &str, c0: &str) -> (Option<Vec<&'static str>>, serde_json::Value) {
+    let ice = ice_disc(pf, ps, c0);
+    let r = solve_3_3(&ice, &Budget::default());
+    let f = crate::roots::equations::IceAcceleration(&ice);
+    let types: Vec<&'static str> = r
+        .roots
+        .iter()
+        .map(|x| {
+            let d = f
+                .eval(Dual::variable(Interval::try_from((x.lo, x.hi)).unwrap(), 0))
+                .grad[0];
+            if d.sup() < 0.0 {
+                "centre"
+            } else if d.inf() > 0.0 {
+                "saddle"
+            } else {
+                "undecided"
+            }
+        })
+        .collect();
+    let ok = r.complete && !types.contains(&"undecided");
+    let roots: Vec<[f64; 2]> = r.roots.iter().map(|x| [x.lo, x.hi]).collect();
+    (
+        ok.then(|| types.clone()),
+        json!({"p_phi": pf, "p_psi": ps, "c0": c0, "complete": ok, "roots": roots, "types": types}),
+    )
+}
+
+/// S3.sub3fig: "all phase trajectories are bounded (Fig. 4)". Fig. 4 is
+/// lost; §2 describes it as one centre (4a) or a saddle between two centres
+/// (4b). Checked: certified equilibria of (3.3) and their types over samples
+/// of subcase 3 (p_ψ ≠ p_φ) and c₀, against those two portraits; the
+/// level sets are compact by S3.sub3. Mutant: samples of subcase 2 (p_ψ = p_φ).
+pub fn s3_sub3fig(mutant: bool) -> Outcome {
+    let pairs: &[(&str, &str)] = if mutant {
+        &[("1", "1"), ("2", "2")]
+    } else {
+        &[
+            ("2", "1"),
+            ("1", "2"),
+            ("2.5", "2"),
+            ("4", "3.5"),
+            ("3.5", "4"),
+        ]
+    };
+    let c0s = ["-10", "-3", "0", "3", "10"];
+    let mut js = Vec::new();
+    let mut seen: std::collections::BTreeMap<String, usize> = Default::default();
+    let mut bad = Vec::new();
+    let mut undecided = 0;
+    for (pf, ps) in pairs {
+        for c0 in c0s {
+            let (types, j) = ice_types(pf, ps, c0);
+            js.push(j);
+            match types {
+                None => undecided += 1,
+                Some(t) => {
+                    let key = if t.is_empty() {
+                        "none".to_string()
+                    } else {
+                        t.join("–")
+                    };
+                    if t != ["centre"] && t != ["centre", "saddle", "centre"] {
+                        bad.push(format!("({pf}, {ps}, c₀ = {c0}): {key}"));
+                    }
+                    *seen.entry(key).or_default() += 1;
+                }
+            }
+        }
+    }
+    let found: Vec<String> = seen.iter().map(|(k, n)| format!("{k} ({n})")).collect();
+    let total = pairs.len() * c0s.len();
+    let w = json!({"figure": "Fig. 4 is lost; §2: 4a one centre, 4b a saddle and two centres",
+        "samples": js, "portraits": seen, "undecided_samples": undecided});
+    if bad.is_empty() && undecided == 0 && seen.len() == 2 {
+        Outcome::new(Verdict::ConfirmedOn, Strength::Certified,
+            format!("Fig. 4 is lost; checked against §2's description (4a: one centre, 4b: a saddle between two centres): certified equilibria of (3.3) and their types at {total} samples (p_φ, p_ψ) × c₀ ∈ {{−10, −3, 0, 3, 10}}: {}; the level sets are compact (S3.sub3)", found.join(", ")), w)
+    } else if bad.is_empty() && undecided == 0 {
+        Outcome::new(Verdict::ConfirmedOn, Strength::Certified,
+            format!("Fig. 4 is lost; checked against §2's description (4a: one centre, 4b: a saddle between two centres): at {total} samples only {}; the level sets are compact (S3.sub3)", found.join(", ")), w)
+    } else {
+        Outcome::new(Verdict::False, Strength::Certified,
+            format!("portraits other than those of Fig. 4 (one centre; a saddle between two centres){}: {}", if undecided > 0 { format!(" or undecided ({undecided})") } else { String::new() }, bad.join("; ")), w)
+    }
+}
+
 /// This section's check functions, by claim id (`claims.toml` holds the rest).
 pub(super) const CHECKS: &[(&str, Check)] = &[
     ("F3.1", f3_1),
@@ -930,6 +1139,7 @@ pub(super) const CHECKS: &[(&str, Check)] = &[
     ("F3.3", f3_3),
     ("F3.4", f3_4),
     ("F3.5", f3_5),
+    ("S3.integrals", s3_integrals),
     ("S3.omega", s3_omega),
     ("S3.c0changes", s3_c0changes),
     ("S3.c0invariant", s3_c0invariant),
@@ -937,7 +1147,9 @@ pub(super) const CHECKS: &[(&str, Check)] = &[
     ("S3.c0anypoint", s3_c0anypoint),
     ("S3.forms", s3_forms),
     ("S3.symmetry", s3_symmetry),
+    ("S3.symreduce", s3_symreduce),
     ("S3.sub1", s3_sub1),
     ("S3.sub2", s3_sub2),
     ("S3.sub3", s3_sub3),
+    ("S3.sub3fig", s3_sub3fig),
 ];

@@ -30,6 +30,27 @@ use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::sync::OnceLock;
 
+/// The paper the claims come from.
+pub const PAPER: &str = "A. P. Ivanov, *Geometric representation of detachment conditions in \
+systems with unilateral constraint*, Nelineinaya Dinamika (Russian Journal of Nonlinear Dynamics), 2008";
+
+/// How the report reads `Λ̈ = U + V N`, for every claim that names U or V.
+///
+/// N is a free applied force: the equations of motion (with every other
+/// constraint kept) are solved for the accelerations with N given, so Λ̈ is
+/// affine in N; the contact condition Λ̈ = 0 is imposed only afterwards and
+/// fixes N = −U/V. Then U is Λ̈ at zero reaction (the paper's definition of
+/// Ω) and V = ∂Λ̈/∂N = ∇Λ·M⁻¹∇Λ > 0. Substituting instead an acceleration
+/// already solved from the contact equations makes the coefficient of N
+/// 1/m and the rest U/(mV): same sign, same N at contact, other U and V.
+pub const READING: &str = "N is a free force: the equations of motion are solved for the \
+accelerations with N given, and the contact condition Λ̈ = 0 is imposed afterwards (N = −U/V). \
+So U = Λ̈ at zero reaction (the paper's Ω) and V = ∂Λ̈/∂N = ∇Λ·M⁻¹∇Λ > 0. An acceleration \
+taken from the contact equations (N eliminated before) would give the coefficient 1/m and \
+U/(mV) instead: the same sign of U and the same N at contact, so Ω, Ω₀ and N do not change \
+with the reading, only the formulas for U and V do. F1.9, F2.6, F2.7 and F3.4 are graded under \
+this reading.";
+
 /// What the computation shows about a claim.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -318,4 +339,26 @@ pub(crate) fn dec(text: &str) -> inari::Interval {
 /// `[inf, sup]` of an enclosure for a witness.
 pub(crate) fn enc(x: inari::Interval) -> serde_json::Value {
     serde_json::json!([x.inf(), x.sup()])
+}
+
+/// The witness of an identity: as the test reports it when the two sides
+/// agree; when they differ, the exact values of both sides at `point` (short
+/// decimals and the default parameters, named in `point`) rather than at the
+/// test's random rationals. Falls back to the test's own point if the two
+/// sides happen to agree at `point`.
+pub(crate) fn shown_at(
+    id: &exact::Identity,
+    point: serde_json::Value,
+    printed: exact::Q,
+    derived: exact::Q,
+) -> serde_json::Value {
+    if id.agrees() || printed == derived {
+        return id.json();
+    }
+    serde_json::json!({
+        "identity": "differ",
+        "point": point,
+        "printed": printed.get().to_string(),
+        "derived": derived.get().to_string(),
+    })
 }

@@ -11,7 +11,7 @@ use super::exact::{
     angle_d, dd_const, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, verdict_of,
     RationalPath, Rng, Sample, Q,
 };
-use super::{enc, Check, Outcome, Strength, Verdict};
+use super::{enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::roots::critical::{band_cell, g as g_crit};
 use crate::roots::equations::kappa_alpha;
@@ -185,6 +185,80 @@ pub fn pi_slope_printed<T: Scalar>(p: &P2<T>, s: T, c: T, sign: i32) -> T {
     p.m * p.g * p.a * c + T::int(sign) * p.big_a * t * t1
 }
 
+/// Λ̈ of (2.6) for a given normal reaction N (a free force), θ̈ from the θ
+/// equation with N: `A θ̈ = ∂T/∂θ − a cos θ N`, z̈ = N/m − g.
+pub fn lambda_ddot_given_n<T: Scalar>(p: &P2<T>, s: T, c: T, w: T, n: T) -> T {
+    let thdd = (dt_dtheta(p, s, c, w) - p.a * c * n) / p.big_a;
+    n / p.m - p.g + p.a * w.sqr() * s - p.a * thdd * c
+}
+
+/// `(U, V)` of `Λ̈ = U + V N` under the report's reading (N free).
+pub fn u_v<T: Scalar>(p: &P2<T>, s: T, c: T, w: T) -> (T, T) {
+    let u = lambda_ddot_given_n(p, s, c, w, T::int(0));
+    (u, lambda_ddot_given_n(p, s, c, w, T::int(1)) - u)
+}
+
+/// V = 1/m + a² cos²θ/A as (2.7)'s argument states it.
+pub fn v_closed<T: Scalar>(p: &P2<T>, c: T) -> T {
+    T::int(1) / p.m + p.a.sqr() * c.sqr() / p.big_a
+}
+
+/// θ̈ of the reduced equation (2.5): `J θ̈ + ½ J' θ̇² = −Π̃'`, J = A + m a² cos²θ.
+pub fn reduced_thdd<T: Scalar>(p: &P2<T>, s: T, c: T, w: T) -> T {
+    let an = angle_d(s, c);
+    let pd = p.map(Dual::constant);
+    let jj = pd.big_a + pd.m * pd.a.sqr() * an.cos.sqr();
+    let pi = pi_tilde(&pd, an.sin, an.cos);
+    (-pi.grad[0] - jj.grad[0] * w.sqr() / T::int(2)) / jj.value
+}
+
+/// d/dθ of the spin energy `½Aψ̇² sin²θ + ½C(ψ̇ cos θ + φ̇)²` with ψ̇, φ̇ from
+/// the integrals (2.3) at fixed p_φ, p_ψ.
+pub fn spin_energy_slope<T: Scalar>(p: &P2<T>, s: T, c: T) -> T {
+    let an = angle_d(s, c);
+    let pd = p.map(Dual::constant);
+    let (psid, phid) = spin_rates(&pd, an.sin, an.cos);
+    t_rot_printed(&pd, an.sin, an.cos, Dual::int(0), psid, phid).grad[0]
+}
+
+/// Components along the vertical e_z and along the disc axis k of the
+/// moment about G of the force `N e_z + R n` applied at the lowest rim
+/// point. Disc axis `k = (s sin ψ, −s cos ψ, c)` (as in F2.1), line of nodes
+/// `e₁ = (cos ψ, sin ψ, 0)`, `n = e_z × e₁`; the lowest point is
+/// `r = −a (k × e₁)` (`k × e₁` has vertical component sin θ > 0).
+pub fn reaction_moment<T: Scalar>(a: T, s: T, c: T, spsi: T, cpsi: T, n: T, r: T) -> (T, T) {
+    let k = [s * spsi, -(s * cpsi), c];
+    let e1 = [cpsi, spsi, T::int(0)];
+    let kxe = [
+        k[1] * e1[2] - k[2] * e1[1],
+        k[2] * e1[0] - k[0] * e1[2],
+        k[0] * e1[1] - k[1] * e1[0],
+    ];
+    let rr = [-(a * kxe[0]), -(a * kxe[1]), -(a * kxe[2])];
+    let f = [-(r * spsi), r * cpsi, n];
+    let m = [
+        rr[1] * f[2] - rr[2] * f[1],
+        rr[2] * f[0] - rr[0] * f[2],
+        rr[0] * f[1] - rr[1] * f[0],
+    ];
+    (m[2], m[0] * k[0] + m[1] * k[1] + m[2] * k[2])
+}
+
+/// The point where differences are shown: default parameters, tan(θ/2) =
+/// 1/2 (sin θ = 4/5, cos θ = 3/5), θ̇ = 1.
+fn shown_point() -> (P2<Q>, Q, Q, Q) {
+    (
+        P2::exact(DEFAULTS),
+        Q::ratio(4, 5),
+        Q::ratio(3, 5),
+        Q::int(1),
+    )
+}
+
+fn shown_json() -> serde_json::Value {
+    json!({"params": params_json(&DEFAULTS), "sin_theta": "4/5", "cos_theta": "3/5", "theta_dot": "1"})
+}
+
 fn rp(r: &mut Rng) -> (P2<Q>, Q, Q, Q, Vec<(String, f64)>) {
     let p = P2::random(r);
     let t = r.tan_half();
@@ -314,9 +388,13 @@ pub fn f2_5(mutant: bool) -> Outcome {
         "Π̃ = m g a sin θ + (p_ψ − p_φ cos θ)²/(2A sin²θ)")
 }
 
-/// F2.6: `Λ̈ = N/m − g + a θ̇² sin θ − a θ̈ cos θ` along rational paths.
-/// Mutant: `+ a θ̈ cos θ`.
+/// F2.6: `Λ̈ = N/m − g + a θ̇² sin θ − a θ̈ cos θ` along rational paths; under
+/// the report's reading θ̈ carries N (`A θ̈ = ∂T/∂θ − a cos θ N`), so the
+/// coefficient of N is V = 1/m + a² cos²θ/A (that of F2.7), not the 1/m in
+/// front, and the rest at N = 0 is U of (2.7) — the paper's second route
+/// (the θ equation of (2.2) with the integrals (2.3)). Mutant: `+ a θ̈ cos θ`.
 pub fn f2_6(mutant: bool) -> Outcome {
+    let sgn = if mutant { Q::int(-1) } else { Q::int(1) };
     let id = identity_test(26, |r| {
         let p = P2::random(r);
         let RationalPath {
@@ -332,7 +410,6 @@ pub fn f2_6(mutant: bool) -> Outcome {
         let (su, _) = sin_cos_of_tan_half(u);
         let lam_dd = jet2(z - dd_const(p.a) * su).2;
         let n = p.m * (Q::int(2) * z2 + p.g); // m z̈ = N − m g
-        let sgn = if mutant { Q::int(-1) } else { Q::int(1) };
         let printed = n / p.m - p.g + p.a * w.sqr() * s - sgn * p.a * thdd * c;
         Sample {
             point: vec![("u0".into(), u0.get().to_f64())],
@@ -340,11 +417,84 @@ pub fn f2_6(mutant: bool) -> Outcome {
             rhs: lam_dd,
         }
     });
-    verdict_of(
-        &[("second_derivative", &id)],
-        "(2.6) against d²(z − a sin θ)/dt² along rational paths with m z̈ = N − m g",
-        "Λ̈ = N/m − g + a θ̇² sin θ − a θ̈ cos θ",
-    )
+    // (2.6) with θ̈ from the θ equation with N given
+    let printed_n = |p: &P2<Q>, s: Q, c: Q, w: Q, n: Q| {
+        let thdd = (dt_dtheta(p, s, c, w) - p.a * c * n) / p.big_a;
+        n / p.m - p.g + p.a * w.sqr() * s - sgn * p.a * thdd * c
+    };
+    let v = identity_test(261, |r| {
+        let (p, s, c, w, pt) = rp(r);
+        Sample {
+            point: pt,
+            lhs: printed_n(&p, s, c, w, Q::int(1)) - printed_n(&p, s, c, w, Q::int(0)),
+            rhs: v_closed(&p, c),
+        }
+    });
+    let u = identity_test(262, |r| {
+        let (p, s, c, w, pt) = rp(r);
+        Sample {
+            point: pt,
+            lhs: printed_n(&p, s, c, w, Q::int(0)),
+            rhs: u_printed(&p, s, c, w),
+        }
+    });
+    let (qp, qs, qc, qw) = shown_point();
+    let (u0, v0) = u_v(&qp, qs, qc, qw);
+    let mut o = verdict_of(&[("second_derivative", &id), ("N_coefficient_is_V_of_2_7", &v), ("U_from_theta_equation_of_2_2", &u)],
+        "(2.6) against d²(z − a sin θ)/dt² along rational paths with m z̈ = N − m g; with θ̈ from the θ equation with N (A θ̈ = ∂T/∂θ − a cos θ N) the coefficient of N is V = 1/m + a²cos²θ/A (not the 1/m in front) and the rest at N = 0 is U of (2.7) (second route)",
+        "Λ̈ = N/m − g + a θ̇² sin θ − a θ̈ cos θ, with θ̈ depending on N: V = 1/m + a²cos²θ/A");
+    o.witness["reading"] =
+        json!({"at": shown_json(), "V": v0.get().to_string(), "U": u0.get().to_string()});
+    o
+}
+
+/// F2.6route: "to get U, substitute θ̈ from (2.5)". (2.5) is the contact
+/// equation (N already eliminated), so this gives `−g + a θ̇² sin θ − a θ̈ cos θ
+/// = A/(A + m a² cos²θ)·U = U/(mV)`, the other reading, not U. Mutant: θ̈
+/// from the θ equation of (2.2) at N = 0 instead.
+pub fn f2_6route(mutant: bool) -> Outcome {
+    let via = |p: &P2<Q>, s: Q, c: Q, w: Q| {
+        let thdd = if mutant {
+            dt_dtheta(p, s, c, w) / p.big_a
+        } else {
+            reduced_thdd(p, s, c, w)
+        };
+        -p.g + p.a * w.sqr() * s - p.a * thdd * c
+    };
+    let id = identity_test(263, |r| {
+        let (p, s, c, w, pt) = rp(r);
+        Sample {
+            point: pt,
+            lhs: via(&p, s, c, w),
+            rhs: u_printed(&p, s, c, w),
+        }
+    });
+    let scaled = identity_test(264, |r| {
+        let (p, s, c, w, pt) = rp(r);
+        let j = p.big_a + p.m * p.a.sqr() * c.sqr();
+        Sample {
+            point: pt,
+            lhs: via(&p, s, c, w),
+            rhs: p.big_a / j * u_printed(&p, s, c, w),
+        }
+    });
+    let (qp, qs, qc, qw) = shown_point();
+    let (gave, u0) = (via(&qp, qs, qc, qw), u_printed(&qp, qs, qc, qw));
+    let w = json!({"route_2_5_vs_U": shown_at(&id, shown_json(), gave, u0), "route_2_5_vs_A_over_J_times_U": scaled.json()});
+    if id.agrees() {
+        return Outcome::new(
+            Verdict::Confirmed,
+            Strength::IdentityTest,
+            "substituting θ̈ gives U of (2.7): exact agreement at random rational points",
+            w,
+        );
+    }
+    let f = |x: Q| x.get().to_f64();
+    Outcome::new(Verdict::Error, Strength::Exact,
+        format!("θ̈ of (2.5) is the contact acceleration (N eliminated): substituted into (2.6) it gives A/(A + m a² cos²θ)·U ({}), not U; at sin θ = 4/5, cos θ = 3/5, θ̇ = 1 (defaults) {:.4} against U = {:.4} (exact)",
+            if scaled.agrees() { "identity test" } else { "NOT" }, f(gave), f(u0)),
+        w)
+        .correct("substituting θ̈ from (2.5) gives A/(A + m a² cos²θ)·U = U/(mV), with the same sign as U; U itself comes from the θ equation of (2.2) at N = 0 with the integrals (2.3) (F2.6)")
 }
 
 /// F2.7: τ' = dτ/dθ; U = free-flight Λ̈; in contact U + V N = 0 with
@@ -382,9 +532,22 @@ pub fn f2_7(mutant: bool) -> Outcome {
             rhs: Q::int(0),
         }
     });
-    verdict_of(&[("tau_prime", &tau1), ("U_free_flight", &u), ("U_plus_VN_in_contact", &contact)],
-        "τ' = dτ/dθ; U = Λ̈ at N = 0; in contact U + V N = 0, V = 1/m + a²cos²θ/A > 0, so contact (N ≥ 0) ⟺ U ≤ 0",
-        "τ' = (p_φ − p_ψ cos θ)/(A sin²θ)")
+    let v = identity_test(273, |r| {
+        let (p, s, c, w, pt) = rp(r);
+        Sample {
+            point: pt,
+            lhs: v_closed(&p, c),
+            rhs: u_v(&p, s, c, w).1,
+        }
+    });
+    let (qp, qs, qc, qw) = shown_point();
+    let (u0, v0) = u_v(&qp, qs, qc, qw);
+    let mut o = verdict_of(&[("tau_prime", &tau1), ("U_free_flight", &u), ("U_plus_VN_in_contact", &contact), ("V_is_dLambda_ddot_dN", &v)],
+        "τ' = dτ/dθ; U = Λ̈ at N = 0; V = ∂Λ̈/∂N = 1/m + a²cos²θ/A > 0 (N free), and in contact U + V N = 0, so contact (N ≥ 0) ⟺ U ≤ 0",
+        "τ' = (p_φ − p_ψ cos θ)/(A sin²θ)");
+    o.witness["reading"] =
+        json!({"at": shown_json(), "V": v0.get().to_string(), "U": u0.get().to_string()});
+    o
 }
 
 /// F2.8: `θ̇² − Φ = U/(a sin θ)`. Mutant: Φ with `sin³θ`.
@@ -486,6 +649,35 @@ pub fn f2_10(mutant: bool) -> Outcome {
     verdict_of(&[("tan_half_substitution", &id)], "(2.9) at α = 1 times (1+μ²)³ = 8μ³(κ − μ(1−μ)(1+μ)/2), μ = tan(θ/2) > 0: positive roots of (2.10) ↔ roots of (2.9)", "2κ = μ(1 − μ)(1 + μ)")
 }
 
+/// F2.11: the reduced energy `T̃ + Π̃` is constant along the contact motion:
+/// its time derivative `θ̇ (J θ̈ + ½ J' θ̇² + Π̃')` vanishes with θ̈ from the
+/// Lagrange equations in contact (J = A + m a² cos²θ), so the phase curves
+/// are its level lines; a contact motion keeps contact while N ≥ 0, i.e. in
+/// Ω₀ = Ω (S2.omega). Mutant: Π̃ with `A sin θ` in the denominator.
+pub fn f2_11(mutant: bool) -> Outcome {
+    let id = identity_test(2110, |r| {
+        let (p, s, c, w, pt) = rp(r);
+        let an = angle_d(s, c);
+        let pd = p.map(Dual::constant);
+        let jj = pd.big_a + pd.m * pd.a.sqr() * an.cos.sqr();
+        let pi = if mutant {
+            pd.m * pd.g * pd.a * an.sin
+                + (pd.ps - pd.pf * an.cos).sqr() / (Dual::int(2) * pd.big_a * an.sin)
+        } else {
+            pi_tilde(&pd, an.sin, an.cos)
+        };
+        let thdd = lagrange(&p, s, c, w).0;
+        Sample {
+            point: pt,
+            lhs: w * (jj.value * thdd + jj.grad[0] * w.sqr() / Q::int(2) + pi.grad[0]),
+            rhs: Q::int(0),
+        }
+    });
+    verdict_of(&[("reduced_energy_rate", &id)],
+        "d(T̃ + Π̃)/dt = θ̇(Jθ̈ + ½J'θ̇² + Π̃') = 0 with θ̈ from the Lagrange equations in contact: phase curves are level lines of T̃ + Π̃; with Ω = Ω₀ (S2.omega) a motion without detachment is one that stays in Ω",
+        "T̃ + Π̃ = const")
+}
+
 /// F2.12: Π̃' of (2.12) against the derivative of Π̃ (2.5). Mutant: `− Aττ'`.
 pub fn f2_12(mutant: bool) -> Outcome {
     let id = identity_test(212, |r| {
@@ -506,6 +698,52 @@ pub fn f2_12(mutant: bool) -> Outcome {
 }
 
 // ---------------------------------------------------------------- statements
+
+/// S2.integrals: (2.3) and (2.4) in contact. The reaction N e_z at the
+/// lowest point has no moment about the vertical through G nor about the
+/// disc axis (exact vectors), so p_ψ and p_φ stay constant (p_x, p_y too:
+/// N is vertical); and `d(T + Π)/dt = 0` along the contact motion, T of
+/// (2.1) with `ż = a cos θ θ̇` and the integrals' spin rates, θ̈ from the
+/// Lagrange equations (N does no work: Λ̇ = 0). Mutant: Π = m g z dropped.
+pub fn s2_integrals(mutant: bool) -> Outcome {
+    let moment = identity_test(2201, |r| {
+        let (p, s, c, _, pt) = rp(r);
+        let (spsi, cpsi) = sin_cos_of_tan_half(r.tan_half());
+        let lambda = Q::from_f64(r.signed());
+        let n = Q::from_f64(r.positive());
+        let (mz, mk) = reaction_moment(p.a, s, c, spsi, cpsi, n, Q::int(0));
+        Sample {
+            point: pt,
+            lhs: mz + lambda * mk,
+            rhs: Q::int(0),
+        }
+    });
+    let energy = identity_test(2202, |r| {
+        let (p, s, c, w, pt) = rp(r);
+        let thdd = lagrange(&p, s, c, w).0;
+        let (zd, zdd) = (p.a * c * w, p.a * c * thdd - p.a * s * w.sqr());
+        let gravity = if mutant { Q::int(0) } else { p.m * p.g * zd };
+        Sample {
+            point: pt,
+            lhs: p.m * zd * zdd + p.big_a * w * thdd + w * spin_energy_slope(&p, s, c) + gravity,
+            rhs: Q::int(0),
+        }
+    });
+    let w =
+        json!({"reaction_moment_vertical_and_axial": moment.json(), "energy_rate": energy.json()});
+    if moment.agrees() && energy.agrees() {
+        Outcome::new(Verdict::Confirmed, Strength::IdentityTest,
+            "the reaction N e_z at the lowest point has no moment about the vertical through G nor about the disc axis (p_ψ, p_φ constant; p_x, p_y since N is vertical), and d(T + Π)/dt = 0 along the contact motion (Lagrange θ̈, ż = a cos θ θ̇): exact agreement at random rational points",
+            w)
+    } else {
+        Outcome::new(
+            Verdict::False,
+            Strength::Exact,
+            "an integral changes along the contact motion",
+            w,
+        )
+    }
+}
 
 /// S2.omega: U + V N = 0 in contact with V > 0 (F2.7) and `θ̇² − Φ = U/(a sin θ)`
 /// (F2.8), so (2.8) ⟺ N ≥ 0 ⟺ U ≤ 0: Ω = Ω₀. Mutant: V with `−a²cos²θ/A`.
@@ -645,13 +883,16 @@ pub fn s2_case2(mutant: bool) -> Outcome {
 }
 
 /// S2.case3: α ∈ (0, 1): by the unimodality lemma of G(s, α) = κ-level of
-/// (2.9) (checked on 32 α-boxes), κ > κ_crit(α) gives no root (Φ > 0, one
+/// (2.9) (checked on the α-boxes of [0, 1] of the band proof, the last one
+/// included), κ > κ_crit(α) gives no root (Φ > 0, one
 /// component) and κ < κ_crit(α) two simple roots (Φ < 0 between, two
 /// components); κ_crit(α) > 0 since G(s, α) > 0 for s ∈ (√((1−α)/(1+α)), 1).
 /// Certified sample: α = 0.5, κ_crit ∈ band, both sides solved with (2.9).
 /// Mutant: α = 0, where κ_crit = 0 and only one form exists.
 pub fn s2_case3(mutant: bool) -> Outcome {
-    let n = 32;
+    // the band proof's α-boxes: [0, 1] in `n` parts, the last left to κ₀
+    let n = crate::certificate::catalog::BAND_BOXES;
+    let in_proof = n - 1;
     let cells: Vec<_> = (0..n)
         .map(|i| {
             band_cell(
@@ -679,11 +920,11 @@ pub fn s2_case3(mutant: bool) -> Outcome {
         && above
             .as_ref()
             .is_some_and(|r| r.complete && r.unique_count() == 0);
-    let w = json!({"lemma_on_32_alpha_boxes": lemma, "alpha": alpha_text, "kappa_crit_band": [cell.lower, cell.upper],
+    let w = json!({"lemma_alpha_boxes": n, "lemma_holds": lemma, "band_proof_alpha_boxes": in_proof, "alpha": alpha_text, "kappa_crit_band": [cell.lower, cell.upper],
         "G(0.9, alpha)": enc(g_pos), "below_band_half": below.as_ref().map(roots_json), "above_band": above.as_ref().map(roots_json)});
     if lemma && two_forms && g_pos.inf() > 0.0 {
         Outcome::new(Verdict::Confirmed, Strength::Argument,
-            format!("unimodality lemma certified on all 32 α-boxes of [0, 1]: for each α ∈ (0, 1) one component when κ > κ_crit(α), two when κ < κ_crit(α) (κ_crit > 0); α = 0.5: κ_crit ∈ [{:.6}, {:.6}], 2 roots below, 0 above (certified)", cell.lower, cell.upper), w)
+            format!("unimodality lemma certified on all {n} α-boxes of [0, 1]: for each α ∈ (0, 1) one component when κ > κ_crit(α), two when κ < κ_crit(α) (κ_crit > 0); the band proof covers {in_proof} α-boxes of [0, {in_proof}/{n}] and α = 1 is the κ₀ proof; α = 0.5: κ_crit ∈ [{:.6}, {:.6}], 2 roots below, 0 above (certified)", cell.lower, cell.upper), w)
     } else {
         Outcome::new(
             Verdict::False,
@@ -968,12 +1209,15 @@ pub(super) const CHECKS: &[(&str, Check)] = &[
     ("F2.1", f2_1),
     ("F2.5", f2_5),
     ("F2.6", f2_6),
+    ("F2.6route", f2_6route),
     ("F2.7", f2_7),
     ("F2.8", f2_8),
     ("F2.9", f2_9),
     ("S2.alpha", s2_alpha),
     ("F2.10", f2_10),
+    ("F2.11", f2_11),
     ("F2.12", f2_12),
+    ("S2.integrals", s2_integrals),
     ("S2.omega", s2_omega),
     ("S2.case1", s2_case1),
     ("S2.case1fr", s2_case1fr),

@@ -325,3 +325,173 @@ fn report_is_deterministic_and_complete() {
         assert!(md.contains(&format!("| {} |", r.id)));
     }
 }
+
+// ---------------------------------------------------------------- Λ̈ = U + V N
+
+/// An exact rational from "p/q" or an integer text.
+fn q(text: &str) -> rug::Rational {
+    text.parse()
+        .unwrap_or_else(|_| panic!("not a rational: {text}"))
+}
+
+fn ratio(n: i64, d: i64) -> rug::Rational {
+    rug::Rational::from((n, d))
+}
+
+/// The report reads Λ̈ = U + V N with N a free force (V = ∂Λ̈/∂N). Each check
+/// that names U or V shows them at a stated point; here they are recomputed
+/// by hand from the closed forms of that reading. Under the other reading
+/// (θ̈ from the contact equations) the coefficient of N is 1/m = 1 at the
+/// defaults, which none of these values equals.
+#[test]
+fn u_and_v_are_read_one_way_in_every_check() {
+    // Example 1, defaults (a, b, m, C, μ, g) = (1, 0.5, 1, 0.3, 0.8, 9.81), θ = 0,
+    // θ̇ = 1: h = 1, h' = b = 1/2, h'' = 0.
+    // V = 1/m + h'²/C = 1 + (1/4)/(3/10) = 11/6; U = μh²h'θ̇/C − g − h''θ̇² = 4/3 − 981/100.
+    let r = expect("F1.9", Verdict::Error);
+    let rd = &r.witness["reading"];
+    assert_eq!(q(rd["V"].as_str().unwrap()), ratio(11, 6));
+    assert_eq!(q(rd["U"].as_str().unwrap()), ratio(4, 3) - ratio(981, 100));
+    // the printed coefficient of N is 1/m: the other reading
+    assert_eq!(q(rd["printed_V"].as_str().unwrap()), 1);
+
+    // §2, defaults (m, a, A, p_φ, p_ψ) = (1, 1, 1/4, 5/2, 2), sin θ = 4/5,
+    // cos θ = 3/5, θ̇ = 1: V = 1/m + a²cos²θ/A = 1 + (9/25)·4 = 61/25;
+    // τ = (2 − 3/2)/(1/5) = 5/2, τ' = (5/2 − 6/5)/(4/25) = 65/8,
+    // U = −g + aθ̇² sin θ + aττ' cos θ = −981/100 + 4/5 + 195/16 = 1271/400.
+    for id in ["F2.6", "F2.7"] {
+        let r = expect(id, Verdict::Confirmed);
+        let rd = &r.witness["reading"];
+        assert_eq!(q(rd["V"].as_str().unwrap()), ratio(61, 25), "{id}");
+        assert_eq!(q(rd["U"].as_str().unwrap()), ratio(1271, 400), "{id}");
+    }
+    // θ̈ of (2.5) substituted first gives U·A/(A + m a² cos²θ) = U/(mV) = 1271/976
+    let r = expect("F2.6route", Verdict::Error);
+    let shown = &r.witness["route_2_5_vs_U"];
+    assert_eq!(q(shown["derived"].as_str().unwrap()), ratio(1271, 400));
+    assert_eq!(
+        q(shown["printed"].as_str().unwrap()),
+        ratio(1271, 400) * ratio(25, 61)
+    );
+
+    // §3, same point, v_x = 1: V₀ = 1/m + a²cos²θ/(A + m a² sin²θ)
+    // = 1 + (9/25)/(1/4 + 16/25) = 1 + 36/89 = 125/89.
+    let r = expect("F3.4", Verdict::Error);
+    let rd = &r.witness["identity"]["reading"];
+    assert_eq!(q(rd["V"].as_str().unwrap()), ratio(125, 89));
+    assert_eq!(q(rd["printed_V"].as_str().unwrap()), 1);
+}
+
+#[test]
+fn report_names_the_paper_and_the_reading() {
+    let md = claims::report::markdown(&claims::run(&["F1.3".into()]).unwrap());
+    let head = &md[..md.find("| id |").unwrap()];
+    for s in [
+        "A. P. Ivanov",
+        "Geometric representation of detachment conditions",
+        "Nelineinaya Dinamika",
+        "2008",
+        "Λ̈ = U + V N",
+        "N is a free force",
+    ] {
+        assert!(head.contains(s), "{s} missing from the header");
+    }
+}
+
+// ---------------------------------------------------------------- added claims
+
+#[test]
+fn integrals_and_energy_theorems_confirmed() {
+    for id in ["F1.6", "F2.11", "S2.integrals", "S3.integrals"] {
+        expect(id, Verdict::Confirmed);
+    }
+}
+
+#[test]
+fn contact_without_detachment_lies_in_omega_and_omega0() {
+    let r = expect("S1.contact", Verdict::Confirmed);
+    // rest at θ = −π/2 (h' = 0): N = m g = 981/100, free-flight Λ̈ = −g
+    let e = &r.witness["equilibrium_theta=-pi/2"];
+    assert_eq!(q(e["N"].as_str().unwrap()), ratio(981, 100));
+    assert_eq!(
+        q(e["free_flight_lambda_ddot"].as_str().unwrap()),
+        ratio(-981, 100)
+    );
+}
+
+#[test]
+fn the_reduction_to_nonnegative_momenta_needs_time_reversal() {
+    let r = expect("S3.symreduce", Verdict::Typo);
+    assert_eq!(r.witness["time_reversal"]["identity"], "agree");
+    // p_φ → −p_φ at sin θ = 4/5, cos θ = 3/5, v_x = 1 (defaults):
+    // τ = 5/2 → (2 + 3/2)/(1/5) = 35/2, τ' = 65/8 → (−5/2 − 6/5)/(4/25) = −185/8;
+    // (A + m a²)θ̈ = −g·3/5 + v_x τ − ττ'/4, A + m a² = 5/4.
+    let th = |tau: rug::Rational, tau1: rug::Rational| {
+        (ratio(-981, 100) * ratio(3, 5) + tau.clone() - tau * tau1 / 4) * ratio(4, 5)
+    };
+    let s = &r.witness["p_phi_sign_alone"];
+    assert_eq!(
+        q(s["printed"].as_str().unwrap()),
+        th(ratio(5, 2), ratio(65, 8))
+    );
+    assert_eq!(
+        q(s["derived"].as_str().unwrap()),
+        th(ratio(35, 2), ratio(-185, 8))
+    );
+}
+
+#[test]
+fn subcase_3_portraits_against_fig_4() {
+    let (got, r) = v("S3.sub3fig", false);
+    assert_eq!(got, Verdict::ConfirmedOn, "{}", r.summary);
+    assert_eq!(r.witness["undecided_samples"], 0);
+    // subcase 2 (p_ψ = p_φ) has 0 or 2 equilibria: not a portrait of Fig. 4
+    let (m, mr) = v("S3.sub3fig", true);
+    assert_eq!(m, Verdict::False, "{}", mr.summary);
+}
+
+/// The band proof's α-box count, read from the committed proof file.
+#[test]
+fn s2_case3_states_the_boxes_its_proof_covers() {
+    let text = std::fs::read_to_string("proofs/critical-band.json").unwrap();
+    let proof: Value = serde_json::from_str(&text).unwrap();
+    let cells = proof["statement"]["cells"].as_array().unwrap().len();
+    let r = expect("S2.case3", Verdict::Confirmed);
+    assert_eq!(r.witness["band_proof_alpha_boxes"], cells);
+    assert!(
+        r.summary.contains(&format!("covers {cells} α-boxes")),
+        "{}",
+        r.summary
+    );
+}
+
+/// Differences are shown at short points (decimal parameters, rational
+/// sin θ, cos θ, small rates), not at the identity tests' random rationals.
+#[test]
+fn differences_are_shown_at_short_points() {
+    fn points<'a>(v: &'a Value, out: &mut Vec<&'a Value>) {
+        match v {
+            Value::Object(m) => {
+                for (k, x) in m {
+                    if k == "point" {
+                        out.push(x);
+                    }
+                    points(x, out);
+                }
+            }
+            Value::Array(a) => a.iter().for_each(|x| points(x, out)),
+            _ => {}
+        }
+    }
+    for r in claims::run(&[]).unwrap() {
+        let mut found = Vec::new();
+        points(&r.witness, &mut found);
+        for p in found {
+            let text = p.to_string();
+            for value in text.split(['"', ',', ':', '{', '}']) {
+                let digits = value.chars().filter(|c| c.is_ascii_digit()).count();
+                assert!(digits <= 5, "{}: long value {value} in {text}", r.id);
+            }
+        }
+    }
+}
