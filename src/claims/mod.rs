@@ -23,6 +23,7 @@ pub mod figures;
 pub mod ice;
 pub mod report;
 pub mod smooth;
+pub mod symbolic;
 pub mod witness;
 
 use rayon::prelude::*;
