@@ -10,8 +10,8 @@
 //! (Cramer's rule) for `(ÿ, θ̈, N)`.
 
 use super::exact::{
-    angle_d, angle_dd, dd_const, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, Identity,
-    RationalPath, Rng, Sample, Q,
+    agreement, angle_d, angle_dd, dd_const, identity_test, jet2, qdec, sin_cos_of_tan_half, solve,
+    strength_of, Identity, RationalPath, Rng, Sample, Q,
 };
 use super::witness::{find_difference, find_leaf, labels_on, window};
 use super::{dec, enc, Check, Outcome, Strength, Verdict};
@@ -74,7 +74,7 @@ impl P1<Q> {
         }
     }
     pub fn random(r: &mut Rng) -> P1<Q> {
-        let mut q = || Q::from_f64(r.positive());
+        let mut q = || r.positive();
         P1 {
             a: q(),
             b: q(),
@@ -190,16 +190,12 @@ fn dec_angle(theta: Interval) -> (DecInterval, DecInterval) {
     (an.sin, an.cos)
 }
 
-fn rand_point(r: &mut Rng) -> (P1<Q>, Q, Q, Q, Vec<(String, f64)>) {
+fn rand_point(r: &mut Rng) -> (P1<Q>, Q, Q, Q, Vec<(String, Q)>) {
     let p = P1::random(r);
     let t = r.tan_half();
     let (s, c) = sin_cos_of_tan_half(t);
-    let wf = r.signed();
-    let w = Q::from_f64(wf);
-    let pt = vec![
-        ("tan(theta/2)".into(), t.get().to_f64()),
-        ("theta_dot".into(), wf),
-    ];
+    let w = r.signed();
+    let pt = vec![("tan(theta/2)".into(), t), ("theta_dot".into(), w)];
     (p, s, c, w, pt)
 }
 
@@ -214,7 +210,7 @@ fn id_json(i: &Identity) -> serde_json::Value {
 pub fn f1_3(mutant: bool) -> Outcome {
     let id = identity_test(13, |r| {
         let (p, s, c, _, pt) = rand_point(r);
-        let y = Q::from_f64(r.positive());
+        let y = r.positive();
         let an = Angle {
             theta: Q::int(0),
             sin: s,
@@ -243,7 +239,7 @@ pub fn f1_4(mutant: bool) -> Outcome {
             sin: s,
             cos: c,
         };
-        let yd = Q::from_f64(r.signed());
+        let yd = r.signed();
         let printed = if mutant { w * p.a } else { w * h(&p, &an) };
         Sample {
             point: pt,
@@ -262,8 +258,8 @@ fn formula_verdict(id: Identity, what: &str, right: &str) -> Outcome {
     if id.agrees() {
         Outcome::new(
             Verdict::Confirmed,
-            Strength::IdentityTest,
-            format!("{what}: exact agreement at random rational points"),
+            strength_of(&[&id]),
+            format!("{what}: {}", agreement(&[&id])),
             id_json(&id),
         )
     } else {
@@ -284,9 +280,8 @@ pub fn f1_5(mutant: bool) -> Outcome {
     let half = |x: Q| x / Q::int(2);
     let t_id = identity_test(15, |r| {
         let (p, _, _, w, mut pt) = rand_point(r);
-        let ydf = r.signed();
-        pt.push(("y_dot".into(), ydf));
-        let yd = Q::from_f64(ydf);
+        let yd = r.signed();
+        pt.push(("y_dot".into(), yd));
         let printed = if mutant {
             half(p.m * yd.sqr())
         } else {
@@ -320,7 +315,7 @@ pub fn f1_5(mutant: bool) -> Outcome {
     if used.agrees() {
         Outcome::new(
             Verdict::Error,
-            Strength::IdentityTest,
+            strength_of(&[&used]),
             "the printed T is wrong and (1.7) follows from it",
             witness,
         )
@@ -401,7 +396,7 @@ pub fn f1_8(mutant: bool) -> Outcome {
         let sign = if mutant { Q::int(-1) } else { Q::int(1) };
         let printed = Q::int(2) * y2 - sign * h2 * w.sqr() - h1 * thdd;
         Sample {
-            point: vec![("u0".into(), u0.get().to_f64())],
+            point: vec![("u0".into(), u0)],
             lhs: printed,
             rhs: lam_dd,
         }
@@ -423,7 +418,7 @@ pub fn f1_9(mutant: bool) -> Outcome {
     };
     let id = identity_test(19, |r| {
         let (p, s, c, w, pt) = rand_point(r);
-        let n = Q::from_f64(r.positive());
+        let n = r.positive();
         let (_, h1, h2) = h_jet(&p, s, c);
         let rhs = n / p.m - p.g - h2 * w.sqr() - h1 * newton(&p, s, c, w, 1).0;
         Sample {
@@ -441,7 +436,7 @@ pub fn f1_9(mutant: bool) -> Outcome {
     }
     let follows = identity_test(191, |r| {
         let (p, s, c, w, pt) = rand_point(r);
-        let n = Q::from_f64(r.positive());
+        let n = r.positive();
         let (_, h1, h2) = h_jet(&p, s, c);
         let rhs = n / p.m - p.g - h2 * w.sqr() - h1 * printed_1_7(&p, s, c, w, 2);
         Sample {
@@ -450,7 +445,7 @@ pub fn f1_9(mutant: bool) -> Outcome {
             rhs,
         }
     });
-    Outcome::new(Verdict::Error, Strength::IdentityTest,
+    Outcome::new(Verdict::Error, strength_of(&[&id, &follows]),
         format!("(1.9) differs exactly from (1.8) with the Newton θ̈; it {} from the printed (1.7) (inherits its factor 2)", if follows.agrees() { "follows exactly" } else { "does not follow" }),
         json!({"against_newton": id.json(), "from_printed_1_7": follows.json()}))
         .correct("Λ̈ = N/m + (μ h² h' θ̇ − C g − C h'' θ̇²)/(C + m h'²)")
@@ -555,7 +550,7 @@ pub fn s1_ideal(mutant: bool) -> Outcome {
     });
     if id.agrees() {
         Outcome::new(Verdict::Confirmed, Strength::Argument,
-            "Example 1 with μ = 0: −N = mC/(C + m h'²) · (free-flight Λ̈), a positive factor, so Ω = Ω₀ (identity test); §2 likewise, see S2.omega. In general Λ̈ = U + V N with V = ∇Λ·M⁻¹∇Λ > 0 for an ideal constraint, so N = −U/V > 0 ⟺ U < 0",
+            "Example 1 with μ = 0: −N = mC/(C + m h'²) · (free-flight Λ̈), a positive factor, so Ω = Ω₀ (proved identity); §2 likewise, see S2.omega. In general Λ̈ = U + V N with V = ∇Λ·M⁻¹∇Λ > 0 for an ideal constraint, so N = −U/V > 0 ⟺ U < 0",
             json!({"identity": id.json()}))
     } else {
         Outcome::new(
@@ -740,11 +735,7 @@ pub fn s1_eq(mutant: bool) -> Outcome {
     // (μ²(a − b)⁴ − 4 m g b C)/C².
     let closed = identity_test(117, |r| {
         let p = P1::random(r);
-        let k = [
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-        ];
+        let k = [r.signed(), r.signed(), r.signed()];
         let (a_up, _) = jacobian(&p, Q::int(1), Q::int(0));
         let (a_dn, d_dn) = jacobian(&p, Q::int(-1), Q::int(0));
         let ab = p.a - p.b;
@@ -789,7 +780,7 @@ pub fn s1_eq(mutant: bool) -> Outcome {
     }
     if f0 && !f1 && s1 && st1 {
         Outcome::new(Verdict::Conditional, Strength::Exact,
-            "equilibria exactly at cos θ = 0; Jacobians in closed form for all parameters (identity test): θ = π/2 a saddle for every b > 0, θ = −π/2 stable for μ > 0 and a focus iff μ²(a−b)⁴ < 4mgbC; at the defaults a focus (μ = 0.8), a stable node at μ = 20 (exact)", w)
+            "equilibria exactly at cos θ = 0; Jacobians in closed form for all parameters (proved identity): θ = π/2 a saddle for every b > 0, θ = −π/2 stable for μ > 0 and a focus iff μ²(a−b)⁴ < 4mgbC; at the defaults a focus (μ = 0.8), a stable node at μ = 20 (exact)", w)
             .correct("θ = π/2 is a saddle; θ = −π/2 is asymptotically stable for μ > 0: a focus iff μ²(a − b)⁴ < 4 m g b C, a node otherwise (a centre of the linearisation at μ = 0)")
     } else {
         Outcome::new(

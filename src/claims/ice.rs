@@ -16,7 +16,8 @@
 //! the true values.
 
 use super::exact::{
-    angle_d, identity_test, sin_cos_of_tan_half, solve, verdict_of, Identity, Rng, Sample, Q,
+    angle_d, identity_test, sin_cos_of_tan_half, solve, strength_of, verdict_of, Identity, Rng,
+    Sample, Q,
 };
 use super::smooth::{
     dt_dtheta, free_lambda_ddot, spin_rates, t_rot_printed, tau_printed, u_printed, P2,
@@ -102,32 +103,25 @@ struct Pt {
     l1: Q,
     l2: Q,
     c0: Q,
-    pt: Vec<(String, f64)>,
+    pt: Vec<(String, Q)>,
 }
 
 fn rp(r: &mut Rng) -> Pt {
     let p = P2::random(r);
     let t = r.tan_half();
     let (s, c) = sin_cos_of_tan_half(t);
-    let wf = r.signed();
-    let (l1, l2, c0) = (
-        Q::from_f64(r.signed()),
-        Q::from_f64(r.signed()),
-        Q::from_f64(r.signed()),
-    );
+    let w = r.signed();
+    let (l1, l2, c0) = (r.signed(), r.signed(), r.signed());
     Pt {
         p,
         s,
         c,
         t,
-        w: Q::from_f64(wf),
+        w,
         l1,
         l2,
         c0,
-        pt: vec![
-            ("tan(theta/2)".into(), t.get().to_f64()),
-            ("theta_dot".into(), wf),
-        ],
+        pt: vec![("tan(theta/2)".into(), t), ("theta_dot".into(), w)],
     }
 }
 
@@ -189,7 +183,7 @@ pub fn f3_2(mutant: bool) -> Outcome {
     let id = identity_test(32, |r| {
         let x = rp(r);
         let (p, s, c, w) = (x.p, x.s, x.c, x.w);
-        let vx = Q::from_f64(r.signed());
+        let vx = r.signed();
         let (psid, phid) = spin_rates(&p, s, c);
         let two = Q::int(2);
         let vn = -(p.a * w * s);
@@ -303,7 +297,7 @@ pub fn f3_4(mutant: bool) -> Outcome {
     if v0.agrees() && u0.agrees() {
         return Outcome::new(
             Verdict::Confirmed,
-            Strength::IdentityTest,
+            strength_of(&[&v0, &u0]),
             "U₀ and V₀ agree with Newton–Euler",
             w,
         );
@@ -362,7 +356,7 @@ pub fn s3_omega(mutant: bool) -> Outcome {
         }
     });
     if id.agrees() {
-        Outcome::new(Verdict::Confirmed, Strength::IdentityTest, "free-flight Λ̈ of the disc on ice (N = R = 0: m z̈ = −mg, Aθ̈ = ∂T/∂θ) is U of (2.7) exactly: Ω is that of the smooth plane", json!({"identity": id.json()}))
+        Outcome::new(Verdict::Confirmed, strength_of(&[&id]), "free-flight Λ̈ of the disc on ice (N = R = 0: m z̈ = −mg, Aθ̈ = ∂T/∂θ) is U of (2.7) exactly: Ω is that of the smooth plane", json!({"identity": id.json()}))
     } else {
         Outcome::new(
             Verdict::False,
@@ -405,7 +399,7 @@ pub fn s3_c0changes(mutant: bool) -> Outcome {
         let mut x = rp(r);
         x.p.pf = Q::int(0);
         x.p.ps = Q::int(0);
-        let c1 = Q::from_f64(r.signed());
+        let c1 = r.signed();
         let v = |c0: Q| vx_printed(&x.p, c0, x.l1, x.l2, 1);
         Sample {
             point: x.pt,
@@ -451,7 +445,7 @@ pub fn s3_c0linear(mutant: bool) -> Outcome {
     if second.agrees() && slope.agrees() {
         Outcome::new(
             Verdict::Confirmed,
-            Strength::IdentityTest,
+            strength_of(&[&second, &slope]),
             "the right side of (3.5) is affine in c₀ with slope m a² cos θ τ/(A + m a²) (exact)",
             w,
         )
@@ -646,11 +640,7 @@ pub fn s3_symmetry(mutant: bool) -> Outcome {
         let v1 = vx_printed(&x.p, x.c0, x.l1, x.l2, 1);
         let v2 = vx_printed(&q, x.c0, -x.l1, x.l2, 1);
         // random combination of the four invariants
-        let k = [
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-        ];
+        let k = [r.signed(), r.signed(), r.signed()];
         let lhs = v1
             + k[0] * (rhs_3_5(&x.p, x.s, x.c, v1) - x.p.a * x.w.sqr() * x.s)
             + k[1] * u_printed(&x.p, x.s, x.c, x.w)
@@ -669,8 +659,8 @@ pub fn s3_symmetry(mutant: bool) -> Outcome {
         use super::example1::{derived_omega, derived_omega0, newton, P1};
         let p = P1::random(r);
         let (s, c) = sin_cos_of_tan_half(r.tan_half());
-        let w = Q::from_f64(r.signed());
-        let k = [Q::from_f64(r.signed()), Q::from_f64(r.signed())];
+        let w = r.signed();
+        let k = [r.signed(), r.signed()];
         let lhs = derived_omega(&p, s, c, w)
             + k[0] * derived_omega0(&p, s, c, w)
             + k[1] * newton(&p, s, c, w, 1).0;
@@ -696,7 +686,7 @@ pub fn s3_symmetry(mutant: bool) -> Outcome {
     });
     let w = json!({"ice": id.json(), "example_1": ex1.json(), "smooth_2_5": smooth.json()});
     if id.agrees() && ex1.agrees() && smooth.agrees() {
-        Outcome::new(Verdict::Confirmed, Strength::IdentityTest, "θ → π − θ, θ̇ → −θ̇, p_ψ → −p_ψ: v_x, (3.5), U invariant and θ̈ → −θ̈ (ice); Example 1's Ω, Ω₀, θ̈ and §2's (2.5) likewise (exact)", w)
+        Outcome::new(Verdict::Confirmed, strength_of(&[&id, &ex1, &smooth]), "θ → π − θ, θ̇ → −θ̇, p_ψ → −p_ψ: v_x, (3.5), U invariant and θ̈ → −θ̈ (ice); Example 1's Ω, Ω₀, θ̈ and §2's (2.5) likewise (exact)", w)
     } else {
         Outcome::new(
             Verdict::False,
@@ -718,7 +708,7 @@ pub fn s3_sub1(mutant: bool) -> Outcome {
         x.p.ps = Q::int(0);
         let p = x.p;
         let v = vx_printed(&p, x.c0, x.l1, x.l2, 1);
-        let k = Q::from_f64(r.signed());
+        let k = r.signed();
         let lhs = rhs_3_5(&p, x.s, x.c, v)
             + k * (thdd_3_3(&p, x.s, x.c, v, 1) * (p.big_a + p.m * p.a.sqr()));
         let rhs = p.g * (p.big_a + p.m * p.a.sqr() * x.s.sqr()) / (p.big_a + p.m * p.a.sqr())
