@@ -92,13 +92,6 @@ impl Poly {
             _ => None,
         }
     }
-    /// The variable index, if the polynomial is a single variable.
-    pub fn as_variable(&self) -> Option<usize> {
-        match self.0.as_slice() {
-            [(m, 1)] if m.iter().sum::<u8>() == 1 => m.iter().position(|&e| e == 1),
-            _ => None,
-        }
-    }
     pub fn neg(&self) -> Result<Poly, Limit> {
         self.0
             .iter()
@@ -229,8 +222,13 @@ impl Poly {
         let prim = self
             .0
             .iter()
-            .map(|(m, c)| (*m, sign * (c / content)))
-            .collect();
+            .map(|(m, c)| {
+                (c / content)
+                    .checked_mul(sign)
+                    .map(|c| (*m, c))
+                    .ok_or_else(|| limit("coefficient overflow"))
+            })
+            .collect::<Result<_, _>>()?;
         Ok((sign, content, Poly(prim)))
     }
 }
@@ -342,22 +340,6 @@ impl Frac {
                 .iter()
                 .map(|(k, _)| factor(*k).terms())
                 .sum::<usize>()
-    }
-    /// The variable index, if this is a bare variable.
-    pub fn as_variable(&self) -> Option<usize> {
-        if self.exps.is_empty() {
-            self.num.as_variable()
-        } else {
-            None
-        }
-    }
-    /// The integer value, if this is one.
-    pub fn as_int(&self) -> Option<i128> {
-        if self.exps.is_empty() {
-            self.num.as_constant()
-        } else {
-            None
-        }
     }
     fn zero() -> Frac {
         Frac::int(0)
