@@ -156,13 +156,6 @@ impl Q {
         };
         Q::store(v)
     }
-    /// The variable index of a bare variable.
-    fn as_variable(self) -> Option<usize> {
-        match self.value() {
-            Value::Sym(f) => f.as_variable(),
-            _ => None,
-        }
-    }
 }
 
 impl std::fmt::Debug for Q {
@@ -342,8 +335,12 @@ pub struct RationalPath {
 impl RationalPath {
     /// Draws `u₀` (a `tan(θ/2)`), then `u₁, u₂, y₀, y₁, y₂` (signed), in that order.
     pub fn random(r: &mut Rng) -> RationalPath {
-        let (u0, u1, u2) = (r.tan_half(), r.signed(), r.signed());
-        let (y0, y1, y2) = (r.signed(), r.signed(), r.signed());
+        let mut draw = |name: &str, tan_half: bool| {
+            let q = if tan_half { r.tan_half() } else { r.signed() };
+            r.named(name, q)
+        };
+        let (u0, u1, u2) = (draw("u0", true), draw("u1", false), draw("u2", false));
+        let (y0, y1, y2) = (draw("y0", false), draw("y1", false), draw("y2", false));
         let tt = DD::variable(Dual::variable(Q::int(0), 0), 0);
         let u = dd_const(u0) + dd_const(u1) * tt + dd_const(u2) * tt.sqr();
         let y = dd_const(y0) + dd_const(y1) * tt + dd_const(y2) * tt.sqr();
@@ -385,7 +382,8 @@ pub const POINTS: usize = 8;
 pub struct Rng {
     state: u64,
     symbolic: bool,
-    drawn: usize,
+    /// The draws of the current sample, in order, with their names.
+    drawn: Vec<(Q, Option<String>)>,
 }
 
 impl Rng {
@@ -393,7 +391,7 @@ impl Rng {
         Rng {
             state: seed ^ 0x9e37_79b9_7f4a_7c15,
             symbolic: false,
-            drawn: 0,
+            drawn: Vec::new(),
         }
     }
     /// Every draw a new variable.
@@ -401,7 +399,7 @@ impl Rng {
         Rng {
             state: 0,
             symbolic: true,
-            drawn: 0,
+            drawn: Vec::new(),
         }
     }
     fn next_u64(&mut self) -> u64 {
@@ -412,17 +410,25 @@ impl Rng {
         z ^ (z >> 31)
     }
     fn draw(&mut self, number: impl FnOnce(&mut Rng) -> f64) -> Q {
-        if self.symbolic {
-            self.drawn += 1;
-            Q::variable(self.drawn - 1)
+        let q = if self.symbolic {
+            Q::variable(self.drawn.len())
         } else {
             Q::from_f64(number(self))
-        }
+        };
+        self.drawn.push((q, None));
+        q
     }
     /// `k/2¹⁰`, `k` uniform in `[1, 2³⁰]`.
     fn positive_f64(&mut self) -> f64 {
         let k = (self.next_u64() >> (64 - SAMPLE_SET_LOG2)) + 1;
         k as f64 / 1024.0
+    }
+    /// Names the draw `q` in witnesses; returns it.
+    pub fn named(&mut self, name: &str, q: Q) -> Q {
+        if let Some(d) = self.drawn.iter_mut().find(|d| d.0 .0 == q.0) {
+            d.1 = Some(name.to_string());
+        }
+        q
     }
     /// A positive quantity (a parameter): `k/2¹⁰`, `k` uniform in `[1, 2³⁰]`.
     pub fn positive(&mut self) -> Q {
@@ -449,7 +455,7 @@ impl Rng {
 /// A point where the two sides differ, exactly.
 #[derive(Clone, Debug)]
 pub struct Point {
-    /// Named sampled values, as exact rationals.
+    /// Every sampled value (named as in [`Identity::Proved`]), exact.
     pub values: Vec<(String, String)>,
     /// The two sides and their exact difference, rounded for reading.
     pub lhs: String,
@@ -463,7 +469,8 @@ pub enum Identity {
     /// Proved: the two sides are equal as rational functions of the sampled
     /// variables (the cleared difference is the zero polynomial).
     Proved {
-        /// The variables, in the order drawn (named where the sample names them).
+        /// The variables in the order drawn: named as the sample names
+        /// them, else `x0, x1, …` by that order.
         variables: Vec<String>,
         /// Terms of the two sides (expanded parts and factors).
         terms: [usize; 2],
@@ -569,7 +576,7 @@ fn prove(f: &mut impl FnMut(&mut Rng) -> Sample) -> Result<Result<Identity, usiz
     let mut rng = Rng::symbolic();
     let s = f(&mut rng);
     let out = (|| {
-        if rng.drawn > MAX_VARS {
+        if rng.drawn.len() > MAX_VARS {
             return Err(Limit(format!("more than {MAX_VARS} variables")));
         }
         let (l, r) = (Q::frac(s.lhs.value())?, Q::frac(s.rhs.value())?);
@@ -577,14 +584,8 @@ fn prove(f: &mut impl FnMut(&mut Rng) -> Sample) -> Result<Result<Identity, usiz
         if !d.is_zero() {
             return Ok(Err(d.expanded().terms()));
         }
-        let mut variables: Vec<String> = (0..rng.drawn).map(|i| format!("x{i}")).collect();
-        for (name, q) in &s.point {
-            if let Some(i) = q.as_variable() {
-                variables[i] = name.clone();
-            }
-        }
         Ok(Ok(Identity::Proved {
-            variables,
+            variables: names(&rng.drawn, &s.point),
             terms: [l.size(), r.size()],
             factors: symbolic::factor_count(),
         }))
@@ -594,19 +595,35 @@ fn prove(f: &mut impl FnMut(&mut Rng) -> Sample) -> Result<Result<Identity, usiz
     out
 }
 
+/// Names of the draws: as the sample names them, else as named when drawn,
+/// else `x0, x1, …` by order.
+fn names(drawn: &[(Q, Option<String>)], point: &[(String, Q)]) -> Vec<String> {
+    drawn
+        .iter()
+        .enumerate()
+        .map(
+            |(i, (q, name))| match point.iter().find(|(_, p)| p.0 == q.0) {
+                Some((name, _)) => name.clone(),
+                None => name.clone().unwrap_or_else(|| format!("x{i}")),
+            },
+        )
+        .collect()
+}
+
 /// The first of [`POINTS`] random points (from `seed`) where the sides differ.
 fn differing_point(seed: u64, f: &mut impl FnMut(&mut Rng) -> Sample) -> Option<Point> {
     let mark = arena_len();
     let mut rng = Rng::new(seed);
     let mut found = None;
     for _ in 0..POINTS {
+        rng.drawn.clear();
         let s = f(&mut rng);
         if s.lhs != s.rhs {
             found = Some(Point {
-                values: s
-                    .point
-                    .iter()
-                    .map(|(k, v)| (k.clone(), v.exact_text()))
+                values: names(&rng.drawn, &s.point)
+                    .into_iter()
+                    .zip(&rng.drawn)
+                    .map(|(k, v)| (k, v.0.exact_text()))
                     .collect(),
                 lhs: s.lhs.text(),
                 rhs: s.rhs.text(),
@@ -622,7 +639,8 @@ fn differing_point(seed: u64, f: &mut impl FnMut(&mut Rng) -> Sample) -> Option<
 /// Proves `lhs = rhs` for the sample `f` makes: once with every draw a
 /// variable (exact polynomial arithmetic); when they differ, or the run goes
 /// beyond a limit, at random points from `seed` for a point where they differ.
-/// Values made inside `f` do not outlive the test.
+/// Values made inside `f` do not outlive the test (and `f` runs no parallel
+/// code, so no other test runs on this thread meanwhile).
 pub fn identity_test(seed: u64, mut f: impl FnMut(&mut Rng) -> Sample) -> Identity {
     match prove(&mut f) {
         Ok(Ok(proved)) => proved,

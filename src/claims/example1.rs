@@ -74,15 +74,11 @@ impl P1<Q> {
         }
     }
     pub fn random(r: &mut Rng) -> P1<Q> {
-        let mut q = || r.positive();
-        P1 {
-            a: q(),
-            b: q(),
-            m: q(),
-            c: q(),
-            mu: q(),
-            g: q(),
-        }
+        let [a, b, m, c, mu, g] = NAMES.map(|n| {
+            let q = r.positive();
+            r.named(n, q)
+        });
+        P1 { a, b, m, c, mu, g }
     }
 }
 

@@ -49,16 +49,18 @@ impl<T: Copy> P2<T> {
 
 impl P2<Q> {
     pub fn random(r: &mut Rng) -> P2<Q> {
-        let mut q = || r.positive();
-        let (m, a, big_a, big_c, g) = (q(), q(), q(), q(), q());
+        let mut q = |i: usize| {
+            let x = if i < 5 { r.positive() } else { r.signed() };
+            r.named(NAMES[i], x)
+        };
         P2 {
-            m,
-            a,
-            big_a,
-            big_c,
-            g,
-            pf: r.signed(),
-            ps: r.signed(),
+            m: q(0),
+            a: q(1),
+            big_a: q(2),
+            big_c: q(3),
+            g: q(4),
+            pf: q(5),
+            ps: q(6),
         }
     }
     pub fn exact(t: [&str; 7]) -> P2<Q> {
