@@ -10,8 +10,8 @@
 //! (Cramer's rule) for `(ÿ, θ̈, N)`.
 
 use super::exact::{
-    angle_d, angle_dd, dd_const, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, Identity,
-    RationalPath, Rng, Sample, Q,
+    agreement, angle_d, angle_dd, dd_const, identity_test, jet2, qdec, sin_cos_of_tan_half, solve,
+    strength_of, Identity, RationalPath, Rng, Sample, Q,
 };
 use super::witness::{find_difference, find_leaf, labels_on, window};
 use super::{dec, enc, shown_at, Check, Outcome, Strength, Verdict};
@@ -74,15 +74,11 @@ impl P1<Q> {
         }
     }
     pub fn random(r: &mut Rng) -> P1<Q> {
-        let mut q = || Q::from_f64(r.positive());
-        P1 {
-            a: q(),
-            b: q(),
-            m: q(),
-            c: q(),
-            mu: q(),
-            g: q(),
-        }
+        let [a, b, m, c, mu, g] = NAMES.map(|n| {
+            let q = r.positive();
+            r.named(n, q)
+        });
+        P1 { a, b, m, c, mu, g }
     }
 }
 
@@ -190,16 +186,12 @@ fn dec_angle(theta: Interval) -> (DecInterval, DecInterval) {
     (an.sin, an.cos)
 }
 
-fn rand_point(r: &mut Rng) -> (P1<Q>, Q, Q, Q, Vec<(String, f64)>) {
+fn rand_point(r: &mut Rng) -> (P1<Q>, Q, Q, Q, Vec<(String, Q)>) {
     let p = P1::random(r);
     let t = r.tan_half();
     let (s, c) = sin_cos_of_tan_half(t);
-    let wf = r.signed();
-    let w = Q::from_f64(wf);
-    let pt = vec![
-        ("tan(theta/2)".into(), t.get().to_f64()),
-        ("theta_dot".into(), wf),
-    ];
+    let w = r.signed();
+    let pt = vec![("tan(theta/2)".into(), t), ("theta_dot".into(), w)];
     (p, s, c, w, pt)
 }
 
@@ -253,7 +245,7 @@ pub fn u_v<T: Scalar>(p: &P1<T>, s: T, c: T, w: T) -> (T, T) {
 pub fn f1_3(mutant: bool) -> Outcome {
     let id = identity_test(13, |r| {
         let (p, s, c, _, pt) = rand_point(r);
-        let y = Q::from_f64(r.positive());
+        let y = r.positive();
         let an = Angle {
             theta: Q::int(0),
             sin: s,
@@ -282,7 +274,7 @@ pub fn f1_4(mutant: bool) -> Outcome {
             sin: s,
             cos: c,
         };
-        let yd = Q::from_f64(r.signed());
+        let yd = r.signed();
         let printed = if mutant { w * p.a } else { w * h(&p, &an) };
         Sample {
             point: pt,
@@ -301,8 +293,8 @@ fn formula_verdict(id: Identity, what: &str, right: &str) -> Outcome {
     if id.agrees() {
         Outcome::new(
             Verdict::Confirmed,
-            Strength::IdentityTest,
-            format!("{what}: exact agreement at random rational points"),
+            strength_of(&[&id]),
+            format!("{what}: {}", agreement(&[&id])),
             id_json(&id),
         )
     } else {
@@ -323,9 +315,8 @@ pub fn f1_5(mutant: bool) -> Outcome {
     let half = |x: Q| x / Q::int(2);
     let t_id = identity_test(15, |r| {
         let (p, _, _, w, mut pt) = rand_point(r);
-        let ydf = r.signed();
-        pt.push(("y_dot".into(), ydf));
-        let yd = Q::from_f64(ydf);
+        let yd = r.signed();
+        pt.push(("y_dot".into(), yd));
         let printed = if mutant {
             half(p.m * yd.sqr())
         } else {
@@ -370,7 +361,7 @@ pub fn f1_5(mutant: bool) -> Outcome {
     if used.agrees() {
         Outcome::new(
             Verdict::Error,
-            Strength::IdentityTest,
+            strength_of(&[&used]),
             "the printed T is wrong and (1.7) follows from it",
             witness,
         )
@@ -402,7 +393,7 @@ pub fn f1_6(mutant: bool) -> Outcome {
         let f = -(p.mu * nu);
         let power = if mutant { f * w * p.a } else { f * nu };
         // the reaction's power N v_Pz, zero in contact
-        let n = Q::from_f64(r.positive());
+        let n = r.positive();
         Sample {
             point: pt,
             lhs: p.m * yd * ydd + p.c * w * thdd + p.m * p.g * yd,
@@ -487,7 +478,7 @@ pub fn f1_8(mutant: bool) -> Outcome {
         let sign = if mutant { Q::int(-1) } else { Q::int(1) };
         let printed = Q::int(2) * y2 - sign * h2 * w.sqr() - h1 * thdd;
         Sample {
-            point: vec![("u0".into(), u0.get().to_f64())],
+            point: vec![("u0".into(), u0)],
             lhs: printed,
             rhs: lam_dd,
         }
@@ -540,14 +531,17 @@ pub fn f1_9(mutant: bool) -> Outcome {
     if v.agrees() && u.agrees() {
         return Outcome::new(
             Verdict::Confirmed,
-            Strength::IdentityTest,
-            "(1.9) is U + V N with V = ∂Λ̈/∂N and U = Λ̈ at N = 0 (N free): exact agreement at random rational points",
+            strength_of(&[&v, &u]),
+            format!(
+                "(1.9) is U + V N with V = ∂Λ̈/∂N and U = Λ̈ at N = 0 (N free): {}",
+                agreement(&[&v, &u])
+            ),
             json!({"V": v.json(), "U": u.json(), "reading": reading}),
         );
     }
     let follows = identity_test(191, |r| {
         let (p, s, c, w, pt) = rand_point(r);
-        let n = Q::from_f64(r.positive());
+        let n = r.positive();
         let (_, h1, h2) = h_jet(&p, s, c);
         let rhs = n / p.m - p.g - h2 * w.sqr() - h1 * printed_1_7(&p, s, c, w, 2);
         Sample {
@@ -664,7 +658,7 @@ pub fn s1_ideal(mutant: bool) -> Outcome {
     });
     if id.agrees() {
         Outcome::new(Verdict::Confirmed, Strength::Argument,
-            "Example 1 with μ = 0: −N = mC/(C + m h'²) · (free-flight Λ̈), a positive factor, so Ω = Ω₀ (identity test); §2 likewise, see S2.omega. In general Λ̈ = U + V N with V = ∇Λ·M⁻¹∇Λ > 0 for an ideal constraint, so N = −U/V > 0 ⟺ U < 0",
+            "Example 1 with μ = 0: −N = mC/(C + m h'²) · (free-flight Λ̈), a positive factor, so Ω = Ω₀ (proved identity); §2 likewise, see S2.omega. In general Λ̈ = U + V N with V = ∇Λ·M⁻¹∇Λ > 0 for an ideal constraint, so N = −U/V > 0 ⟺ U < 0",
             json!({"identity": id.json()}))
     } else {
         Outcome::new(
@@ -899,11 +893,7 @@ pub fn s1_eq(mutant: bool) -> Outcome {
     // (μ²(a − b)⁴ − 4 m g b C)/C².
     let closed = identity_test(117, |r| {
         let p = P1::random(r);
-        let k = [
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-        ];
+        let k = [r.signed(), r.signed(), r.signed()];
         let (a_up, _) = jacobian(&p, Q::int(1), Q::int(0));
         let (a_dn, d_dn) = jacobian(&p, Q::int(-1), Q::int(0));
         let ab = p.a - p.b;
@@ -948,7 +938,7 @@ pub fn s1_eq(mutant: bool) -> Outcome {
     }
     if f0 && !f1 && s1 && st1 {
         Outcome::new(Verdict::Conditional, Strength::Exact,
-            "equilibria exactly at cos θ = 0; Jacobians in closed form for all parameters (identity test): θ = π/2 a saddle for every b > 0, θ = −π/2 stable for μ > 0 and a focus iff μ²(a−b)⁴ < 4mgbC; at the defaults a focus (μ = 0.8), a stable node at μ = 20 (exact)", w)
+            "equilibria exactly at cos θ = 0; Jacobians in closed form for all parameters (proved identity): θ = π/2 a saddle for every b > 0, θ = −π/2 stable for μ > 0 and a focus iff μ²(a−b)⁴ < 4mgbC; at the defaults a focus (μ = 0.8), a stable node at μ = 20 (exact)", w)
             .correct("θ = π/2 is a saddle; θ = −π/2 is asymptotically stable for μ > 0: a focus iff μ²(a − b)⁴ < 4 m g b C, a node otherwise (a centre of the linearisation at μ = 0)")
     } else {
         Outcome::new(

@@ -16,7 +16,8 @@
 //! the true values.
 
 use super::exact::{
-    angle_d, identity_test, sin_cos_of_tan_half, solve, verdict_of, Identity, Rng, Sample, Q,
+    agreement, angle_d, identity_test, sin_cos_of_tan_half, solve, strength_of, verdict_of,
+    Identity, Rng, Sample, Q,
 };
 use super::smooth::{
     dt_dtheta, free_lambda_ddot, spin_rates, t_rot_printed, tau_printed, u_printed, P2,
@@ -102,32 +103,25 @@ struct Pt {
     l1: Q,
     l2: Q,
     c0: Q,
-    pt: Vec<(String, f64)>,
+    pt: Vec<(String, Q)>,
 }
 
 fn rp(r: &mut Rng) -> Pt {
     let p = P2::random(r);
     let t = r.tan_half();
     let (s, c) = sin_cos_of_tan_half(t);
-    let wf = r.signed();
-    let (l1, l2, c0) = (
-        Q::from_f64(r.signed()),
-        Q::from_f64(r.signed()),
-        Q::from_f64(r.signed()),
-    );
+    let w = r.signed();
+    let (l1, l2, c0) = (r.signed(), r.signed(), r.signed());
     Pt {
         p,
         s,
         c,
         t,
-        w: Q::from_f64(wf),
+        w,
         l1,
         l2,
         c0,
-        pt: vec![
-            ("tan(theta/2)".into(), t.get().to_f64()),
-            ("theta_dot".into(), wf),
-        ],
+        pt: vec![("tan(theta/2)".into(), t), ("theta_dot".into(), w)],
     }
 }
 
@@ -189,7 +183,7 @@ pub fn f3_2(mutant: bool) -> Outcome {
     let id = identity_test(32, |r| {
         let x = rp(r);
         let (p, s, c, w) = (x.p, x.s, x.c, x.w);
-        let vx = Q::from_f64(r.signed());
+        let vx = r.signed();
         let (psid, phid) = spin_rates(&p, s, c);
         let two = Q::int(2);
         let vn = -(p.a * w * s);
@@ -312,7 +306,7 @@ pub fn f3_4(mutant: bool) -> Outcome {
     if v0.agrees() && u0.agrees() {
         return Outcome::new(
             Verdict::Confirmed,
-            Strength::IdentityTest,
+            strength_of(&[&v0, &u0]),
             "U₀ and V₀ agree with Newton–Euler",
             w,
         );
@@ -363,8 +357,8 @@ pub fn s3_integrals(mutant: bool) -> Outcome {
     let moment = identity_test(3101, |r| {
         let x = rp(r);
         let (spsi, cpsi) = sin_cos_of_tan_half(r.tan_half());
-        let lambda = Q::from_f64(r.signed());
-        let (n, rr) = (Q::from_f64(r.positive()), Q::from_f64(r.signed()));
+        let lambda = r.signed();
+        let (n, rr) = (r.positive(), r.signed());
         let (mz, mk) = super::smooth::reaction_moment(x.p.a, x.s, x.c, spsi, cpsi, n, rr);
         Sample {
             point: x.pt,
@@ -394,8 +388,8 @@ pub fn s3_integrals(mutant: bool) -> Outcome {
     let w =
         json!({"reaction_moment_vertical_and_axial": moment.json(), "energy_rate": energy.json()});
     if moment.agrees() && energy.agrees() {
-        Outcome::new(Verdict::Confirmed, Strength::IdentityTest,
-            "the reaction N e_z + R n at the lowest point has no moment about the vertical through G nor about the disc axis (p_ψ, p_φ constant), and d(T + Π)/dt = 0 along the Newton–Euler contact motion: exact agreement at random rational points",
+        Outcome::new(Verdict::Confirmed, strength_of(&[&moment, &energy]),
+            format!("the reaction N e_z + R n at the lowest point has no moment about the vertical through G nor about the disc axis (p_ψ, p_φ constant), and d(T + Π)/dt = 0 along the Newton–Euler contact motion: {}", agreement(&[&moment, &energy])),
             w)
     } else {
         Outcome::new(
@@ -426,7 +420,7 @@ pub fn s3_omega(mutant: bool) -> Outcome {
         }
     });
     if id.agrees() {
-        Outcome::new(Verdict::Confirmed, Strength::IdentityTest, "free-flight Λ̈ of the disc on ice (N = R = 0: m z̈ = −mg, Aθ̈ = ∂T/∂θ) is U of (2.7) exactly: Ω is that of the smooth plane", json!({"identity": id.json()}))
+        Outcome::new(Verdict::Confirmed, strength_of(&[&id]), "free-flight Λ̈ of the disc on ice (N = R = 0: m z̈ = −mg, Aθ̈ = ∂T/∂θ) is U of (2.7) exactly: Ω is that of the smooth plane", json!({"identity": id.json()}))
     } else {
         Outcome::new(
             Verdict::False,
@@ -469,7 +463,7 @@ pub fn s3_c0changes(mutant: bool) -> Outcome {
         let mut x = rp(r);
         x.p.pf = Q::int(0);
         x.p.ps = Q::int(0);
-        let c1 = Q::from_f64(r.signed());
+        let c1 = r.signed();
         let v = |c0: Q| vx_printed(&x.p, c0, x.l1, x.l2, 1);
         Sample {
             point: x.pt,
@@ -515,7 +509,7 @@ pub fn s3_c0linear(mutant: bool) -> Outcome {
     if second.agrees() && slope.agrees() {
         Outcome::new(
             Verdict::Confirmed,
-            Strength::IdentityTest,
+            strength_of(&[&second, &slope]),
             "the right side of (3.5) is affine in c₀ with slope m a² cos θ τ/(A + m a²) (exact)",
             w,
         )
@@ -710,11 +704,7 @@ pub fn s3_symmetry(mutant: bool) -> Outcome {
         let v1 = vx_printed(&x.p, x.c0, x.l1, x.l2, 1);
         let v2 = vx_printed(&q, x.c0, -x.l1, x.l2, 1);
         // random combination of the four invariants
-        let k = [
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-            Q::from_f64(r.signed()),
-        ];
+        let k = [r.signed(), r.signed(), r.signed()];
         let lhs = v1
             + k[0] * (rhs_3_5(&x.p, x.s, x.c, v1) - x.p.a * x.w.sqr() * x.s)
             + k[1] * u_printed(&x.p, x.s, x.c, x.w)
@@ -733,8 +723,8 @@ pub fn s3_symmetry(mutant: bool) -> Outcome {
         use super::example1::{derived_omega, derived_omega0, newton, P1};
         let p = P1::random(r);
         let (s, c) = sin_cos_of_tan_half(r.tan_half());
-        let w = Q::from_f64(r.signed());
-        let k = [Q::from_f64(r.signed()), Q::from_f64(r.signed())];
+        let w = r.signed();
+        let k = [r.signed(), r.signed()];
         let lhs = derived_omega(&p, s, c, w)
             + k[0] * derived_omega0(&p, s, c, w)
             + k[1] * newton(&p, s, c, w, 1).0;
@@ -760,7 +750,7 @@ pub fn s3_symmetry(mutant: bool) -> Outcome {
     });
     let w = json!({"ice": id.json(), "example_1": ex1.json(), "smooth_2_5": smooth.json()});
     if id.agrees() && ex1.agrees() && smooth.agrees() {
-        Outcome::new(Verdict::Confirmed, Strength::IdentityTest, "θ → π − θ, θ̇ → −θ̇, p_ψ → −p_ψ: v_x, (3.5), U invariant and θ̈ → −θ̈ (ice); Example 1's Ω, Ω₀, θ̈ and §2's (2.5) likewise (exact)", w)
+        Outcome::new(Verdict::Confirmed, strength_of(&[&id, &ex1, &smooth]), "θ → π − θ, θ̇ → −θ̇, p_ψ → −p_ψ: v_x, (3.5), U invariant and θ̈ → −θ̈ (ice); Example 1's Ω, Ω₀, θ̈ and §2's (2.5) likewise (exact)", w)
     } else {
         Outcome::new(
             Verdict::False,
@@ -785,7 +775,7 @@ pub fn s3_symreduce(mutant: bool) -> Outcome {
         let c0 = if mutant { x.c0 } else { -x.c0 };
         let v1 = vx_printed(&x.p, x.c0, x.l1, x.l2, 1);
         let v2 = vx_printed(&q, c0, x.l1, x.l2, 1);
-        let k = [Q::from_f64(r.signed()), Q::from_f64(r.signed())];
+        let k = [r.signed(), r.signed()];
         let slack = |p: &P2<Q>, v: Q, w: Q| rhs_3_5(p, x.s, x.c, v) - p.a * w.sqr() * x.s;
         Sample {
             point: x.pt,
@@ -813,8 +803,8 @@ pub fn s3_symreduce(mutant: bool) -> Outcome {
     let w = json!({"time_reversal": reversal.json(),
         "p_phi_sign_alone": shown_at(&flip_alone, at, thdd_3_3(&qp, qs, qc, qv, 1), thdd_3_3(&flipped(&qp), qs, qc, qv, 1))});
     if reversal.agrees() && !flip_alone.agrees() {
-        Outcome::new(Verdict::Typo, Strength::IdentityTest,
-            "the stated mirror changes only the sign of p_ψ, and the sign of p_φ alone changes θ̈ of (3.3) at the same θ and v_x (exact difference); the time reversal t → −t (θ̇, p_φ, p_ψ, v_x, c₀ → −) leaves θ̈ of (3.3) and (3.5) unchanged (identity test), so with it p_φ ≥ 0, p_ψ ≥ 0 does suffice",
+        Outcome::new(Verdict::Typo, strength_of(&[&reversal, &flip_alone]),
+            format!("the stated mirror changes only the sign of p_ψ, and the sign of p_φ alone changes θ̈ of (3.3) at the same θ and v_x (exact difference); the time reversal t → −t (θ̇, p_φ, p_ψ, v_x, c₀ → −) leaves θ̈ of (3.3) and (3.5) unchanged ({}), so with it p_φ ≥ 0, p_ψ ≥ 0 does suffice", agreement(&[&reversal])),
             w)
             .correct("p_ψ → −p_ψ, θ → π − θ gives p_ψ ≥ 0; p_φ ≥ 0 needs in addition the time reversal t → −t (θ̇, p_φ, p_ψ, v_x, c₀ change sign), which leaves (3.3) and (3.5) unchanged; together they reduce to p_φ, p_ψ ≥ 0")
     } else {
@@ -838,7 +828,7 @@ pub fn s3_sub1(mutant: bool) -> Outcome {
         x.p.ps = Q::int(0);
         let p = x.p;
         let v = vx_printed(&p, x.c0, x.l1, x.l2, 1);
-        let k = Q::from_f64(r.signed());
+        let k = r.signed();
         let lhs = rhs_3_5(&p, x.s, x.c, v)
             + k * (thdd_3_3(&p, x.s, x.c, v, 1) * (p.big_a + p.m * p.a.sqr()));
         let rhs = p.g * (p.big_a + p.m * p.a.sqr() * x.s.sqr()) / (p.big_a + p.m * p.a.sqr())

@@ -3,15 +3,17 @@
 //! Every claim has a fixed id, its place in the paper, the statement as the
 //! paper makes it, how it is checked, and a check function that computes a
 //! [`Verdict`] with its evidence. Nothing here copies a verdict from the
-//! paper: each comes out of a computation (exact rational identity tests,
-//! interval enclosures, the paver, the root isolator and the κ₀ proof).
+//! paper: each comes out of a computation (identities proved by exact
+//! polynomial arithmetic, interval enclosures, the paver, the root isolator and the κ₀ proof).
 //!
 //! Each check takes a `mutant` flag: `true` feeds the same check a
 //! deliberately wrong variant of the formula or parameters (documented at the
 //! check), so tests can show that the check can come out the other way.
 //!
-//! * [`exact`]: rationals behind the [`Scalar`](crate::number::scalar::Scalar) trait,
-//!   identity tests (Schwartz–Zippel), small exact linear solves.
+//! * [`exact`]: rationals and rational functions behind the
+//!   [`Scalar`](crate::number::scalar::Scalar) trait, identity proofs, small
+//!   exact linear solves.
+//! * [`symbolic`]: the polynomials and rational functions of those proofs.
 //! * [`witness`]: certified region differences found with the paver.
 //! * [`example1`], [`smooth`], [`ice`]: the checks of §1, §2, §3.
 //! * [`report`]: `REPORT.md`, `report.json` and `claims.toml`.
@@ -23,6 +25,7 @@ pub mod figures;
 pub mod ice;
 pub mod report;
 pub mod smooth;
+pub mod symbolic;
 pub mod witness;
 
 use rayon::prelude::*;
@@ -105,8 +108,12 @@ pub enum Strength {
     Certified,
     /// Exact rational arithmetic.
     Exact,
-    /// Exact agreement at random rational points (Schwartz–Zippel).
-    IdentityTest,
+    /// Identities proved by exact polynomial arithmetic (both sides equal
+    /// as rational functions of every sampled quantity).
+    Symbolic,
+    /// Exact agreement at random rational points only (Schwartz–Zippel with
+    /// an asserted, not proved, degree bound).
+    RandomTest,
     /// A written derivation whose steps are checked by computation.
     Argument,
 }
@@ -116,7 +123,8 @@ impl fmt::Display for Strength {
         f.write_str(match self {
             Strength::Certified => "certified",
             Strength::Exact => "exact",
-            Strength::IdentityTest => "identity-test",
+            Strength::Symbolic => "symbolic",
+            Strength::RandomTest => "random-test",
             Strength::Argument => "argument",
         })
     }
@@ -355,10 +363,15 @@ pub(crate) fn shown_at(
     if id.agrees() || printed == derived {
         return id.json();
     }
-    serde_json::json!({
+    let mut o = serde_json::json!({
         "identity": "differ",
         "point": point,
         "printed": printed.get().to_string(),
         "derived": derived.get().to_string(),
-    })
+        "printed_minus_derived": (printed - derived).text(),
+    });
+    if let Some(n) = id.json().get("cleared_difference_terms") {
+        o["cleared_difference_terms"] = n.clone();
+    }
+    o
 }

@@ -8,8 +8,8 @@
 //! `A θ̈ = ∂T/∂θ − a cos θ N` with `Λ̈ = 0`, solved exactly for `(z̈, θ̈, N)`.
 
 use super::exact::{
-    angle_d, dd_const, identity_test, jet2, qdec, sin_cos_of_tan_half, solve, verdict_of,
-    RationalPath, Rng, Sample, Q,
+    agreement, angle_d, dd_const, identity_test, jet2, qdec, sin_cos_of_tan_half, solve,
+    strength_of, verdict_of, RationalPath, Rng, Sample, Q,
 };
 use super::{enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
@@ -49,16 +49,18 @@ impl<T: Copy> P2<T> {
 
 impl P2<Q> {
     pub fn random(r: &mut Rng) -> P2<Q> {
-        let mut q = || Q::from_f64(r.positive());
-        let (m, a, big_a, big_c, g) = (q(), q(), q(), q(), q());
+        let mut q = |i: usize| {
+            let x = if i < 5 { r.positive() } else { r.signed() };
+            r.named(NAMES[i], x)
+        };
         P2 {
-            m,
-            a,
-            big_a,
-            big_c,
-            g,
-            pf: Q::from_f64(r.signed()),
-            ps: Q::from_f64(r.signed()),
+            m: q(0),
+            a: q(1),
+            big_a: q(2),
+            big_c: q(3),
+            g: q(4),
+            pf: q(5),
+            ps: q(6),
         }
     }
     pub fn exact(t: [&str; 7]) -> P2<Q> {
@@ -259,20 +261,17 @@ fn shown_json() -> serde_json::Value {
     json!({"params": params_json(&DEFAULTS), "sin_theta": "4/5", "cos_theta": "3/5", "theta_dot": "1"})
 }
 
-fn rp(r: &mut Rng) -> (P2<Q>, Q, Q, Q, Vec<(String, f64)>) {
+fn rp(r: &mut Rng) -> (P2<Q>, Q, Q, Q, Vec<(String, Q)>) {
     let p = P2::random(r);
     let t = r.tan_half();
     let (s, c) = sin_cos_of_tan_half(t);
-    let wf = r.signed();
+    let w = r.signed();
     (
         p,
         s,
         c,
-        Q::from_f64(wf),
-        vec![
-            ("tan(theta/2)".into(), t.get().to_f64()),
-            ("theta_dot".into(), wf),
-        ],
+        w,
+        vec![("tan(theta/2)".into(), t), ("theta_dot".into(), w)],
     )
 }
 
@@ -285,7 +284,7 @@ pub fn f2_1(mutant: bool) -> Outcome {
     let t = identity_test(21, |r| {
         let (p, s, c, w, pt) = rp(r);
         let (sp, cp) = sin_cos_of_tan_half(r.tan_half());
-        let (psid, phid) = (Q::from_f64(r.signed()), Q::from_f64(r.signed()));
+        let (psid, phid) = (r.signed(), r.signed());
         let printed = if mutant {
             t_rot_printed(&p, c, c, w, psid, phid)
         } else {
@@ -321,7 +320,7 @@ pub fn f2_1(mutant: bool) -> Outcome {
 pub fn f2_5(mutant: bool) -> Outcome {
     let integrals = identity_test(25, |r| {
         let (p, s, c, _, pt) = rp(r);
-        let lambda = Q::from_f64(r.signed());
+        let lambda = r.signed();
         let (psid, phid) = spin_rates(&p, s, c);
         // ∂T/∂ψ̇ and ∂T/∂φ̇ by duals must return p_ψ, p_φ
         let k = Dual::constant;
@@ -412,7 +411,7 @@ pub fn f2_6(mutant: bool) -> Outcome {
         let n = p.m * (Q::int(2) * z2 + p.g); // m z̈ = N − m g
         let printed = n / p.m - p.g + p.a * w.sqr() * s - sgn * p.a * thdd * c;
         Sample {
-            point: vec![("u0".into(), u0.get().to_f64())],
+            point: vec![("u0".into(), u0)],
             lhs: printed,
             rhs: lam_dd,
         }
@@ -484,8 +483,8 @@ pub fn f2_6route(mutant: bool) -> Outcome {
     if id.agrees() {
         return Outcome::new(
             Verdict::Confirmed,
-            Strength::IdentityTest,
-            "substituting θ̈ gives U of (2.7): exact agreement at random rational points",
+            strength_of(&[&id]),
+            format!("substituting θ̈ gives U of (2.7): {}", agreement(&[&id])),
             w,
         );
     }
@@ -580,6 +579,11 @@ fn kappa_alpha_q(p: &P2<Q>) -> (Q, Q, Q) {
     } else {
         (p.ps, p.pf)
     };
+    kappa_alpha_of(p, pm_big, pm_small)
+}
+
+/// κ, α, p_M with p_M, p_m given.
+fn kappa_alpha_of(p: &P2<Q>, pm_big: Q, pm_small: Q) -> (Q, Q, Q) {
     (
         p.g * p.big_a.sqr() / (p.a * pm_big.sqr()),
         pm_small / pm_big,
@@ -592,18 +596,26 @@ fn kappa_alpha_q(p: &P2<Q>) -> (Q, Q, Q) {
 pub fn f2_9(mutant: bool) -> Outcome {
     let id = identity_test(29, |r| {
         let (p, s, c, _, pt) = rp(r);
-        let (mut kappa, alpha, pm) = kappa_alpha_q(&p);
-        if mutant {
-            kappa = kappa / p.big_a;
-        }
-        let lhs = phi_printed(&p, s, c) * p.big_a.sqr() * s.sqr().sqr() / pm.sqr();
+        // p_M = p_φ and (weight k) p_M = p_ψ: both orderings at once
+        let k = r.signed();
+        let side = |pm_big: Q, pm_small: Q| {
+            let (mut kappa, alpha, pm) = kappa_alpha_of(&p, pm_big, pm_small);
+            if mutant {
+                kappa = kappa / p.big_a;
+            }
+            (
+                phi_printed(&p, s, c) * p.big_a.sqr() * s.sqr().sqr() / pm.sqr(),
+                kappa * s.sqr() * s - c * (alpha - c) * (Q::int(1) - alpha * c),
+            )
+        };
+        let ((l0, r0), (l1, r1)) = (side(p.pf, p.ps), side(p.ps, p.pf));
         Sample {
             point: pt,
-            lhs,
-            rhs: kappa * s.sqr() * s - c * (alpha - c) * (Q::int(1) - alpha * c),
+            lhs: l0 + k * l1,
+            rhs: r0 + k * r1,
         }
     });
-    verdict_of(&[("phi_scaled", &id)], "Φ·A²sin⁴θ/p_M² = κ sin³θ − f_r(θ) with κ = gA²/(a p_M²), α = p_m/p_M (both orderings of |p_φ|, |p_ψ| sampled): same roots, and sign Φ = sign(κ sin³θ − f_r)", "")
+    verdict_of(&[("phi_scaled", &id)], "Φ·A²sin⁴θ/p_M² = κ sin³θ − f_r(θ) with κ = gA²/(a p_M²), α = p_m/p_M (both orderings of |p_φ|, |p_ψ|): same roots, and sign Φ = sign(κ sin³θ − f_r)", "")
 }
 
 /// S2.alpha (own): "thus α ≤ 1" — α = p_m/p_M lies in [−1, 1] and can be
@@ -632,7 +644,7 @@ pub fn s2_alpha(mutant: bool) -> Outcome {
 pub fn f2_10(mutant: bool) -> Outcome {
     let id = identity_test(210, |r| {
         let t = r.tan_half();
-        let kappa = Q::from_f64(r.positive());
+        let kappa = r.positive();
         let (s, c) = sin_cos_of_tan_half(t);
         let one = Q::int(1);
         let lhs = (kappa * s.sqr() * s - c * (one - c) * (one - c))
@@ -641,7 +653,7 @@ pub fn f2_10(mutant: bool) -> Outcome {
         let k = if mutant { 1 } else { 2 };
         let rhs = Q::int(8) * t.sqr() * t * (kappa - t * (one - t) * (one + t) / Q::int(k));
         Sample {
-            point: vec![("mu".into(), t.get().to_f64())],
+            point: vec![("mu".into(), t)],
             lhs,
             rhs,
         }
@@ -709,8 +721,8 @@ pub fn s2_integrals(mutant: bool) -> Outcome {
     let moment = identity_test(2201, |r| {
         let (p, s, c, _, pt) = rp(r);
         let (spsi, cpsi) = sin_cos_of_tan_half(r.tan_half());
-        let lambda = Q::from_f64(r.signed());
-        let n = Q::from_f64(r.positive());
+        let lambda = r.signed();
+        let n = r.positive();
         let (mz, mk) = reaction_moment(p.a, s, c, spsi, cpsi, n, Q::int(0));
         Sample {
             point: pt,
@@ -732,8 +744,8 @@ pub fn s2_integrals(mutant: bool) -> Outcome {
     let w =
         json!({"reaction_moment_vertical_and_axial": moment.json(), "energy_rate": energy.json()});
     if moment.agrees() && energy.agrees() {
-        Outcome::new(Verdict::Confirmed, Strength::IdentityTest,
-            "the reaction N e_z at the lowest point has no moment about the vertical through G nor about the disc axis (p_ψ, p_φ constant; p_x, p_y since N is vertical), and d(T + Π)/dt = 0 along the contact motion (Lagrange θ̈, ż = a cos θ θ̇): exact agreement at random rational points",
+        Outcome::new(Verdict::Confirmed, strength_of(&[&moment, &energy]),
+            format!("the reaction N e_z at the lowest point has no moment about the vertical through G nor about the disc axis (p_ψ, p_φ constant; p_x, p_y since N is vertical), and d(T + Π)/dt = 0 along the contact motion (Lagrange θ̈, ż = a cos θ θ̇): {}", agreement(&[&moment, &energy])),
             w)
     } else {
         Outcome::new(
@@ -779,21 +791,27 @@ pub fn s2_omega(mutant: bool) -> Outcome {
 /// (exact). Mutant: p_ψ = p_φ/2 (α ≠ 0).
 pub fn s2_case1(mutant: bool) -> Outcome {
     let id = identity_test(221, |r| {
-        let (mut p, s, c, _, pt) = rp(r);
-        let zero_first = r.next_u64() & 1 == 0;
-        if mutant {
-            p.ps = p.pf / Q::int(2);
-        } else if zero_first {
-            p.pf = Q::int(0);
-        } else {
-            p.ps = Q::int(0);
-        }
-        let pm2 = p.pf.sqr() + p.ps.sqr();
-        let rhs = p.g / (p.a * s) + pm2 * c.sqr() / (p.big_a.sqr() * s.sqr().sqr());
+        let (p, s, c, _, pt) = rp(r);
+        // p_φ = 0 and (weight k) p_ψ = 0: both cases at once
+        let k = r.signed();
+        let side = |zero_pf: bool| {
+            let mut q = p;
+            if mutant {
+                q.ps = p.pf / Q::int(2);
+            } else if zero_pf {
+                q.pf = Q::int(0);
+            } else {
+                q.ps = Q::int(0);
+            }
+            let pm2 = q.pf.sqr() + q.ps.sqr();
+            let rhs = q.g / (q.a * s) + pm2 * c.sqr() / (q.big_a.sqr() * s.sqr().sqr());
+            (phi_printed(&q, s, c), rhs)
+        };
+        let ((l0, r0), (l1, r1)) = (side(true), side(false));
         Sample {
             point: pt,
-            lhs: phi_printed(&p, s, c),
-            rhs,
+            lhs: l0 + k * l1,
+            rhs: r0 + k * r1,
         }
     });
     if id.agrees() {
@@ -951,7 +969,7 @@ pub fn s2_case4(mutant: bool) -> Outcome {
         }
     });
     if id.agrees() {
-        Outcome::new(Verdict::Confirmed, Strength::IdentityTest, "Φ(π − θ) with (p_φ, p_ψ) equals Φ(θ) with (p_φ, −p_ψ), i.e. α → −α: α < 0 is the mirror image about θ = π/2 of |α|", json!({"identity": id.json()}))
+        Outcome::new(Verdict::Confirmed, strength_of(&[&id]), "Φ(π − θ) with (p_φ, p_ψ) equals Φ(θ) with (p_φ, −p_ψ), i.e. α → −α: α < 0 is the mirror image about θ = π/2 of |α|", json!({"identity": id.json()}))
     } else {
         Outcome::new(
             Verdict::False,

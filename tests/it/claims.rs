@@ -156,13 +156,13 @@ fn f1_7_error_with_certified_witness() {
     let d = &r.witness["newton_theta_ddot"];
     assert!(num(&p[0]) <= -5.186363 && -5.186364 <= num(&p[1]), "{p}");
     assert!(num(&d[0]) <= -10.372727 && -10.372728 <= num(&d[1]), "{d}");
-    assert_eq!(r.witness["without_factor_2"]["identity"], "agree");
+    assert_eq!(r.witness["without_factor_2"]["identity"], "proved");
 }
 
 #[test]
 fn f1_9_error_inherited_from_1_7() {
     let r = expect("F1.9", Verdict::Error);
-    assert_eq!(r.witness["from_printed_1_7"]["identity"], "agree");
+    assert_eq!(r.witness["from_printed_1_7"]["identity"], "proved");
 }
 
 #[test]
@@ -278,7 +278,7 @@ fn section_3_formulas() {
         num(&d[0]) <= 1.304_701_69 && 1.304_701_68 <= num(&d[1]),
         "{d}"
     );
-    assert_eq!(r.witness["identity"]["U0_over_V0"]["identity"], "agree");
+    assert_eq!(r.witness["identity"]["U0_over_V0"]["identity"], "proved");
 }
 
 #[test]
@@ -422,7 +422,7 @@ fn contact_without_detachment_lies_in_omega_and_omega0() {
 #[test]
 fn the_reduction_to_nonnegative_momenta_needs_time_reversal() {
     let r = expect("S3.symreduce", Verdict::Typo);
-    assert_eq!(r.witness["time_reversal"]["identity"], "agree");
+    assert_eq!(r.witness["time_reversal"]["identity"], "proved");
     // p_φ → −p_φ at sin θ = 4/5, cos θ = 3/5, v_x = 1 (defaults):
     // τ = 5/2 → (2 + 3/2)/(1/5) = 35/2, τ' = 65/8 → (−5/2 − 6/5)/(4/25) = −185/8;
     // (A + m a²)θ̈ = −g·3/5 + v_x τ − ττ'/4, A + m a² = 5/4.
@@ -494,4 +494,51 @@ fn differences_are_shown_at_short_points() {
             }
         }
     }
+}
+
+/// The identity witnesses (objects with a string `identity`) inside `x`.
+fn identities<'a>(x: &'a Value, at: &str, out: &mut Vec<(String, &'a Value)>) {
+    match x {
+        Value::Object(m) => {
+            if m.get("identity").is_some_and(Value::is_string) {
+                out.push((at.to_string(), x));
+            }
+            for (k, v) in m {
+                identities(v, &format!("{at}/{k}"), out);
+            }
+        }
+        Value::Array(a) => a.iter().for_each(|v| identities(v, at, out)),
+        _ => {}
+    }
+}
+
+/// Every identity of every check, and of its mutant, is either proved (the
+/// cleared difference is the zero polynomial) or refused with a rational
+/// point where the two sides differ: none is only sampled at random points.
+#[test]
+fn identities_are_proved_or_refused_with_a_point() {
+    let mut proved = 0;
+    for id in claims::ids() {
+        for mutant in [false, true] {
+            let r = check(id, mutant).unwrap();
+            let mut found = Vec::new();
+            identities(&r.witness, id, &mut found);
+            for (at, i) in found {
+                match i["identity"].as_str() {
+                    Some("proved") => {
+                        assert_eq!(i["cleared_difference"], "identically zero", "{at}");
+                        proved += 1;
+                    }
+                    Some("differ") => {
+                        assert!(i["point"].is_object(), "{at} (mutant {mutant}): no point");
+                        assert_ne!(num(&i["printed_minus_derived"]), 0.0, "{at}");
+                    }
+                    other => panic!("{at} (mutant {mutant}): {other:?}"),
+                }
+            }
+        }
+    }
+    // 45 identities of the unmutated checks are proved, and most survive
+    // their claim's mutant
+    assert!(proved > 45, "{proved} proved");
 }
