@@ -99,6 +99,9 @@ pub struct Entry {
     pub note: Option<String>,
 }
 
+/// A polyline to draw: pixel points, colour, dashed or not.
+type Stroke = (Vec<(f64, f64)>, (u8, u8, u8), bool);
+
 /// Picture size and layout (pixels).
 pub const SIZE: (u32, u32) = (960, 560);
 const TITLE_H: u32 = 64;
@@ -347,7 +350,7 @@ fn render(root: &Area, prep: &Prepared) -> Result<(), AtlasError> {
             }
         }
         (ClaimFigure::Lines(c), _) => {
-            let mut lines: Vec<(Vec<(f64, f64)>, (u8, u8, u8), bool)> = Vec::new();
+            let mut lines: Vec<Stroke> = Vec::new();
             if c.zero {
                 // On a pixel row's centre: a crisp one-pixel line.
                 let y = to_px((xr[0], 0.0)).1.floor() + 0.5;

@@ -183,11 +183,8 @@ mod tests {
             labels(-PI, PI),
             ["−π", "−3π/4", "−π/2", "−π/4", "0", "π/4", "π/2", "3π/4", "π"]
         );
-        // The ends of [0, π] as rounded doubles still get their ticks.
-        assert_eq!(
-            labels(0.0, 3.141592653589793),
-            ["0", "π/4", "π/2", "3π/4", "π"]
-        );
+        // The ends of [0, π] (π rounded to a double) get their ticks.
+        assert_eq!(labels(0.0, PI), ["0", "π/4", "π/2", "3π/4", "π"]);
         assert_eq!(labels(0.05, 3.09), ["π/4", "π/2", "3π/4"]);
         // A window narrower than π/2: plain numbers.
         let narrow = labels(0.9, 1.2);
