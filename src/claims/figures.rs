@@ -408,39 +408,41 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
         "S2.12components" => {
             let samples = [("2", "2"), ("2.5", "2")];
             let mut ss = Vec::new();
-            let (mut eq, mut gaps) = (Vec::new(), Vec::new());
-            for (pf, ps) in samples {
+            let mut eq = Vec::new();
+            let mut counts = Vec::new();
+            let mut gap_marks = Vec::new();
+            for ((pf, ps), shape) in samples.into_iter().zip([Shape::Ring, Shape::Square]) {
                 ss.push(series(momenta(pf, ps), scaled_slope(pf, ps)));
                 let (found, _, _) = smooth::equilibria(pf, ps);
-                eq.extend(
-                    found
-                        .into_iter()
-                        .flatten()
-                        .map(|r| (0.5 * (r[0] + r[1]), 0.0)),
-                );
+                let found = found.unwrap_or_default();
+                counts.push(format!("{} at ({pf}, {ps})", found.len()));
+                eq.extend(found.iter().map(|r| (0.5 * (r[0] + r[1]), 0.0)));
                 let d = smooth::disc(pf, ps);
-                if let Ok((kappa, alpha)) = kappa_alpha(&d) {
-                    if let Ok(g) = solve_2_9(kappa, alpha, &Budget::default()) {
-                        if g.complete {
-                            gaps.extend(g.roots.iter().map(|r| (0.5 * (r.lo + r.hi), 0.0)));
-                        }
-                    }
-                }
+                let gaps: Vec<(f64, f64)> = kappa_alpha(&d)
+                    .ok()
+                    .and_then(|(kappa, alpha)| solve_2_9(kappa, alpha, &Budget::default()).ok())
+                    .filter(|g| g.complete)
+                    .map(|g| g.roots.iter().map(|r| (0.5 * (r.lo + r.hi), 0.0)).collect())
+                    .unwrap_or_default();
+                gap_marks.push(marks(
+                    format!("({pf}, {ps}): ends of the gap of Ω, roots of (2.9)"),
+                    gaps,
+                    shape,
+                ));
             }
+            let mut all = vec![marks(
+                format!("equilibria (certified): {}", counts.join(", ")),
+                eq,
+                Shape::Dot,
+            )];
+            all.extend(gap_marks);
             Fig::Lines(Curves {
                 title: "S2.12components: equilibria on the two sides of the gap of Ω".into(),
                 subtitle: format!("{SLOPE_TITLE}; {}", p2_text()),
                 x: axis("θ", [0.0, pi], true),
                 y: axis("scaled slope", [-1.05, 1.05], false),
                 series: ss,
-                marks: vec![
-                    marks("equilibria: roots of (2.12), certified", eq, Shape::Dot),
-                    marks(
-                        "ends of the gap: roots of (2.9), certified",
-                        gaps,
-                        Shape::Ring,
-                    ),
-                ],
+                marks: all,
                 zero: true,
             })
         }
