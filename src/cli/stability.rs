@@ -5,7 +5,9 @@
 
 use super::machine;
 use super::{CliError, CliResult};
+use detach::certificate::numbers::{decimal, Round};
 use detach::figures::stability::{draw_stability_map, StabilityPanel};
+use detach::pave::area::Cell;
 use detach::pave::{run_method, Label, Method, PaveOptions, Paving, StopReason};
 use detach::scene::{Domain, Scene, SceneId, Variant, PI};
 use serde::Serialize;
@@ -314,20 +316,34 @@ pub fn run_stability(args: &StabilityArgs) -> CliResult {
                 .map_err(CliError::usage)?;
             runs.push((run, paving));
         }
+        let uncovered = domain.uncovered_area_sup();
         let panels: Vec<StabilityPanel> = runs
             .iter()
-            .map(|(r, p)| StabilityPanel {
-                title: format!(
-                    "{}: undecided Ω {:.3e}, {} leaves, {:.3} s, {}",
-                    r.method, r.undecided_area, r.leaves, r.seconds, r.stop
-                ),
-                paving: p,
+            .map(|(r, p)| {
+                // Certified upper bounds (outer − inner, rounded up), printed
+                // rounded up.
+                let up = |cell: Cell| {
+                    let a = p.area_bounds(&cell.spec(), uncovered).undecided_area();
+                    decimal(a, 3, Round::Up)
+                };
+                StabilityPanel {
+                    title: r.method.name().to_string(),
+                    notes: vec![
+                        format!(
+                            "undecided area ≤ {} in Ω, ≤ {} in Ω_{{0}}",
+                            up(Cell::Omega),
+                            up(Cell::Omega0)
+                        ),
+                        format!("{} leaves, {:.3} s, {}", r.leaves, r.seconds, r.stop),
+                    ],
+                    paving: p,
+                }
             })
             .collect();
         let svg = args.out.join(format!("stability-{}.svg", id.name()));
         let png = args.out.join(format!("stability-{}.png", id.name()));
         let title = format!(
-            "Where each method stalls: {} (derived, defaults, Ω and Ω₀ refined), eps = {}",
+            "Where each method stalls: {} (derived, defaults, Ω and Ω_{{0}} refined), eps = {}",
             id.name(),
             args.eps
         );

@@ -397,6 +397,12 @@ impl<'a> Figure<'a> {
         Figure::Png(BitMapBackend::new(path, size))
     }
 
+    /// A PNG figure drawn into `buf` (3 bytes a pixel, RGB, row-major)
+    /// instead of a file: what the PNG file would hold, for tests.
+    pub fn rgb(buf: &'a mut [u8], size: (u32, u32)) -> Figure<'a> {
+        Figure::Png(BitMapBackend::with_buffer(buf, size))
+    }
+
     pub fn is_vector(&self) -> bool {
         matches!(self, Figure::Svg(_))
     }

@@ -30,7 +30,7 @@ pub use palette::{delta_e, min_delta_e};
 pub use portrait::{level_lines, phase_portrait, phase_portrait_px, thin, trajectories, Polyline};
 pub use raster::{merge_rects, rasterize, Class, PixelRect, Raster};
 pub use regions::{even_odd_area, inside_even_odd, vector_regions, Region, Tracing};
-pub use ticks::{nice_ticks, tick_label};
+pub use ticks::{nice_ticks, theta_ticks, tick_label};
 
 use crate::files::render_atomic;
 use crate::pave::Paving;
@@ -39,7 +39,6 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::FontStyle;
-use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -143,12 +142,7 @@ type Rings = Vec<Vec<(f64, f64)>>;
 
 /// Everything drawn, computed once for both files.
 struct Prepared {
-    raster: Raster,
-    rects: Vec<PixelRect>,
-    /// Vector regions in plot-area pixels (SVG).
-    regions: Vec<(Class, Rings)>,
-    /// Undefined pixels widened to be visible, as pixel rectangles.
-    hatch: Vec<(i32, i32, i32, i32)>,
+    cells: CellLayer,
     /// Phase curves in plot-area pixel coordinates.
     lines: Vec<Vec<(f64, f64)>>,
     /// Share of the root box's area in each class, in [`Class::ALL`] order.
@@ -230,35 +224,12 @@ fn draw_err(e: impl std::fmt::Display) -> AtlasError {
 
 fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared {
     let (pw, ph) = plot_area_pixels(style);
-    let raster = rasterize(paving, pw, ph);
-    let rects = merge_rects(&raster);
-    let (regions, _) = vector_regions(paving, &raster);
-    let hatch = undefined_hatch(&raster, HATCH_WIDEN);
+    let cells = CellLayer::new(paving, (pw, ph));
     let root = paving.root;
     let (w, h) = (
         root.theta[1] - root.theta[0],
         root.theta_dot[1] - root.theta_dot[0],
     );
-    let regions = regions
-        .into_iter()
-        .map(|r| {
-            let rings = r
-                .rings
-                .iter()
-                .map(|ring| {
-                    ring.iter()
-                        .map(|&(t, v)| {
-                            (
-                                (t - root.theta[0]) / w * f64::from(pw),
-                                (root.theta_dot[1] - v) / h * f64::from(ph),
-                            )
-                        })
-                        .collect()
-                })
-                .collect();
-            (r.class, rings)
-        })
-        .collect();
     let lines = phase_portrait_px(info.scene, info.variant, &root, (pw, ph), LINE_SPACING);
     let mut shares = [0.0; 6];
     for leaf in &paving.leaves {
@@ -296,10 +267,7 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         if n == 1 { "leaf" } else { "leaves" }
     );
     Prepared {
-        raster,
-        rects,
-        regions,
-        hatch,
+        cells,
         lines,
         shares,
         empty: empty_classes(paving, info),
@@ -365,31 +333,6 @@ fn eps_text(eps: f64) -> String {
     }
 }
 
-/// θ tick label for multiples of π/4.
-fn pi_label(v: f64) -> String {
-    let k = (v / (PI / 4.0)).round() as i64;
-    let sign = if k < 0 { "−" } else { "" };
-    let (num, den) = {
-        let g = gcd(k.unsigned_abs(), 4);
-        (k.unsigned_abs() / g, 4 / g)
-    };
-    match (num, den) {
-        (0, _) => "0".into(),
-        (1, 1) => format!("{sign}π"),
-        (n, 1) => format!("{sign}{n}π"),
-        (1, d) => format!("{sign}π/{d}"),
-        (n, d) => format!("{sign}{n}π/{d}"),
-    }
-}
-
-fn gcd(a: u64, b: u64) -> u64 {
-    if b == 0 {
-        a
-    } else {
-        gcd(b, a % b)
-    }
-}
-
 fn rgb(c: Class) -> RGBColor {
     let (r, g, b) = c.rgb();
     RGBColor(r, g, b)
@@ -419,27 +362,7 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
         .shrink((0, TITLE_H), (width - LEGEND_W, height - TITLE_H));
     let r = paving.root;
     // θ ticks at multiples of π/4, or plain numbers in a narrow window.
-    let key_points: Vec<(f64, String)> = {
-        let (lo, hi) = (
-            (r.theta[0] / (PI / 4.0)).ceil(),
-            (r.theta[1] / (PI / 4.0)).floor(),
-        );
-        let tol = 1e-9;
-        let pis: Vec<(f64, String)> = (lo as i64 - 1..=hi as i64 + 1)
-            .map(|k| k as f64 * PI / 4.0)
-            .filter(|&t| t >= r.theta[0] - tol && t <= r.theta[1] + tol)
-            .map(|t| (t.clamp(r.theta[0], r.theta[1]), pi_label(t)))
-            .collect();
-        if pis.len() >= 3 {
-            pis
-        } else {
-            let (ticks, step) = nice_ticks(r.theta[0], r.theta[1], 8);
-            ticks
-                .into_iter()
-                .map(|t| (t, tick_label(t, step)))
-                .collect()
-        }
-    };
+    let key_points = theta_ticks(r.theta[0], r.theta[1]);
     let (_, y_step) = nice_ticks(r.theta_dot[0], r.theta_dot[1], 11);
     let mut chart = ChartBuilder::on(&chart_area)
         .margin_top(MARGIN_TOP)
@@ -452,53 +375,11 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
     let plot = chart.plotting_area().strip_coord_spec();
     debug_assert_eq!(
         plot.dim_in_pixel(),
-        (prep.raster.width, prep.raster.height),
+        (prep.cells.raster.width, prep.cells.raster.height),
         "plot_area_pixels out of step with the layout"
     );
 
-    // Undecided is the background (so anti-aliasing seams between regions
-    // read as undecided); then the cells and undefined leaves: exact vector
-    // regions in SVG, the conservative raster in PNG.
-    plot.fill(&rgb(Class::Undecided)).map_err(draw_err)?;
-    native(&plot, |fig, o| {
-        if fig.is_vector() {
-            for (class, rings) in &prep.regions {
-                if *class == Class::Undecided {
-                    continue;
-                }
-                let shifted: Vec<Vec<(f64, f64)>> = rings
-                    .iter()
-                    .map(|r| r.iter().map(|p| (o.0 + p.0, o.1 + p.1)).collect())
-                    .collect();
-                fig.fill_rings(&shifted, class.rgb());
-            }
-        }
-        Ok(())
-    })
-    .map_err(AtlasError::Draw)?;
-    if !plot_is_vector(&plot) {
-        for pr in prep.rects.iter().filter(|r| r.class != Class::Undecided) {
-            plot.draw(&Rectangle::new(
-                [(pr.x0 as i32, pr.y0 as i32), (pr.x1 as i32, pr.y1 as i32)],
-                rgb(pr.class).filled(),
-            ))
-            .map_err(draw_err)?;
-        }
-    }
-    // Undefined leaves hatched, widened to at least 2·HATCH_WIDEN pixels:
-    // the strips at sin θ = 0 are thinner than a pixel.
-    native(&plot, |fig, o| {
-        let shifted: Vec<(i32, i32, i32, i32)> = prep
-            .hatch
-            .iter()
-            .map(|&(x0, y0, x1, y1)| {
-                let (dx, dy) = (o.0 as i32, o.1 as i32);
-                (x0 + dx, y0 + dy, x1 + dx, y1 + dy)
-            })
-            .collect();
-        fig.hatch(&shifted, (0x22, 0x22, 0x22))
-    })
-    .map_err(AtlasError::Draw)?;
+    prep.cells.draw(&plot)?;
 
     // Phase portrait.
     native(&plot, |fig, o| {
@@ -562,6 +443,113 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
         .shrink((width - LEGEND_W, TITLE_H), (LEGEND_W, height - TITLE_H));
     draw_legend(&legend, prep)?;
     Ok(())
+}
+
+/// A paving's cells as drawn on a plot area: the conservative raster (PNG),
+/// the exact vector regions (SVG) and the hatching of undefined leaves, all
+/// in plot-area pixels.
+pub(crate) struct CellLayer {
+    pub(crate) raster: Raster,
+    rects: Vec<PixelRect>,
+    regions: Vec<(Class, Rings)>,
+    /// Undefined pixels widened to be visible, as pixel rectangles.
+    hatch: Vec<(i32, i32, i32, i32)>,
+}
+
+impl CellLayer {
+    /// The layer of `paving` on a plot area of `px` pixels showing its root box.
+    pub(crate) fn new(paving: &Paving, (pw, ph): (u32, u32)) -> CellLayer {
+        let raster = rasterize(paving, pw, ph);
+        let rects = merge_rects(&raster);
+        let (regions, _) = vector_regions(paving, &raster);
+        let hatch = undefined_hatch(&raster, HATCH_WIDEN);
+        let root = paving.root;
+        let (w, h) = (
+            root.theta[1] - root.theta[0],
+            root.theta_dot[1] - root.theta_dot[0],
+        );
+        let regions = regions
+            .into_iter()
+            .map(|r| {
+                let rings = r
+                    .rings
+                    .iter()
+                    .map(|ring| {
+                        ring.iter()
+                            .map(|&(t, v)| {
+                                (
+                                    (t - root.theta[0]) / w * f64::from(pw),
+                                    (root.theta_dot[1] - v) / h * f64::from(ph),
+                                )
+                            })
+                            .collect()
+                    })
+                    .collect();
+                (r.class, rings)
+            })
+            .collect();
+        CellLayer {
+            raster,
+            rects,
+            regions,
+            hatch,
+        }
+    }
+
+    /// The classes shown on at least one pixel, in [`Class::ALL`] order.
+    pub(crate) fn shown(&self) -> Vec<Class> {
+        Class::ALL
+            .into_iter()
+            .filter(|&c| self.raster.pixels.contains(&Some(c)))
+            .collect()
+    }
+
+    /// Draws the layer on `plot` (the plot area, origin at its top left).
+    pub(crate) fn draw(&self, plot: &Area) -> Result<(), AtlasError> {
+        // Undecided is the background (so anti-aliasing seams between regions
+        // read as undecided); then the cells and undefined leaves: exact vector
+        // regions in SVG, the conservative raster in PNG.
+        plot.fill(&rgb(Class::Undecided)).map_err(draw_err)?;
+        native(plot, |fig, o| {
+            if fig.is_vector() {
+                for (class, rings) in &self.regions {
+                    if *class == Class::Undecided {
+                        continue;
+                    }
+                    let shifted: Vec<Vec<(f64, f64)>> = rings
+                        .iter()
+                        .map(|r| r.iter().map(|p| (o.0 + p.0, o.1 + p.1)).collect())
+                        .collect();
+                    fig.fill_rings(&shifted, class.rgb());
+                }
+            }
+            Ok(())
+        })
+        .map_err(AtlasError::Draw)?;
+        if !plot_is_vector(plot) {
+            for pr in self.rects.iter().filter(|r| r.class != Class::Undecided) {
+                plot.draw(&Rectangle::new(
+                    [(pr.x0 as i32, pr.y0 as i32), (pr.x1 as i32, pr.y1 as i32)],
+                    rgb(pr.class).filled(),
+                ))
+                .map_err(draw_err)?;
+            }
+        }
+        // Undefined leaves hatched, widened to at least 2·HATCH_WIDEN pixels:
+        // the strips at sin θ = 0 are thinner than a pixel.
+        native(plot, |fig, o| {
+            let shifted: Vec<(i32, i32, i32, i32)> = self
+                .hatch
+                .iter()
+                .map(|&(x0, y0, x1, y1)| {
+                    let (dx, dy) = (o.0 as i32, o.1 as i32);
+                    (x0 + dx, y0 + dy, x1 + dx, y1 + dy)
+                })
+                .collect();
+            fig.hatch(&shifted, (0x22, 0x22, 0x22))
+        })
+        .map_err(AtlasError::Draw)
+    }
 }
 
 /// Whether the area draws to an SVG (vector regions) or a PNG (raster).

@@ -294,7 +294,9 @@ pub fn trajectories_with_heads(
         root.theta_dot[1] - root.theta_dot[0],
     );
     let (seeds_x, seeds_y) = (8usize, 6usize);
-    let max_arc = 0.9;
+    // Long enough that a curve ends at the box's edge, at rest or at a
+    // singularity, not in open plane (where it would read as a sink).
+    let max_arc = 4.0;
     // Local error per step, relative to the box; steps also move at most
     // 1/600 of the box, so the polyline is smooth at pixel scale.
     let tol = 1e-7;
@@ -324,11 +326,11 @@ pub fn trajectories_with_heads(
                         0.0
                     }
                 };
-                // A curve needs a few hundred steps; a stiff field (e.g.
+                // A curve needs a few thousand steps; a stiff field (e.g.
                 // μ = 10⁷) would take millions: stop it, the portrait is
                 // decoration, not a certified result.
                 let mut steps = 0;
-                while dt > 0.0 && arc < max_arc && steps < 4_000 {
+                while dt > 0.0 && arc < max_arc && steps < 16_000 {
                     steps += 1;
                     let speed = norm(f(s));
                     if !(speed.is_finite() && speed > 1e-12) {
@@ -496,30 +498,44 @@ fn coarse_to_fine(n: usize) -> Vec<usize> {
 /// least `spacing` pixels from every piece kept before, and from its own
 /// points more than `4 × spacing` back along it (a tight spiral). Pieces
 /// shorter than `min_len` are dropped. Returns `(curve index, piece)`.
+///
+/// A piece cut because it comes near a kept curve runs on (up to
+/// `8 × spacing` further) until it touches that curve, and a piece that
+/// starts where it leaves a kept curve begins on it: a reader of a phase
+/// portrait takes a curve ending in open plane for a sink (or one starting
+/// there for a source), while one running into its neighbour reads as the
+/// two orbits merging at the drawing's resolution, which they do. A piece
+/// shorter than `10 × spacing` with an end that joins nothing is dropped.
 pub fn thin(
     curves: &[Vec<(f64, f64)>],
     spacing: f64,
     min_len: f64,
 ) -> Vec<(usize, Vec<(f64, f64)>)> {
     type Grid = HashMap<(i64, i64), Vec<(usize, f64, (f64, f64))>>;
+    // Closer than this a line touches another (the lines are about a pixel wide).
+    let touch = 1.0f64.min(0.25 * spacing);
+    let reach = 8.0 * spacing;
     let cell = |p: (f64, f64)| {
         (
             (p.0 / spacing).floor() as i64,
             (p.1 / spacing).floor() as i64,
         )
     };
-    let near = |grid: &Grid, id: usize, arc: f64, p: (f64, f64)| {
+    // Distance from `p` to the nearest point of another curve, or of the
+    // same curve more than 4 × spacing away along it; ∞ beyond `spacing`.
+    let gap = |grid: &Grid, id: usize, arc: f64, p: (f64, f64)| -> f64 {
         let (cx, cy) = cell(p);
-        (cx - 1..=cx + 1).any(|x| {
-            (cy - 1..=cy + 1).any(|y| {
-                grid.get(&(x, y)).is_some_and(|v| {
-                    v.iter().any(|&(o, a, q)| {
-                        (o != id || (arc - a).abs() > 4.0 * spacing)
-                            && (p.0 - q.0).hypot(p.1 - q.1) < spacing
-                    })
-                })
-            })
-        })
+        let mut best = f64::INFINITY;
+        for x in cx - 1..=cx + 1 {
+            for y in cy - 1..=cy + 1 {
+                for &(o, a, q) in grid.get(&(x, y)).into_iter().flatten() {
+                    if o != id || (arc - a).abs() > 4.0 * spacing {
+                        best = best.min((p.0 - q.0).hypot(p.1 - q.1));
+                    }
+                }
+            }
+        }
+        best
     };
     let mut grid: Grid = HashMap::new();
     let mut out = Vec::new();
@@ -543,32 +559,84 @@ pub fn thin(
             }
             pts.push((p, arc));
         }
-        let mut piece: Vec<((f64, f64), f64)> = Vec::new();
+        // Whether each point is blocked, and how far it is from what blocks
+        // it; computed as the pieces are kept (a kept piece blocks the rest
+        // of its own curve only through the spiral rule).
+        let mut piece: Vec<usize> = Vec::new();
         let mut pending: Grid = HashMap::new();
-        let mut flush =
-            |piece: &mut Vec<((f64, f64), f64)>, pending: &mut Grid, grid: &mut Grid| {
-                let len = match (piece.first(), piece.last()) {
-                    (Some(a), Some(b)) => b.1 - a.1,
-                    _ => 0.0,
-                };
-                if len >= min_len {
-                    for (k, v) in pending.drain() {
-                        grid.entry(k).or_default().extend(v);
-                    }
-                    out.push((id, piece.iter().map(|(p, _)| *p).collect()));
-                }
-                pending.clear();
-                piece.clear();
+        let mut blocked_at: Vec<f64> = vec![f64::INFINITY; pts.len()];
+        // Whether the current piece starts at the curve's own start or on
+        // the curve it leaves.
+        let mut start_joined = true;
+        let mut i = 0;
+        while i <= pts.len() {
+            let end = i == pts.len();
+            let blocked = !end && {
+                let (p, a) = pts[i];
+                let d = gap(&grid, id, a, p).min(gap(&pending, id, a, p));
+                blocked_at[i] = d;
+                d < spacing
             };
-        for &(p, a) in &pts {
-            if near(&grid, id, a, p) || near(&pending, id, a, p) {
-                flush(&mut piece, &mut pending, &mut grid);
-            } else {
-                piece.push((p, a));
+            if !end && !blocked {
+                if piece.is_empty() {
+                    start_joined = i == 0;
+                    // Begin on the curve this one leaves, if it is near.
+                    let mut start = i;
+                    while start > 0
+                        && pts[i].1 - pts[start - 1].1 <= reach
+                        && blocked_at[start - 1] < spacing
+                    {
+                        start -= 1;
+                        if blocked_at[start] <= touch {
+                            break;
+                        }
+                    }
+                    if start < i && blocked_at[start] <= touch {
+                        piece.extend(start..i);
+                        start_joined = true;
+                    }
+                }
+                piece.push(i);
+                let (p, a) = pts[i];
                 pending.entry(cell(p)).or_default().push((id, a, p));
+                i += 1;
+                continue;
             }
+            // Cut here: run on into the curve that blocks this one.
+            let mut stop = i;
+            let mut end_joined = end;
+            if !end && !piece.is_empty() {
+                let mut k = i;
+                while k < pts.len() && pts[k].1 - pts[i].1 <= reach {
+                    let (p, a) = pts[k];
+                    let d = gap(&grid, id, a, p).min(gap(&pending, id, a, p));
+                    if d <= touch {
+                        stop = k + 1;
+                        end_joined = true;
+                        break;
+                    }
+                    k += 1;
+                }
+            }
+            let len = match (piece.first(), piece.last()) {
+                (Some(&f), Some(&l)) => pts[l].1 - pts[f].1,
+                _ => 0.0,
+            };
+            // A short piece with an end in open plane reads as a dash, or
+            // as a sink or source: left out.
+            let dangling = !(start_joined && end_joined);
+            if len >= min_len && !(dangling && len < 10.0 * spacing) {
+                for (k, v) in pending.drain() {
+                    grid.entry(k).or_default().extend(v);
+                }
+                let mut drawn: Vec<(f64, f64)> = piece.iter().map(|&k| pts[k].0).collect();
+                drawn.extend(pts[i..stop].iter().map(|q| q.0));
+                out.push((id, drawn));
+            }
+            pending.clear();
+            piece.clear();
+            i += 1;
         }
-        flush(&mut piece, &mut pending, &mut grid);
     }
     out
 }
@@ -669,6 +737,29 @@ mod tests {
             vec![(0.0, 50.0), (100.0, 50.0)],
         ];
         assert_eq!(thin(&lone, 6.0, 18.0).len(), 2);
+    }
+
+    #[test]
+    fn a_cut_curve_runs_into_the_one_that_cuts_it() {
+        // A horizontal line, and a line coming down onto it at 45° and then
+        // running along it one pixel away: cut where it comes within the
+        // spacing, it still ends touching the first line, not 6 pixels short.
+        let a: Vec<(f64, f64)> = vec![(0.0, 100.0), (200.0, 100.0)];
+        let b: Vec<(f64, f64)> = vec![(20.0, 20.0), (99.0, 99.0), (180.0, 99.0)];
+        let kept = thin(&[a, b.clone()], 6.0, 18.0);
+        let piece = &kept.iter().find(|(c, _)| *c == 1).expect("b kept").1;
+        let last = *piece.last().unwrap();
+        assert!((100.0 - last.1) <= 1.0 + 1e-9, "b ends at {last:?}");
+        assert!(last.0 < 110.0, "b does not run along a: {last:?}");
+        // The reverse: leaving a, b starts on it.
+        let rev: Vec<(f64, f64)> = b.into_iter().rev().collect();
+        let kept = thin(&[vec![(0.0, 100.0), (200.0, 100.0)], rev], 6.0, 18.0);
+        let piece = &kept.iter().find(|(c, _)| *c == 1).expect("b kept").1;
+        assert!(
+            (100.0 - piece[0].1) <= 1.0 + 1e-9,
+            "b starts at {:?}",
+            piece[0]
+        );
     }
 
     #[test]

@@ -11,10 +11,12 @@
 //! decided label is drawn: the map shows only where the methods fail.
 
 use super::raster::Class;
-use super::{draw_err, start_drawing, AtlasError, Figure};
+use super::THETA_DOT;
+use super::{draw_err, nice_ticks, start_drawing, theta_ticks, tick_label, AtlasError, Figure};
 use crate::pave::{Paving, PhaseBox};
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::Path;
 
 /// Share of a grid cell's area covered by leaves that are not decided.
@@ -110,10 +112,21 @@ pub fn heat_grid(paving: &Paving, cols: usize, rows: usize) -> HeatGrid {
 
 /// One panel of a stability map.
 pub struct StabilityPanel<'a> {
-    /// e.g. `natural: undecided 0.0123, 4096 leaves`.
+    /// The method, e.g. `natural`.
     pub title: String,
+    /// Lines under the title (markup): the certified undecided area per
+    /// region, the cost.
+    pub notes: Vec<String>,
     pub paving: &'a Paving,
 }
+
+/// Picture width, height of the header and of one row of panels (pixels).
+const WIDTH: u32 = 1400;
+const HEADER_H: u32 = 120;
+const ROW_H: u32 = 470;
+/// Panel caption lines, tick labels.
+const CAPTION: u32 = 18;
+const LABEL: u32 = 16;
 
 /// Grid cells per panel.
 const GRID: (usize, usize) = (160, 100);
@@ -141,7 +154,7 @@ pub fn draw_stability_map(
         .map(|p| heat_grid(p.paving, GRID.0, GRID.1))
         .collect();
     let rows = panels.len().div_ceil(2).max(1) as u32;
-    let size = (1280, 110 + 400 * rows);
+    let size = (WIDTH, HEADER_H + ROW_H * rows);
     crate::files::render_atomic(svg, |tmp| {
         let root = Figure::svg(tmp, size).into_drawing_area();
         render(&root, panels, &grids, title)?;
@@ -163,14 +176,14 @@ fn render(
     title: &str,
 ) -> Result<(), AtlasError> {
     root.fill(&WHITE).map_err(draw_err)?;
-    let bold = ("sans-serif", 22).into_font().style(FontStyle::Bold);
+    let bold = ("sans-serif", 24).into_font().style(FontStyle::Bold);
     root.draw_text(title, &bold.color(&INK), (16, 10))
         .map_err(draw_err)?;
-    let small = ("sans-serif", 15).into_font();
+    let small = ("sans-serif", 17).into_font();
     root.draw_text(
-        "pale: every leaf there decided for Ω and Ω₀   orange → dark red: share of the area undecided (log, 10^{−3} … 1)   blue: undefined",
+        "pale: every leaf there decided for Ω and Ω_{0}   orange → dark red: share of the area undecided (log, 10^{−3} … 1)   blue: undefined",
         &small.color(&INK),
-        (16, 42),
+        (16, 44),
     )
     .map_err(draw_err)?;
     // Colour key.
@@ -178,40 +191,105 @@ fn render(
         let share = 10f64.powf(-3.0 + 3.0 * f64::from(i) / 30.0);
         let x = 16 + 8 * i;
         root.draw(&Rectangle::new(
-            [(x, 70), (x + 8, 84)],
+            [(x, 76), (x + 8, 92)],
             heat_colour(share).filled(),
         ))
         .map_err(draw_err)?;
     }
-    root.draw_text("10^{−3}", &small.color(&INK), (16, 88))
+    root.draw_text("10^{−3}", &small.color(&INK), (16, 96))
         .map_err(draw_err)?;
-    root.draw_text("1", &small.color(&INK), (256, 88))
+    root.draw_text("1", &small.color(&INK), (256, 96))
         .map_err(draw_err)?;
-    root.draw(&Rectangle::new([(300, 70), (322, 84)], UNDEFINED.filled()))
+    root.draw(&Rectangle::new([(300, 76), (324, 92)], UNDEFINED.filled()))
         .map_err(draw_err)?;
-    root.draw_text("undefined", &small.color(&INK), (328, 68))
+    root.draw_text("undefined", &small.color(&INK), (332, 74))
         .map_err(draw_err)?;
+    root.draw(&Rectangle::new([(460, 76), (484, 92)], PALE.filled()))
+        .map_err(draw_err)?;
+    root.draw(&Rectangle::new([(460, 76), (484, 92)], INK.stroke_width(1)))
+        .map_err(draw_err)?;
+    root.draw_text("decided", &small.color(&INK), (492, 74))
+        .map_err(draw_err)?;
+    root.draw_text(
+        "areas in the (θ, θ\u{307}) plane, certified upper bounds",
+        &small.color(&INK),
+        (620, 74),
+    )
+    .map_err(draw_err)?;
 
-    let (_, height) = root.dim_in_pixel();
-    let body = root.clone().shrink((0, 110), (1280, height - 110));
+    let (width, height) = root.dim_in_pixel();
+    let body = root
+        .clone()
+        .shrink((0, HEADER_H), (width, height - HEADER_H));
     let rows = panels.len().div_ceil(2).max(1);
     let areas = body.split_evenly((rows, 2));
+    let label = ("sans-serif", LABEL).into_font();
     for ((panel, grid), area) in panels.iter().zip(grids).zip(&areas) {
         let r = grid.root;
+        // Caption: the method in bold, then its notes, one a line.
+        let cap_bold = ("sans-serif", CAPTION).into_font().style(FontStyle::Bold);
+        let cap = ("sans-serif", CAPTION - 2).into_font();
+        area.draw_text(&panel.title, &cap_bold.color(&INK), (60, 4))
+            .map_err(draw_err)?;
+        for (k, n) in panel.notes.iter().enumerate() {
+            area.draw_text(n, &cap.color(&INK), (60, 28 + 21 * k as i32))
+                .map_err(draw_err)?;
+        }
+        let caption_h = 32 + 21 * panel.notes.len() as u32;
+        let (_, y_step) = nice_ticks(r.theta_dot[0], r.theta_dot[1], 8);
         let mut chart = ChartBuilder::on(area)
-            .caption(&panel.title, ("sans-serif", 16).into_font())
             .margin(10)
-            .x_label_area_size(34)
-            .y_label_area_size(48)
+            .margin_top(caption_h)
+            .x_label_area_size(52)
+            .y_label_area_size(60)
             .build_cartesian_2d(r.theta[0]..r.theta[1], r.theta_dot[0]..r.theta_dot[1])
             .map_err(draw_err)?;
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc("θ")
-            .y_desc("θ̇")
-            .label_style(("sans-serif", 12))
+            .x_labels(0)
+            .y_labels(9)
+            .y_label_formatter(&|v| tick_label(*v, y_step))
+            .label_style(label.color(&INK))
+            .axis_style(INK)
             .draw()
+            .map_err(draw_err)?;
+        // θ ticks at multiples of π/4, by hand (as in the atlas).
+        let plot = chart.plotting_area().strip_coord_spec();
+        let (pw, ph) = plot.dim_in_pixel();
+        let (ox, oy) = {
+            let (xr, yr) = plot.get_pixel_range();
+            (xr.start, yr.start)
+        };
+        let (ax, ay) = {
+            let (xr, yr) = area.get_pixel_range();
+            (xr.start, yr.start)
+        };
+        let tick_font = label.color(&INK).pos(Pos::new(HPos::Center, VPos::Top));
+        for (t, text) in theta_ticks(r.theta[0], r.theta[1]) {
+            let x = ox - ax
+                + (((t - r.theta[0]) / (r.theta[1] - r.theta[0]) * f64::from(pw)).round() as i32)
+                    .min(pw as i32 - 1);
+            let y = oy - ay + ph as i32;
+            area.draw(&PathElement::new(
+                vec![(x, y), (x, y + 5)],
+                INK.stroke_width(1),
+            ))
+            .map_err(draw_err)?;
+            area.draw_text(&text, &tick_font, (x, y + 8))
+                .map_err(draw_err)?;
+        }
+        let desc = ("sans-serif", LABEL + 2)
+            .into_font()
+            .color(&INK)
+            .pos(Pos::new(HPos::Center, VPos::Center));
+        area.draw_text(
+            "θ",
+            &desc,
+            (ox - ax + pw as i32 / 2, oy - ay + ph as i32 + 38),
+        )
+        .map_err(draw_err)?;
+        area.draw_text(THETA_DOT, &desc, (14, oy - ay + ph as i32 / 2))
             .map_err(draw_err)?;
         chart.plotting_area().fill(&PALE).map_err(draw_err)?;
         let mut rects = Vec::new();

@@ -1,6 +1,8 @@
 //! Tick positions and compact tick labels (markup for [`super::Figure`]
 //! text: `10^{308}` is typeset as a power).
 
+use std::f64::consts::PI;
+
 /// About `n` "nice" tick values (1, 2 or 5 × 10ᵏ apart) in `[lo, hi]`, and
 /// their step. Empty for an empty or non-finite range.
 pub fn nice_ticks(lo: f64, hi: f64, n: usize) -> (Vec<f64>, f64) {
@@ -93,6 +95,49 @@ pub fn tick_label(v: f64, step: f64) -> String {
     })
 }
 
+/// θ ticks: multiples of π/4 labelled `π/4`, `−3π/4`, … when at least three
+/// fall in `[lo, hi]` (the ends included within 10⁻⁹, and then placed on
+/// the ends), plain "nice" numbers otherwise (a narrow window).
+pub fn theta_ticks(lo: f64, hi: f64) -> Vec<(f64, String)> {
+    let q = PI / 4.0;
+    let tol = 1e-9;
+    let (k0, k1) = ((lo / q).ceil() as i64 - 1, (hi / q).floor() as i64 + 1);
+    let pis: Vec<(f64, String)> = (k0..=k1)
+        .map(|k| (k as f64 * q, k))
+        .filter(|&(t, _)| t >= lo - tol && t <= hi + tol)
+        .map(|(t, k)| (t.clamp(lo, hi), pi_label(k)))
+        .collect();
+    if pis.len() >= 3 {
+        return pis;
+    }
+    let (ticks, step) = nice_ticks(lo, hi, 8);
+    ticks
+        .into_iter()
+        .map(|t| (t, tick_label(t, step)))
+        .collect()
+}
+
+/// Label of `k·π/4` in lowest terms.
+fn pi_label(k: i64) -> String {
+    let sign = if k < 0 { "−" } else { "" };
+    let g = gcd(k.unsigned_abs(), 4);
+    match (k.unsigned_abs() / g, 4 / g) {
+        (0, _) => "0".into(),
+        (1, 1) => format!("{sign}π"),
+        (n, 1) => format!("{sign}{n}π"),
+        (1, d) => format!("{sign}π/{d}"),
+        (n, d) => format!("{sign}{n}π/{d}"),
+    }
+}
+
+fn gcd(a: u64, b: u64) -> u64 {
+    if b == 0 {
+        a
+    } else {
+        gcd(b, a % b)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -127,5 +172,23 @@ mod tests {
         assert_eq!(tick_label(0.05, 0.05), "0.05");
         assert_eq!(tick_label(1e-5, 1e-5), "10^{−5}");
         assert_eq!(tick_label(2.3e291, 1e307), "0");
+    }
+
+    #[test]
+    fn theta_ticks_are_multiples_of_pi_in_lowest_terms() {
+        let labels = |lo: f64, hi: f64| -> Vec<String> {
+            theta_ticks(lo, hi).into_iter().map(|t| t.1).collect()
+        };
+        assert_eq!(
+            labels(-PI, PI),
+            ["−π", "−3π/4", "−π/2", "−π/4", "0", "π/4", "π/2", "3π/4", "π"]
+        );
+        // The ends of [0, π] (π rounded to a double) get their ticks.
+        assert_eq!(labels(0.0, PI), ["0", "π/4", "π/2", "3π/4", "π"]);
+        assert_eq!(labels(0.05, 3.09), ["π/4", "π/2", "3π/4"]);
+        // A window narrower than π/2: plain numbers.
+        let narrow = labels(0.9, 1.2);
+        assert!(narrow.len() >= 5 && narrow.iter().all(|l| !l.contains('π')));
+        assert!(narrow.contains(&"1.00".to_string()), "{narrow:?}");
     }
 }

@@ -57,6 +57,7 @@ fn full_run_writes_the_report_and_json() {
         .unwrap()
         .contains("## Claims not confirmed"));
     assert!(dir.join("figures/F1_10.svg").exists() && dir.join("figures/F1_10.png").exists());
+    assert_figures_differ(&dir.join("figures"));
     let toml = std::fs::read_to_string(dir.join("claims.toml")).unwrap();
     assert_eq!(toml.matches("[[claim]]").count(), arr.len());
     // The summary line (on stderr under --json): the verdict counts of the
@@ -93,4 +94,31 @@ fn committed_claims_list_is_the_built_in_table() {
     ))
     .unwrap();
     assert_eq!(committed, detach::claims::TABLE);
+}
+
+/// No two files of a figures folder hold the same bytes: each claim's
+/// picture shows what that claim is about.
+fn assert_figures_differ(dir: &std::path::Path) {
+    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let p = e.unwrap().path();
+            (p.display().to_string(), std::fs::read(&p).unwrap())
+        })
+        .collect();
+    files.sort();
+    assert!(files.len() >= 2, "{}: no figures", dir.display());
+    for (i, (a, x)) in files.iter().enumerate() {
+        for (b, y) in &files[i + 1..] {
+            assert!(x != y, "{a} and {b} are byte-identical");
+        }
+    }
+}
+
+#[test]
+fn committed_figures_are_pairwise_different() {
+    assert_figures_differ(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/paper-checks/figures"
+    )));
 }
