@@ -491,7 +491,7 @@ pub fn f2_6route(mutant: bool) -> Outcome {
     let f = |x: Q| x.get().to_f64();
     Outcome::new(Verdict::Error, Strength::Exact,
         format!("θ̈ of (2.5) is the contact acceleration (N eliminated): substituted into (2.6) it gives A/(A + m a² cos²θ)·U ({}), not U; at sin θ = 4/5, cos θ = 3/5, θ̇ = 1 (defaults) {:.4} against U = {:.4} (exact)",
-            if scaled.agrees() { "identity test" } else { "NOT" }, f(gave), f(u0)),
+            if scaled.proved() { "proved identity" } else if scaled.agrees() { "random points" } else { "NOT" }, f(gave), f(u0)),
         w)
         .correct("substituting θ̈ from (2.5) gives A/(A + m a² cos²θ)·U = U/(mV), with the same sign as U; U itself comes from the θ equation of (2.2) at N = 0 with the integrals (2.3) (F2.6)")
 }
