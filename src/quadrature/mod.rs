@@ -565,7 +565,9 @@ impl Job<'_> {
                 s += over.c[n] * mom[n];
                 // A tie shortens the slice by at most sup |to − from|, a
                 // sliver adds at most that much.
-                let r = pt(0.5) * h;
+                // |θ − m| ≤ r on the piece (m is a rounded midpoint).
+                let r = (pt(m) - pt(t0)).convex_hull(pt(t1) - pt(m));
+                let r = pt(r.sup());
                 let n_ties = gaps.ties.len();
                 for (k, (g, go)) in gaps_m.iter().zip(&gaps_over).enumerate() {
                     let (poly, rest) = sup_abs(g, go, r);
