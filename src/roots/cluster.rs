@@ -244,3 +244,70 @@ fn signed_point<F: RealFn>(f: &F, from: f64, limit: f64, width: f64) -> Option<(
     }
     None
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::number::scalar::Scalar;
+    use crate::roots::isolate::UndecidedReason::Tolerance;
+
+    /// x − 1: one simple root at 1.
+    struct Line;
+    impl RealFn for Line {
+        fn eval<T: Scalar>(&self, x: T) -> T {
+            x - T::int(1)
+        }
+    }
+
+    /// (x − 1)² + 1: no real root, f'' = 2.
+    struct Above;
+    impl RealFn for Above {
+        fn eval<T: Scalar>(&self, x: T) -> T {
+            (x - T::int(1)).sqr() + T::int(1)
+        }
+    }
+
+    fn und(lo: f64, hi: f64) -> RootEnclosure {
+        RootEnclosure::undecided(lo, hi, Tolerance)
+    }
+
+    #[test]
+    fn small_gaps_merge_wide_gaps_and_unique_roots_separate() {
+        let e = 2f64.powi(-40);
+        let roots = [
+            und(0.5, 0.5 + e),
+            // gap 100 e > 16·(e + 5 e), the group it would join: stays apart
+            und(0.5 + 101.0 * e, 0.5 + 102.0 * e),
+            // gap 3 e ≤ 16·(e + e): merges with the previous one
+            und(0.5 + 105.0 * e, 0.5 + 106.0 * e),
+            RootEnclosure::unique(point(0.75)),
+            // adjacent to the previous undecided one but past a unique root
+            und(0.75 + e, 0.75 + 2.0 * e),
+        ];
+        let c = clusters(&Line, &roots, [0.0, 2.0]);
+        let members: Vec<_> = c.iter().map(|c| c.members.clone()).collect();
+        assert_eq!(members, vec![vec![0], vec![1, 2], vec![4]]);
+        assert_eq!((c[1].lo, c[1].hi), (0.5 + 101.0 * e, 0.5 + 106.0 * e));
+    }
+
+    #[test]
+    fn a_sign_change_with_a_nonzero_slope_is_exactly_one_root() {
+        let c = clusters(&Line, &[und(0.75, 1.25)], [0.0, 2.0]);
+        let d = c[0].nonzero_derivative.expect("f' = 1");
+        assert_eq!((d.order, d.enclosure), (1, [1.0, 1.0]));
+        assert_eq!(c[0].parity, Some(Parity::Odd));
+        assert_eq!(c[0].counts, Some(vec![1]));
+        assert_eq!(c[0].count_text(), "exactly 1 root");
+    }
+
+    #[test]
+    fn one_sign_and_a_nonzero_curvature_is_zero_or_two_roots() {
+        let c = clusters(&Above, &[und(0.75, 1.25)], [0.0, 2.0]);
+        let d = c[0].nonzero_derivative.expect("f'' = 2");
+        assert_eq!((d.order, d.enclosure), (2, [2.0, 2.0]));
+        assert_eq!(c[0].counts, Some(vec![0, 2]));
+        // one hull width out: f(0.25) = f(1.75) = 1.5625 > 0
+        assert_eq!(c[0].sign_points, Some([0.25, 1.75]));
+        assert_eq!(c[0].sign_values, Some([[1.5625, 1.5625]; 2]));
+    }
+}

@@ -219,9 +219,7 @@ pub fn solve_2_9(
     Ok(finish(
         &f,
         EquationId::E2_9,
-        "theta",
-        [0.0, Interval::PI.sup()],
-        "(0, pi)",
+        ("theta", [0.0, Interval::PI.sup()], "(0, pi)"),
         iso,
         edges,
         Vec::new(),
@@ -258,22 +256,18 @@ pub fn solve_2_10(kappa: Interval, budget: &Budget) -> Result<EquationRoots, Roo
     Ok(finish(
         &f,
         EquationId::E2_10,
-        "mu",
-        [0.0, f64::INFINITY],
-        "(0, inf)",
+        ("mu", [0.0, f64::INFINITY], "(0, inf)"),
         iso,
         vec![edge],
         Vec::new(),
     ))
 }
 
-/// The equation's function `f`, for the count bounds of clusters.
+/// The equation's roots, with clusters bounded by `f` (the isolated function).
 fn finish<F: RealFn>(
     f: &F,
     equation: EquationId,
-    variable: &'static str,
-    domain: [f64; 2],
-    domain_text: &'static str,
+    (variable, domain, domain_text): (&'static str, [f64; 2], &'static str),
     iso: super::Isolation,
     edges: Vec<EdgeProof>,
     edge_fragments: Vec<RootEnclosure>,
@@ -487,9 +481,7 @@ fn solve_scene_on_theta<F: RealFn>(
     finish(
         f,
         equation,
-        "theta",
-        [0.0, Interval::PI.sup()],
-        "(0, pi)",
+        ("theta", [0.0, Interval::PI.sup()], "(0, pi)"),
         iso,
         edges,
         fragments,
