@@ -380,8 +380,9 @@ struct Row {
     lo: f64,
     hi: f64,
     status: String,
-    /// The cluster's count in words; `None` for a unique root.
-    count: Option<String>,
+    /// What the cluster holds, e.g. "holds 0 or 2 roots"; `None` for a
+    /// unique root.
+    holds: Option<String>,
 }
 
 /// The table rows: each cluster replaces its members (kept in the JSON).
@@ -394,7 +395,7 @@ fn table_rows(result: &EquationRoots) -> Vec<Row> {
                 lo: r.lo,
                 hi: r.hi,
                 status: "unique (exactly one root, simple)".into(),
-                count: None,
+                holds: None,
             });
             continue;
         }
@@ -422,22 +423,25 @@ fn table_rows(result: &EquationRoots) -> Vec<Row> {
         }
         match c.sign_change {
             Some(true) => why.push("f changes sign across it".into()),
-            Some(false) => why.push("f has one sign at both ends".into()),
+            Some(false) => why.push("f has one sign on both sides".into()),
             None => {}
         }
-        let status = if c.at_most().is_none() && c.sign_change != Some(true) {
-            what
+        let (status, holds) = if c.at_most().is_none() && c.sign_change != Some(true) {
+            (what, "may hold any number".to_string())
         } else {
-            format!(
-                "{what}: {count} (counted with multiplicity); {}",
-                why.join(", ")
+            (
+                format!(
+                    "{what}: {count} (counted with multiplicity); {}",
+                    why.join(", ")
+                ),
+                format!("holds {count}"),
             )
         };
         rows.push(Row {
             lo: c.lo,
             hi: c.hi,
             status,
-            count: Some(count),
+            holds: Some(holds),
         });
     }
     rows
@@ -448,11 +452,17 @@ fn incomplete_summary(rows: &[Row]) -> String {
     let held: Vec<String> = rows
         .iter()
         .enumerate()
-        .filter_map(|(i, r)| Some(format!("#{} holds {}", i + 1, r.count.as_ref()?)))
+        .filter_map(|(i, r)| Some(format!("#{} {}", i + 1, r.holds.as_ref()?)))
         .collect();
+    let bounded = held.iter().any(|h| !h.ends_with("any number"));
     format!(
-        "every root lies in the enclosures above; {} (counted with multiplicity)",
-        held.join(", ")
+        "every root lies in the enclosures above; {}{}",
+        held.join(", "),
+        if bounded {
+            " (counted with multiplicity)"
+        } else {
+            ""
+        }
     )
 }
 
