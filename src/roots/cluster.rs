@@ -21,7 +21,7 @@
 //! dual numbers, each decorated `≥ dac` (so `f` is C² on `H`):
 //! * Rolle: if `f⁽ᵏ⁾(H) ∌ 0` (k = 1 or 2), `f` has at most `k` roots in `H`;
 //! * parity: the gaps next to `H` are root-free (proved by the isolator), so
-//!   the signs of `f` at points `p < a` and `q > b` in those gaps, with `f`
+//!   the signs of `f` at points `p ≤ a` and `q ≥ b` in those gaps, with `f`
 //!   continuous on `[p, q]`, give the parity of the roots in `H` when a Rolle
 //!   bound holds: odd when the signs differ, even when they agree (a root
 //!   changes the sign of `f` exactly when its multiplicity is odd; under the
