@@ -6,6 +6,7 @@ use detach::figures::roots::{plot_critical_with, plot_tangency_with};
 use detach::number::param::{enclose_decimal, parse_assignment, ParamSet};
 use detach::roots::critical::critical_curve;
 use detach::roots::equations::kappa_alpha;
+use detach::roots::isolate::ulps_between;
 use detach::roots::kappa0::{Bound, Verdict};
 use detach::roots::tangency::{tangency_scan, Outcome};
 use detach::roots::{
@@ -373,6 +374,98 @@ fn roots_arguments(args: &RootsArgs) -> serde_json::Value {
     })
 }
 
+/// One row of the `roots` table: a unique root, or a cluster of undecided
+/// enclosures (possibly of one member).
+struct Row {
+    lo: f64,
+    hi: f64,
+    status: String,
+    /// What the cluster holds, e.g. "holds 0 or 2 roots"; `None` for a
+    /// unique root.
+    holds: Option<String>,
+}
+
+/// The table rows: each cluster replaces its members (kept in the JSON).
+fn table_rows(result: &EquationRoots) -> Vec<Row> {
+    let mut rows = Vec::new();
+    let mut next_cluster = result.clusters.iter().peekable();
+    for (i, r) in result.roots.iter().enumerate() {
+        if r.status == RootStatus::Unique {
+            rows.push(Row {
+                lo: r.lo,
+                hi: r.hi,
+                status: "unique (exactly one root, simple)".into(),
+                holds: None,
+            });
+            continue;
+        }
+        let Some(c) = next_cluster.next_if(|c| c.members.first() == Some(&i)) else {
+            continue;
+        };
+        let count = c.count_text();
+        let reason = c
+            .members
+            .iter()
+            .filter_map(|&m| result.roots[m].reason)
+            .max()
+            .map_or("undecided", |x| x.describe());
+        let what = if c.members.len() == 1 {
+            format!("undecided ({reason})")
+        } else {
+            format!("cluster of {} undecided ({reason})", c.members.len())
+        };
+        let mut why = Vec::new();
+        if let Some(d) = c.nonzero_derivative {
+            why.push(format!(
+                "{} ≠ 0 on it",
+                if d.order == 1 { "f'" } else { "f''" }
+            ));
+        }
+        match c.sign_change {
+            Some(true) => why.push("f changes sign across it".into()),
+            Some(false) => why.push("f has one sign on both sides".into()),
+            None => {}
+        }
+        let (status, holds) = if c.at_most().is_none() && c.sign_change != Some(true) {
+            (what, "may hold any number".to_string())
+        } else {
+            (
+                format!(
+                    "{what}: {count} (counted with multiplicity); {}",
+                    why.join(", ")
+                ),
+                format!("holds {count}"),
+            )
+        };
+        rows.push(Row {
+            lo: c.lo,
+            hi: c.hi,
+            status,
+            holds: Some(holds),
+        });
+    }
+    rows
+}
+
+/// The `complete: no` line: where the roots are and what each cluster holds.
+fn incomplete_summary(rows: &[Row]) -> String {
+    let held: Vec<String> = rows
+        .iter()
+        .enumerate()
+        .filter_map(|(i, r)| Some(format!("#{} {}", i + 1, r.holds.as_ref()?)))
+        .collect();
+    let bounded = held.iter().any(|h| !h.ends_with("any number"));
+    format!(
+        "every root lies in the enclosures above; {}{}",
+        held.join(", "),
+        if bounded {
+            " (counted with multiplicity)"
+        } else {
+            ""
+        }
+    )
+}
+
 /// `detach roots`.
 pub fn run_roots(args: &RootsArgs) -> CliResult {
     let (result, parts) = solve(args)?;
@@ -414,21 +507,15 @@ pub fn run_roots(args: &RootsArgs) -> CliResult {
         "hi",
         "width"
     );
-    for (i, r) in result.roots.iter().enumerate() {
-        let status = match r.status {
-            RootStatus::Unique => "unique (exactly one root, simple)".to_string(),
-            RootStatus::Undecided => match r.reason {
-                Some(x) => format!("undecided ({})", x.describe()),
-                None => "undecided".to_string(),
-            },
-        };
+    let rows = table_rows(&result);
+    for (i, row) in rows.iter().enumerate() {
         outln!(
             "  {:>3}  {:<24} {:<24} {:>10}  {}",
             i + 1,
-            format!("{:?}", r.lo),
-            format!("{:?}", r.hi),
-            width_text(r.lo, r.hi, r.width_ulps()),
-            status
+            format!("{:?}", row.lo),
+            format!("{:?}", row.hi),
+            width_text(row.lo, row.hi, ulps_between(row.lo, row.hi)),
+            row.status
         );
     }
     if result.roots.is_empty() {
@@ -460,7 +547,7 @@ pub fn run_roots(args: &RootsArgs) -> CliResult {
                 ),
             }
         } else {
-            "every root lies in the enclosures above; undecided ones may hold any number".into()
+            incomplete_summary(&rows)
         }
     );
     outln!(

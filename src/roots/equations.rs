@@ -4,6 +4,7 @@
 //! the rest of the mathematical domain (the ends near θ = 0 and θ = π, or the
 //! tail μ → ∞) root-free by an explicit argument, recorded as an [`EdgeProof`].
 
+use super::cluster::{clusters, Cluster};
 use super::isolate::{isolate, point, Budget, RootEnclosure, RootStatus, Stats, UndecidedReason};
 use super::{RealFn, RootsError};
 use crate::number::scalar::Scalar;
@@ -82,6 +83,10 @@ pub struct EquationRoots {
     /// roots are exactly one per enclosure, all simple.
     pub complete: bool,
     pub edges: Vec<EdgeProof>,
+    /// Runs of nearby undecided enclosures with a bound on their root count
+    /// ([`cluster`](super::cluster)); members index into `roots`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub clusters: Vec<Cluster>,
     pub stats: Stats,
 }
 
@@ -209,12 +214,12 @@ pub fn solve_2_9(
             proved,
         });
     }
-    let iso = isolate(&Eq29 { kappa, alpha }, ends[0], ends[1], budget);
+    let f = Eq29 { kappa, alpha };
+    let iso = isolate(&f, ends[0], ends[1], budget);
     Ok(finish(
+        &f,
         EquationId::E2_9,
-        "theta",
-        [0.0, Interval::PI.sup()],
-        "(0, pi)",
+        ("theta", [0.0, Interval::PI.sup()], "(0, pi)"),
         iso,
         edges,
         Vec::new(),
@@ -246,23 +251,23 @@ pub fn solve_2_10(kappa: Interval, budget: &Budget) -> Result<EquationRoots, Roo
         witness: enc(p_tail),
         proved: p_tail.sup() <= 0.0 && kappa.inf() > 0.0,
     };
-    let iso = isolate(&Eq210 { kappa }, 0.0, 1.0, budget);
+    let f = Eq210 { kappa };
+    let iso = isolate(&f, 0.0, 1.0, budget);
     Ok(finish(
+        &f,
         EquationId::E2_10,
-        "mu",
-        [0.0, f64::INFINITY],
-        "(0, inf)",
+        ("mu", [0.0, f64::INFINITY], "(0, inf)"),
         iso,
         vec![edge],
         Vec::new(),
     ))
 }
 
-fn finish(
+/// The equation's roots, with clusters bounded by `f` (the isolated function).
+fn finish<F: RealFn>(
+    f: &F,
     equation: EquationId,
-    variable: &'static str,
-    domain: [f64; 2],
-    domain_text: &'static str,
+    (variable, domain, domain_text): (&'static str, [f64; 2], &'static str),
     iso: super::Isolation,
     edges: Vec<EdgeProof>,
     edge_fragments: Vec<RootEnclosure>,
@@ -271,6 +276,7 @@ fn finish(
     roots.extend(edge_fragments);
     let roots = super::isolate::merge_undecided(roots);
     let complete = roots.iter().all(|r| r.is_unique()) && edges.iter().all(|e| e.proved);
+    let clusters = clusters(f, &roots, iso.domain);
     EquationRoots {
         equation,
         variable,
@@ -280,6 +286,7 @@ fn finish(
         roots,
         complete,
         edges,
+        clusters,
         stats: iso.stats,
     }
 }
@@ -472,10 +479,9 @@ fn solve_scene_on_theta<F: RealFn>(
     let (bounds, edges, fragments) = scene_edges(enclose, what);
     let iso = isolate(f, bounds[0], bounds[1], budget);
     finish(
+        f,
         equation,
-        "theta",
-        [0.0, Interval::PI.sup()],
-        "(0, pi)",
+        ("theta", [0.0, Interval::PI.sup()], "(0, pi)"),
         iso,
         edges,
         fragments,

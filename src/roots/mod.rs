@@ -2,6 +2,8 @@
 //!
 //! * [`isolate`](mod@isolate): the generic 1-D isolator (exclusion, interval Newton,
 //!   bisection at exact off-centre points, contraction of unique roots).
+//! * [`cluster`]: nearby undecided enclosures merged into one cluster with a
+//!   certified bound on its number of roots (Rolle, sign parity).
 //! * [`equations`]: the equations of the paper — (2.9), (2.10), (2.12) and the
 //!   equilibria of (3.3) — each with a rigorous treatment of its open or
 //!   unbounded domain.
@@ -15,12 +17,14 @@
 //!
 //! Method notes and results: `docs/roots.md`.
 
+pub mod cluster;
 pub mod critical;
 pub mod equations;
 pub mod isolate;
 pub mod kappa0;
 pub mod tangency;
 
+pub use cluster::{Cluster, Parity};
 pub use equations::{
     solve_2_10, solve_2_12, solve_2_9, solve_3_3, EdgeProof, EquationId, EquationRoots,
 };

@@ -3,10 +3,13 @@
 
 use detach::inari::{const_interval, Interval};
 use detach::number::param::enclose_decimal;
-use detach::roots::equations::{Eq29, Eq29TanHalf, PotentialSlope};
+use detach::number::scalar::Scalar;
+use detach::roots::cluster::bound_cluster;
+use detach::roots::equations::{Eq210, Eq29, Eq29TanHalf, PotentialSlope};
 use detach::roots::isolate::point;
 use detach::roots::{
-    isolate, prove_kappa0, solve_2_10, solve_2_12, solve_2_9, Budget, RealFn, RootStatus,
+    isolate, prove_kappa0, solve_2_10, solve_2_12, solve_2_9, Budget, EquationRoots, RealFn,
+    RootStatus,
 };
 use detach::scene::{Scene, SceneId};
 use proptest::prelude::*;
@@ -199,4 +202,162 @@ proptest! {
             }
         }
     }
+}
+
+/// 1/√3, the double root of (2.10) at κ = κ₀ (closed form: p'(μ) = 1 − 3μ² = 0).
+fn inv_sqrt3() -> Interval {
+    point(1.0) / point(3.0).sqrt()
+}
+
+/// The one cluster of an incomplete result near κ₀: it must contain
+/// `double_root`, bound the count by 2 through f'' ≠ 0, with f'' at the
+/// double root (`f2`, closed form) in the enclosure, and be the only
+/// undecided part (no unique root beside it).
+fn assert_one_cluster_of_at_most_two(
+    r: &EquationRoots,
+    double_root: Interval,
+    f2: Interval,
+    what: &str,
+) {
+    assert!(!r.complete, "{what}");
+    assert_eq!(r.clusters.len(), 1, "{what}: {:?}", r.clusters);
+    let c = &r.clusters[0];
+    assert_eq!(
+        c.members.len(),
+        r.roots.len(),
+        "{what}: every enclosure merged"
+    );
+    let hull = Interval::try_from((c.lo, c.hi)).unwrap();
+    assert!(double_root.subset(hull), "{what}: {c:?}");
+    assert_eq!(c.at_most(), Some(2), "{what}: {c:?}");
+    let d = c.nonzero_derivative.expect("f'' ≠ 0");
+    assert_eq!(d.order, 2);
+    assert!(
+        d.enclosure[0] <= f2.inf() && f2.sup() <= d.enclosure[1],
+        "{what}: {d:?}"
+    );
+    // the hull holds every member: nothing certified is lost
+    for &m in &c.members {
+        assert!(c.lo <= r.roots[m].lo && r.roots[m].hi <= c.hi);
+    }
+}
+
+#[test]
+fn near_kappa0_eq_2_10_reports_one_cluster_of_at_most_two_roots() {
+    let proof = prove_kappa0();
+    // just above κ₀ = 0.19245008972987525…, the κ₀ enclosure itself, just below
+    for (what, k) in [
+        ("0.1924500897298753", dec("0.1924500897298753")),
+        ("[κ₀]", proof.kappa0.interval()),
+        ("0.19245008972987524", dec("0.19245008972987524")),
+    ] {
+        let r = solve_2_10(k, &Budget::default()).unwrap();
+        // f'' = −6μ (closed form) at μ = 1/√3
+        assert_one_cluster_of_at_most_two(&r, inv_sqrt3(), point(-6.0) * inv_sqrt3(), what);
+        let c = &r.clusters[0];
+        // f = μ − μ³ − 2κ has its maximum at 1/√3: one sign (−) at both ends
+        // of any hull off 1/√3, so an even count, 0 or 2.
+        assert_eq!(c.sign_change, Some(false), "{what}: {c:?}");
+        assert_eq!(c.counts, Some(vec![0, 2]), "{what}");
+        assert_eq!(c.count_text(), "0 or 2 roots");
+    }
+}
+
+#[test]
+fn near_kappa0_eq_2_9_at_alpha_one_reports_one_cluster_at_pi_over_3() {
+    // α = 1: μ = tan(θ/2) solves (2.10), so the double root is θ = 2·atan(1/√3) = π/3.
+    // f = κ sin³θ − cos θ (1 − cos θ)²: at θ = π/3, κ = √3/9 (by hand),
+    // f'' = 3κ(2 sin θ cos²θ − sin³θ) − (−cos θ + 4cos²θ − 4sin²θ + 6cos θ sin²θ
+    // − 3cos³θ) = −1/8 + 5/8 = 1/2 (κ differs from √3/9 by 10⁻¹⁶: f'' moves less).
+    let pi3 = Interval::PI / const_interval!(3.0, 3.0);
+    let r = solve_2_9(dec("0.1924500897298753"), dec("1"), &Budget::default()).unwrap();
+    assert_one_cluster_of_at_most_two(&r, pi3, point(0.5), "(2.9), α = 1");
+    assert_eq!(r.clusters[0].counts, Some(vec![0, 2]));
+}
+
+#[test]
+fn away_from_kappa0_nothing_is_clustered() {
+    // κ = 0.1: two simple roots (Viète); κ = 0.25 > κ₀: none.
+    let two = solve_2_10(dec("0.1"), &Budget::default()).unwrap();
+    assert!(two.complete && two.roots.len() == 2 && two.clusters.is_empty());
+    assert_eq!(two.unique_count(), viete(dec("0.1")).len());
+    let none = solve_2_10(dec("0.25"), &Budget::default()).unwrap();
+    assert!(none.complete && none.roots.is_empty() && none.clusters.is_empty());
+}
+
+/// (2.10) plus `w (μ − 1/2)²` with `w ∈ [−10, 10]`: f'' = −6μ + 2w may vanish.
+struct WobblySecondDerivative(Interval);
+impl RealFn for WobblySecondDerivative {
+    fn eval<T: Scalar>(&self, mu: T) -> T {
+        let w = T::lift(const_interval!(-10.0, 10.0));
+        let half = T::lift(const_interval!(0.5, 0.5));
+        Eq210 { kappa: self.0 }.eval(mu) + w * (mu - half).sqr()
+    }
+}
+
+#[test]
+fn a_derivative_not_away_from_zero_gives_no_count_bound() {
+    let r = solve_2_10(dec("0.1924500897298753"), &Budget::default()).unwrap();
+    let c = &r.clusters[0];
+    // mutant 1: the same hull, a function whose f'' encloses 0
+    let m = bound_cluster(
+        &WobblySecondDerivative(dec("0.1924500897298753")),
+        [r.searched[0], c.lo, c.hi, r.searched[1]],
+        c.members.clone(),
+    );
+    assert_eq!(m.nonzero_derivative, None);
+    assert_eq!(
+        (m.counts.clone(), m.at_most(), m.parity),
+        (None, None, None)
+    );
+    assert_eq!(m.count_text(), "any number of roots");
+    // mutant 2: the hull stretched to μ = 0, where f'' = −6μ vanishes and
+    // f' = 1 − 3μ² changes sign (and κ = 0.1 has two roots there: Viète)
+    let m = bound_cluster(&Eq210 { kappa: dec("0.1") }, [0.0, 0.0, 1.0, 1.0], vec![0]);
+    assert_eq!(m.nonzero_derivative, None);
+    assert_eq!(m.at_most(), None);
+}
+
+#[test]
+fn roots_cli_prints_one_cluster_near_kappa0() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_detach"))
+        .args([
+            "roots",
+            "--equation",
+            "2.10",
+            "--kappa",
+            "0.1924500897298753",
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let rows: Vec<&str> = text.lines().filter(|l| l.contains("cluster of")).collect();
+    assert_eq!(rows.len(), 1, "{text}");
+    assert!(
+        rows[0].contains("0 or 2 roots (counted with multiplicity)"),
+        "{text}"
+    );
+    assert!(
+        text.contains(
+            "complete: no — every root lies in the enclosures above; #1 holds 0 or 2 roots"
+        ),
+        "{text}"
+    );
+    // the JSON keeps every member
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_detach"))
+        .args([
+            "roots",
+            "--equation",
+            "2.10",
+            "--kappa",
+            "0.1924500897298753",
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let members = v["clusters"][0]["members"].as_array().unwrap();
+    assert_eq!(members.len(), v["roots"].as_array().unwrap().len());
+    assert!(members.len() > 1);
 }
