@@ -330,7 +330,7 @@ pub fn trajectories_with_heads(
                 // μ = 10⁷) would take millions: stop it, the portrait is
                 // decoration, not a certified result.
                 let mut steps = 0;
-                while dt > 0.0 && arc < max_arc && steps < 16_000 {
+                while dt > 0.0 && arc < max_arc && steps < 4_000 {
                     steps += 1;
                     let speed = norm(f(s));
                     if !(speed.is_finite() && speed > 1e-12) {
