@@ -882,8 +882,8 @@ pub fn s1_eq(mutant: bool) -> Outcome {
             focus,
             json!({
             "params": params_json(t),
-            "at_pi_over_2": {"d_thdd_d_theta": a_up.text(), "d_thdd_d_theta_dot": d_up.text(), "type": if saddle {"saddle"} else {"not a saddle"}},
-            "at_minus_pi_over_2": {"d_thdd_d_theta": a_dn.text(), "d_thdd_d_theta_dot": d_dn.text(), "discriminant_trace2_minus_4det": disc.text(),
+            "at_pi_over_2": {"d_thdd_d_theta": a_up.get().to_string(), "d_thdd_d_theta_dot": d_up.get().to_string(), "type": if saddle {"saddle"} else {"not a saddle"}},
+            "at_minus_pi_over_2": {"d_thdd_d_theta": a_dn.get().to_string(), "d_thdd_d_theta_dot": d_dn.get().to_string(), "discriminant_trace2_minus_4det": disc.get().to_string(),
                 "type": if !stable {"not stable"} else if focus {"stable focus"} else {"stable node"}}}),
         )
     };

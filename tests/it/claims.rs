@@ -203,12 +203,17 @@ fn s1_statements() {
 #[test]
 fn s1_eq_focus_is_conditional() {
     let r = expect("S1.eq", Verdict::Conditional);
-    // discriminant at −π/2: (μ²(a−b)⁴ − 4mgbC)/C² = (0.04 − 5.886)/0.09 = −64.9555…
-    let d = num(&r.witness["side_true"]["at_minus_pi_over_2"]["discriminant_trace2_minus_4det"]);
-    assert!((d + 64.955_555_555).abs() < 1e-6, "{d}");
-    // μ = 20: (400·0.0625 − 5.886)/0.09 = 212.377…
-    let d = num(&r.witness["side_false"]["at_minus_pi_over_2"]["discriminant_trace2_minus_4det"]);
-    assert!((d - 212.377_777_777).abs() < 1e-6, "{d}");
+    // discriminant at −π/2: (μ²(a−b)⁴ − 4mgbC)/C² = (0.04 − 5.886)/0.09
+    // = −5846/90 = −2923/45, as an exact rational
+    let at = |side: &str| {
+        let t = r.witness[side]["at_minus_pi_over_2"]["discriminant_trace2_minus_4det"]
+            .as_str()
+            .unwrap();
+        q(t)
+    };
+    assert_eq!(at("side_true"), q("-2923/45"));
+    // μ = 20: (400·0.0625 − 5.886)/0.09 = 19.114/0.09 = 9557/45
+    assert_eq!(at("side_false"), q("9557/45"));
 }
 
 // ---------------------------------------------------------------- §2
