@@ -9,7 +9,9 @@
 //! the check certified marked on them.
 
 use super::roots::okabe_ito as oi;
-use super::{draw_err, register_fonts, text_width, theta_ticks, AtlasError, CellLayer, Class};
+use super::{
+    class_swatch, draw_err, register_fonts, text_width, theta_ticks, AtlasError, CellLayer, Class,
+};
 use super::{native, nice_ticks, tick_label, Figure, THETA_DOT};
 use crate::pave::{Paving, PhaseBox};
 use plotters::coord::Shift;
@@ -499,29 +501,7 @@ fn draw_legend(area: &Area, entries: &[Entry]) -> Result<(), AtlasError> {
     let mut y = MARGIN_TOP as i32 + 4;
     for e in entries {
         match e.swatch {
-            Swatch::Fill(class) => {
-                let (r, g, b) = class.rgb();
-                area.draw(&Rectangle::new(
-                    [(x0, y), (x0 + sw, y + sh)],
-                    RGBColor(r, g, b).filled(),
-                ))
-                .map_err(draw_err)?;
-                if class == Class::Undefined {
-                    native(area, |fig, o| {
-                        let (dx, dy) = (o.0 as i32, o.1 as i32);
-                        fig.hatch(
-                            &[(x0 + dx, y + dy, x0 + sw + dx, y + sh + dy)],
-                            (0x22, 0x22, 0x22),
-                        )
-                    })
-                    .map_err(AtlasError::Draw)?;
-                }
-                area.draw(&Rectangle::new(
-                    [(x0, y), (x0 + sw, y + sh)],
-                    INK.stroke_width(1),
-                ))
-                .map_err(draw_err)?;
-            }
+            Swatch::Fill(class) => class_swatch(area, class, (x0, y), (sw, sh))?,
             Swatch::Line { rgb, dashed } => {
                 let ly = f64::from(y + sh / 2);
                 let seg = vec![(f64::from(x0), ly), (f64::from(x0 + sw), ly)];

@@ -629,6 +629,37 @@ const HATCH_WIDEN: u32 = 6;
 pub const THETA_DOT: &str = "θ\u{307}";
 
 /// The symbol of a class as markup: complements carry a combining overbar.
+/// A legend swatch of `class` at `(x, y)`, `(w, h)` pixels: its colour,
+/// hatched for undefined leaves as on the plot, outlined.
+fn class_swatch(
+    area: &Area,
+    class: Class,
+    (x, y): (i32, i32),
+    (w, h): (i32, i32),
+) -> Result<(), AtlasError> {
+    area.draw(&Rectangle::new(
+        [(x, y), (x + w, y + h)],
+        rgb(class).filled(),
+    ))
+    .map_err(draw_err)?;
+    if class == Class::Undefined {
+        native(area, |fig, o| {
+            let (dx, dy) = (o.0 as i32, o.1 as i32);
+            fig.hatch(
+                &[(x + dx, y + dy, x + w + dx, y + h + dy)],
+                (0x22, 0x22, 0x22),
+            )
+        })
+        .map_err(AtlasError::Draw)?;
+    }
+    area.draw(&Rectangle::new(
+        [(x, y), (x + w, y + h)],
+        INK.stroke_width(1),
+    ))
+    .map_err(draw_err)?;
+    Ok(())
+}
+
 fn symbol_markup(class: Class) -> &'static str {
     match class {
         Class::Persists => "Ω ∩ Ω_{0}",
@@ -656,26 +687,7 @@ fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), AtlasError> {
                 .map_err(draw_err)?;
             y += 26;
         }
-        area.draw(&Rectangle::new(
-            [(x0, y), (x0 + sw, y + sh)],
-            rgb(class).filled(),
-        ))
-        .map_err(draw_err)?;
-        if class == Class::Undefined {
-            native(area, |fig, o| {
-                let (dx, dy) = (o.0 as i32, o.1 as i32);
-                fig.hatch(
-                    &[(x0 + dx, y + dy, x0 + sw + dx, y + sh + dy)],
-                    (0x22, 0x22, 0x22),
-                )
-            })
-            .map_err(AtlasError::Draw)?;
-        }
-        area.draw(&Rectangle::new(
-            [(x0, y), (x0 + sw, y + sh)],
-            INK.stroke_width(1),
-        ))
-        .map_err(draw_err)?;
+        class_swatch(area, class, (x0, y), (sw, sh))?;
         let tx = x0 + sw + 10;
         let share = match prep.empty[i] {
             Some(why) => format!("empty ({why})"),
