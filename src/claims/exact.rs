@@ -495,6 +495,16 @@ impl Identity {
     pub fn proved(&self) -> bool {
         matches!(self, Identity::Proved { .. })
     }
+    /// How the identity was found, for evidence texts.
+    pub fn how(&self) -> &'static str {
+        if self.proved() {
+            "proved identity"
+        } else if self.agrees() {
+            "random points"
+        } else {
+            "NOT"
+        }
+    }
     pub fn json(&self) -> serde_json::Value {
         match self {
             Identity::Proved {

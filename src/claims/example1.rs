@@ -737,7 +737,7 @@ pub fn s1_contact(mutant: bool) -> Outcome {
         "equilibrium_theta=-pi/2": {"N": n.get().to_string(), "free_flight_lambda_ddot": free.get().to_string(), "theta_ddot": rest.get().to_string()}});
     if v.agrees() && inside {
         Outcome::new(Verdict::Confirmed, Strength::Argument,
-            format!("in contact U + V N = 0 with V = 1/m + h'²/C > 0 ({}, N free): N ≥ 0 exactly on the closure of Ω₀; at zero reaction Λ̈ is the free-flight value, so detachment is possible outside Ω; a contact motion without detachment therefore stays in Ω ∩ Ω₀; the rest state θ = −π/2 has N = {} > 0 and free-flight Λ̈ = {} < 0 (exact, defaults)", if v.proved() { "proved identity" } else { "random points" }, n.get(), free.get()),
+            format!("in contact U + V N = 0 with V = 1/m + h'²/C > 0 ({}, N free): N ≥ 0 exactly on the closure of Ω₀; at zero reaction Λ̈ is the free-flight value, so detachment is possible outside Ω; a contact motion without detachment therefore stays in Ω ∩ Ω₀; the rest state θ = −π/2 has N = {} > 0 and free-flight Λ̈ = {} < 0 (exact, defaults)", v.how(), n.get(), free.get()),
             wit)
     } else {
         Outcome::new(

@@ -319,7 +319,7 @@ pub fn f3_4(mutant: bool) -> Outcome {
     let vp = DecInterval::new(point(1.0)) / p.m;
     let (vd, vp) = (vd.interval().unwrap(), vp.interval().unwrap());
     Outcome::new(Verdict::Error, Strength::Certified,
-        format!("under the report's reading (N free, the blade reaction kept): V₀ = ∂Λ̈/∂N at θ = 1 (m = 1, a = 1, A = 0.25): printed {:.4} vs Newton–Euler {:.4}, certified disjoint; U₀ (Λ̈ at N = 0) also differs, but U₀/V₀ agrees exactly ({}), so N = −U₀/V₀, (3.5) and Ω₀ are unaffected; the printed pair is the other reading (coefficient 1/m)", vp.mid(), vd.mid(), if ratio.proved() { "proved identity" } else if ratio.agrees() { "random points" } else { "NOT" }),
+        format!("under the report's reading (N free, the blade reaction kept): V₀ = ∂Λ̈/∂N at θ = 1 (m = 1, a = 1, A = 0.25): printed {:.4} vs Newton–Euler {:.4}, certified disjoint; U₀ (Λ̈ at N = 0) also differs, but U₀/V₀ agrees exactly ({}), so N = −U₀/V₀, (3.5) and Ω₀ are unaffected; the printed pair is the other reading (coefficient 1/m)", vp.mid(), vd.mid(), ratio.how()),
         json!({"identity": w, "theta": "1", "V0_printed": enc(vp), "V0_newton_euler": enc(vd), "disjoint": vp.disjoint(vd)}))
         .correct("Λ̈ = U₀ + V₀ N with V₀ = 1/m + a² cos²θ/(A + m a² sin²θ) and U₀ = m V₀ × (the printed U₀): the printed (3.4) is the true Λ̈ divided by m V₀ > 0, so its sign, the reaction N = −U₀/V₀ and the condition (3.5) are right")
 }
