@@ -990,22 +990,21 @@ pub fn s3_sub2(mutant: bool) -> Outcome {
     }
 }
 
+/// The (p_φ, p_ψ) samples of subcase 3 (p_ψ ≠ p_φ), in both orders.
+const SUB3_PAIRS: &[(&str, &str)] = &[
+    ("2", "1"),
+    ("1", "2"),
+    ("2.5", "2"),
+    ("4", "3.5"),
+    ("3.5", "4"),
+];
+
 /// S3.sub3: |p_ψ| ≠ |p_φ|: A τ² ≥ 0 in (3.2) grows like (p_ψ ∓ p_φ)²/(A sin²θ) at
 /// θ → 0, π (certified lower bounds near both ends), the other terms are
 /// ≥ 0, so every level set of (3.2) is compact in (0, π) × R: bounded; equilibria
 /// in Ω₀ (exact) and one outside Ω. Mutant: p_φ = p_ψ.
 pub fn s3_sub3(mutant: bool) -> Outcome {
-    let pairs: &[(&str, &str)] = if mutant {
-        &[("1", "1")]
-    } else {
-        &[
-            ("2", "1"),
-            ("1", "2"),
-            ("2.5", "2"),
-            ("4", "3.5"),
-            ("3.5", "4"),
-        ]
-    };
+    let pairs: &[(&str, &str)] = if mutant { &[("1", "1")] } else { SUB3_PAIRS };
     let mut ends = Vec::new();
     for (pf, ps) in pairs {
         let p = p2(pf, ps);
@@ -1073,13 +1072,7 @@ pub fn s3_sub3fig(mutant: bool) -> Outcome {
     let pairs: &[(&str, &str)] = if mutant {
         &[("1", "1"), ("2", "2")]
     } else {
-        &[
-            ("2", "1"),
-            ("1", "2"),
-            ("2.5", "2"),
-            ("4", "3.5"),
-            ("3.5", "4"),
-        ]
+        SUB3_PAIRS
     };
     let c0s = ["-10", "-3", "0", "3", "10"];
     let mut js = Vec::new();
