@@ -23,7 +23,7 @@
 pub mod taylor;
 
 use crate::number::scalar::is_defined;
-use crate::scene::slab::constraints_on;
+use crate::scene::slab::{centred_factors_on, factored_constraints_on};
 use crate::scene::{Domain, Quadratic, Scene, Variant};
 use inari::{const_interval, DecInterval, Interval};
 use rayon::prelude::*;
@@ -154,6 +154,11 @@ enum Shape {
     /// No root needed (the set is empty or the whole window).
     Flat,
 }
+
+/// A literal as a piece uses it (on its constraint's quadratic without the
+/// θ-only factor, the side flipped where that factor is negative), with its
+/// shape there.
+type Used = (Lit, Shape);
 
 /// Sign-applied coefficients `(a2, a1, a0)` of literal `l`: `{a(θ̇) < 0}` is
 /// the literal's set.
@@ -438,10 +443,11 @@ fn moments(t0: f64, t1: f64, m: f64) -> [Interval; N + 1] {
 }
 
 impl Job<'_> {
-    /// The slice shape on `theta`, with the literal shapes it uses and the
-    /// ends it could not order.
-    fn shape(&self, theta: Interval) -> Option<(Vec<Shape>, Slice, Gaps)> {
-        let c = constraints_on(self.scene, self.variant, theta);
+    /// The slice shape on `theta`, with the literals it uses (each on its
+    /// constraint's θ-only-factor-free quadratic, the side flipped where the
+    /// factor is negative) and their shapes, and the ends it could not order.
+    fn shape(&self, theta: Interval) -> Option<(Vec<Used>, Slice, Gaps)> {
+        let (factor, c) = factored_constraints_on(self.scene, self.variant, theta);
         let quads = [c.omega, c.omega0];
         let window = [
             Bound {
@@ -456,18 +462,35 @@ impl Job<'_> {
         let mut shapes = Vec::with_capacity(self.lits.len());
         let mut slice: Slice = vec![(window[0], window[1])];
         let mut gaps = Gaps::default();
+        let iv = |x: DecInterval| -> Option<Interval> {
+            // `com`: defined and continuous on the piece, hence (for these
+            // formulas) analytic, as the Taylor rule needs.
+            (is_defined(x) && x.decoration() == inari::Decoration::Com)
+                .then(|| x.interval())
+                .flatten()
+                .filter(|i| i.is_common_interval())
+        };
+        // The sign of a factor from its natural enclosure, else from its
+        // mean-value form (computed once, when first needed).
+        let mut centred = None;
+        let mut negative = |q: usize, k: usize| -> Option<bool> {
+            let sign = |x: Interval| (x.inf() > 0.0 || x.sup() < 0.0).then(|| x.sup() < 0.0);
+            if let Some(s) = iv(factor[q][k]).and_then(sign) {
+                return Some(s);
+            }
+            let c =
+                centred.get_or_insert_with(|| centred_factors_on(self.scene, self.variant, theta));
+            iv(c[q][k]).and_then(sign)
+        };
         for (i, l) in self.lits.iter().enumerate() {
-            let (a2, a1, a0) = lit_coeffs(&quads[l.q], l.inside);
-            let iv = |x: DecInterval| -> Option<Interval> {
-                // `com`: defined and continuous on the piece, hence (for these
-                // formulas) analytic, as the Taylor rule needs.
-                (is_defined(x) && x.decoration() == inari::Decoration::Com)
-                    .then(|| x.interval())
-                    .flatten()
-                    .filter(|i| i.is_common_interval())
+            let flip = negative(l.q, 0)? != negative(l.q, 1)?;
+            let l = Lit {
+                q: l.q,
+                inside: l.inside != flip,
             };
+            let (a2, a1, a0) = lit_coeffs(&quads[l.q], l.inside);
             let (shape, s) = literal_slice(i as u8, (iv(a2)?, iv(a1)?, iv(a0)?), &window)?;
-            shapes.push(shape);
+            shapes.push((l, shape));
             slice = intersect(&slice, &s, Some(&mut gaps))?;
         }
         Some((shapes, slice, gaps))
@@ -479,16 +502,16 @@ impl Job<'_> {
     fn length_series(
         &self,
         x: Interval,
-        shapes: &[Shape],
+        shapes: &[Used],
         slice: &Slice,
         gaps: &Gaps,
     ) -> Option<(Taylor, Vec<Taylor>)> {
-        let c = self
+        let (_, c) = self
             .scene
-            .constraints(self.variant, &crate::scene::Angle::new(Taylor::variable(x)));
+            .factored_constraints(self.variant, &crate::scene::Angle::new(Taylor::variable(x)));
         let quads = [c.omega, c.omega0];
         let mut roots: Vec<[Taylor; 2]> = Vec::with_capacity(shapes.len());
-        for (l, shape) in self.lits.iter().zip(shapes) {
+        for (l, shape) in shapes {
             let (a2, a1, a0) = lit_coeffs(&quads[l.q], l.inside);
             roots.push(match *shape {
                 Shape::Quad { s } => root_forms(a2, a1, a0, s),
@@ -750,10 +773,18 @@ pub fn cell_area(
                 .total_cmp(&pieces[i].integral.wid())
                 .then(i.cmp(&j))
         });
+        // What the pieces left out hold stays whatever is split: once it
+        // alone exceeds the target, refine the others only until they hold
+        // a tenth of it.
+        let held: f64 = order.iter().map(|&i| pieces[i].integral.wid()).sum();
+        let stuck = area.wid() - held;
+        if stuck > opts.tol && held <= 0.1 * stuck {
+            at_rounding_floor = true;
+            break;
+        }
         // Split the pieces holding the excess, but never more than those
         // holding half the width: where a few pieces hold it (a singular
         // line, a crossing), the rest is not doubled round after round.
-        let held: f64 = order.iter().map(|&i| pieces[i].integral.wid()).sum();
         let excess = excess.min(0.5 * held);
         let (mut acc, mut chosen) = (0.0, Vec::new());
         for i in order {

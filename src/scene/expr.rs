@@ -1056,6 +1056,24 @@ impl Program {
     /// [`Program::quadratic`] of several outputs in one program (outputs
     /// `c2, c1, c0` of each in turn), so that they share subexpressions.
     pub fn quadratics(&self, which: &[usize]) -> Option<Program> {
+        self.coefficients(which, false)
+    }
+
+    /// [`Program::quadratics`] with each output's θ-only factor apart: five
+    /// outputs `a, b, c2, c1, c0` per output, output = (a/b)·(c2·θ̇² + c1·θ̇ +
+    /// c0) where the output is defined. The factor collects the θ̇-free
+    /// operands of the products (into `a`), quotients (into `b`) and
+    /// negations the output ends with (`a = b = 1` when there are none), as
+    /// in `U/V` or `-(k*U)`: where the signs of `a` and `b` are known, the
+    /// output's sign is that of the polynomial times theirs, and the
+    /// polynomial's roots carry none of the factor's rounding (next to a zero
+    /// of `V`, `U/V`'s coefficients have a large relative error, `U`'s do
+    /// not).
+    pub fn factored_quadratics(&self, which: &[usize]) -> Option<Program> {
+        self.coefficients(which, true)
+    }
+
+    fn coefficients(&self, which: &[usize], factored: bool) -> Option<Program> {
         let mut outs = Vec::with_capacity(which.len());
         for &i in which {
             let out = *self.outputs.get(i)? as usize;
@@ -1116,9 +1134,36 @@ impl Program {
             };
             poly.push(q);
         }
-        let mut coefs = Vec::with_capacity(3 * outs.len());
+        let mut coefs = Vec::with_capacity(5 * outs.len());
         for o in outs {
+            let (mut num, mut den, mut o) = (Coef::One, Coef::One, o);
+            while factored && self.on_dot[o] {
+                let dot = |a: u32| self.on_dot[a as usize];
+                let k = |a: u32| Coef::Node(id[a as usize]);
+                o = match self.tape[o] {
+                    Node::Neg(a) => {
+                        num = dag.neg(num);
+                        a
+                    }
+                    Node::Mul(a, b) if !dot(a) => {
+                        num = dag.mul(num, k(a));
+                        b
+                    }
+                    Node::Mul(a, b) if !dot(b) => {
+                        num = dag.mul(num, k(b));
+                        a
+                    }
+                    Node::Div(a, b) if !dot(b) => {
+                        den = dag.mul(den, k(b));
+                        a
+                    }
+                    _ => break,
+                } as usize;
+            }
             let [c0, c1, c2] = poly[o]?;
+            if factored {
+                coefs.extend([num, den].map(|c| dag.coef_node(c)));
+            }
             coefs.extend([c2, c1, c0].map(|c| dag.coef_node(c)));
         }
         Some(dag.program(&coefs))
@@ -1420,6 +1465,69 @@ mod tests {
         assert!(one(&[], "theta_dot^3").quadratic(0).is_none());
         assert!(one(&[], "abs(theta_dot)").quadratic(0).is_none());
         assert!(one(&[], "theta").quadratic(1).is_none());
+    }
+
+    /// The factored form (a/b)·(c2·θ̇² + c1·θ̇ + c0) reproduces the function
+    /// (against it at θ̇ = 0, 1, −1 as in the test above), a and b are θ̇-free, and
+    /// the quadratic of `U/V`, `-(k*U)`, `3*U*W/(l*V)` is U's own, bit for
+    /// bit: none of the factor's rounding reaches it.
+    #[test]
+    fn factored_quadratics_take_theta_only_factors_apart() {
+        let defs = [
+            ("U", "sin(theta)*theta_dot^2 - g"),
+            ("V", "1 + 3*cos(theta)^2 - 3*mu*sin(theta)*cos(theta)"),
+            ("W", "cos(theta) - mu*sin(theta)"),
+        ];
+        let cases = [
+            ("U/V", true),
+            ("-(U/V)", true),
+            ("-(mu*U)", true),
+            ("3*U*W/(g*V)", true),
+            ("U*W", true),
+            ("U", false),
+            ("U/V - 1", false),
+            ("(theta_dot - 1)*(theta_dot + V)", false),
+        ];
+        let u = one(&defs, "U").quadratic(0).unwrap();
+        for (text, peeled) in cases {
+            let p = one(&defs, text);
+            let q = p.factored_quadratics(&[0]).unwrap();
+            assert_eq!(q.outputs(), 5);
+            assert!(q.tape.iter().all(|n| *n != Node::ThetaDot), "{text}");
+            for theta in [0.5, -1.25, 2.0, 0.375] {
+                let f = |w: f64| eval1(&p, theta, w);
+                let mut c = [0.0; 5];
+                q.eval(theta, f64::NAN, &mut c);
+                let (f0, f1, fm) = (f(0.0), f(1.0), f(-1.0));
+                let want = [(f1 + fm) / 2.0 - f0, (f1 - fm) / 2.0, f0];
+                for k in 0..3 {
+                    let got = c[0] / c[1] * c[k + 2];
+                    let tol = 1e-12 * (1.0 + want[k].abs() + f1.abs() + fm.abs());
+                    assert!((got - want[k]).abs() <= tol, "{text} θ={theta}: {c:?}");
+                }
+                if peeled {
+                    let t = iv(theta, theta);
+                    let mut got = [t; 5];
+                    q.eval(t, Interval::ENTIRE, &mut got);
+                    let mut want = [t; 3];
+                    u.eval(t, Interval::ENTIRE, &mut want);
+                    assert_eq!(got[2..], want, "{text} θ={theta}");
+                    // The factor itself has no quotient at its top.
+                    assert!(q.tape.iter().all(|n| !matches!(n, Node::Div(..))), "{text}");
+                }
+            }
+        }
+        // No factor: a = b = 1 exactly, and the quadratic is the unfactored one.
+        let t = iv(0.5, 0.75);
+        let plain = one(&defs, "U/V - 1");
+        let (mut got, mut want) = ([t; 5], [t; 3]);
+        plain
+            .factored_quadratics(&[0])
+            .unwrap()
+            .eval(t, t, &mut got);
+        plain.quadratic(0).unwrap().eval(t, t, &mut want);
+        assert_eq!(got[..2], [iv(1.0, 1.0); 2]);
+        assert_eq!(got[2..], want);
     }
 
     /// `A*theta_dot^2 + B*theta_dot + C` gives A, B, C themselves.

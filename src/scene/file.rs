@@ -106,6 +106,9 @@ pub struct FileScene {
     /// `c₂, c₁, c₀` of Ω, then of Ω₀, as one θ-only program, when both are
     /// of degree ≤ 2 in θ̇ with θ-only coefficients.
     coefficients: Option<Program>,
+    /// The same with each region's θ-only factor apart
+    /// ([`Program::factored_quadratics`]).
+    factored: Option<Program>,
     /// θ̈ for the phase portrait, if given.
     dynamics: Option<Program>,
 }
@@ -201,6 +204,7 @@ impl FileScene {
             ("regions.omega0".into(), regions[1].expr.clone()),
         ])?;
         let coefficients = program.quadratics(&[0, 1]);
+        let factored = program.factored_quadratics(&[0, 1]);
         let dynamics = match raw.dynamics {
             Some(d) => Some(compile(&[("dynamics.theta_ddot".into(), d.theta_ddot)])?),
             None => None,
@@ -216,6 +220,7 @@ impl FileScene {
             regions,
             program,
             coefficients,
+            factored,
             dynamics,
         })
     }
@@ -234,6 +239,26 @@ impl FileScene {
             c1: c[k + 1],
             c0: c[k + 2],
         })
+    }
+
+    /// Ω and Ω₀ as `(a/b)·(c₂θ̇² + c₁θ̇ + c₀)`, each with its θ-only factor
+    /// `a/b` apart ([`Program::factored_quadratics`]): returns `[a, b]` and
+    /// the quadratic of each. Panics as [`FileScene::quadratics`] does.
+    pub fn factored_quadratics<T: crate::number::scalar::Scalar>(
+        &self,
+        a: &Angle<T>,
+    ) -> ([[T; 2]; 2], [Quadratic<T>; 2]) {
+        let mut c = [T::int(0); 10];
+        self.factored
+            .as_ref()
+            .expect("regions of degree at most 2 in theta_dot")
+            .eval_angle(a.theta, Some((a.sin, a.cos)), T::int(0), &mut c);
+        let q = [0, 5].map(|k| Quadratic {
+            c2: c[k + 2],
+            c1: c[k + 3],
+            c0: c[k + 4],
+        });
+        ([[c[0], c[1]], [c[5], c[6]]], q)
     }
 
     /// Both regions are of degree ≤ 2 in θ̇ with θ-only coefficients

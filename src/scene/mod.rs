@@ -493,6 +493,23 @@ impl Scene {
         })
     }
 
+    /// The constraints with each one's θ-only factor apart: `g = (a/b)·p`
+    /// with `[a, b]` returned per constraint and `p` its quadratic, so that
+    /// where the signs of `a` and `b` are known `{g < 0}` is `{p < 0}` or
+    /// `{p > 0}`, and `p`'s roots carry none of the factor's rounding
+    /// ([`FileScene::factored_quadratics`]; `a = b = 1` for the paper's
+    /// scenes).
+    pub fn factored_constraints<T: Scalar>(
+        &self,
+        v: Variant,
+        a: &Angle<T>,
+    ) -> ([[T; 2]; 2], Constraints<T>) {
+        with_model!(self, m => ([[T::int(1); 2]; 2], m.constraints(v, a)), f => {
+            let (factor, [omega, omega0]) = f.factored_quadratics(a);
+            (factor, Constraints { omega, omega0 })
+        })
+    }
+
     /// True when Ω₀ ≡ Ω by construction ([`Model::omega0_is_omega`]; for a
     /// file, the same region text).
     pub fn omega0_is_omega(&self, v: Variant) -> bool {

@@ -47,7 +47,7 @@ import mpmath as mp
 
 mp.mp.dps = 50
 
-MUS = ["0.5", "1.3", "1.5", "2"]
+MUS = ["0.5", "1.3", "1.5", "2", "1.3334"]
 M, L_HALF, G = mp.mpf(1), mp.mpf(1), mp.mpf("9.81")
 W = mp.mpf(10)  # thetadot in [-W, W]
 TH_LO, TH_HI = mp.mpf(0), mp.pi / 2

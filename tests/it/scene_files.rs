@@ -34,12 +34,19 @@ fn num(v: &serde_json::Value) -> f64 {
 }
 
 /// The rod against the mpmath values of `tests/data/painleve_reference.py`
-/// (closed form in θ, 50 digits): `area` certifies all six sets to 10⁻¹¹
-/// around them (the cells' boundaries coincide along θ̇² = g/(l sin θ), and
-/// Ω₀'s coefficients are singular where V = 0); the paving's inner and outer bounds of all six sets contain them;
-/// and the paradox cells have positive certified area exactly when μ > 4/3
-/// (below, they stay within the undecided band along the boundary, where Ω₀
-/// and Ω share it).
+/// (closed form in θ, 50 digits): `area` certifies all six sets to 10⁻¹²
+/// around them, the target met, not stopped at a rounding floor (the cells'
+/// boundaries coincide along θ̇² = g/(l sin θ), and Ω₀ = {U/V < 0} is
+/// singular where V = 0: its roots are those of U, V's rounding only decides
+/// a side, by the mean-value form where V is small and flat). Next to
+/// μ = 4/3 (the case μ = 1.3334) the band's two lines V = 0 are 0.008 rad
+/// apart and V' is small on them: binary64 cannot decide V's sign within
+/// about 10⁻¹⁵/|V'| of a line, a floor near 2·10⁻¹², so that case is asked
+/// for 10⁻¹¹. Every case takes at most 2000 θ-pieces (without the mean-value
+/// form μ = 1.3334 needs over 3000). The paving's inner and outer bounds of all six sets contain them;
+/// and the paradox cells have positive certified area when μ > 4/3 and the
+/// band is wider than a few boxes, and none when μ < 4/3 (they stay within
+/// the undecided band along the boundary, where Ω₀ and Ω share it).
 #[test]
 fn painleve_rod_areas_contain_the_closed_form() {
     let names = [
@@ -55,6 +62,11 @@ fn painleve_rod_areas_contain_the_closed_form() {
         let scene = rod(mu);
         let domain = scene.domain();
         let paradox = !case["paradox_band"].is_null();
+        let wide_band = paradox && {
+            let t = &case["paradox_band"]["theta"];
+            num(&t[1]) - num(&t[0]) > 0.1
+        };
+        let tol = if mu == "1.3334" { 1e-11 } else { 1e-12 };
         for (i, name) in names.iter().enumerate() {
             let e = cell_area(
                 &scene,
@@ -62,16 +74,21 @@ fn painleve_rod_areas_contain_the_closed_form() {
                 &domain,
                 CELLS[i],
                 AreaOptions {
-                    tol: 1e-11,
+                    tol,
                     max_pieces: 1 << 16,
                 },
             )
             .unwrap();
             let want = num(&case["areas"][name]);
             assert!(
-                e.area.inf() <= want && want <= e.area.sup() && e.area.wid() <= 1e-11,
-                "mu={mu} {name}: {want} vs {:?}",
-                e.area
+                e.area.inf() <= want
+                    && want <= e.area.sup()
+                    && e.area.wid() <= tol
+                    && !e.at_rounding_floor
+                    && e.pieces <= 2000,
+                "mu={mu} {name}: {want} vs {:?} ({} pieces)",
+                e.area,
+                e.pieces
             );
         }
         let p = pave_scene(
@@ -93,7 +110,7 @@ fn painleve_rod_areas_contain_the_closed_form() {
                 b.inner_area,
                 b.outer_area
             );
-            if i >= 4 {
+            if i >= 4 && (wide_band || !paradox) {
                 assert_eq!(b.inner_area > 0.0, paradox, "mu={mu} {name}");
                 if !paradox {
                     assert!(b.outer_area < 0.5, "mu={mu} {name}: {}", b.outer_area);
