@@ -150,11 +150,24 @@ pub(super) fn contract<S: ConstraintSet>(
         s.breakpoints(&mut pts);
     }
     pts.push(0.0);
+    // A boundary on (or next to) a window end, as θ̇² − 1 on [−1, 1]: the
+    // part beside it must leave that end free, like a root inside.
+    let near = SHRINK[0] * (w1 - w0);
+    let on_end = [w0, w1].map(|w| pts.iter().any(|p| (p - w).abs() <= near));
     pts.retain(|p| w0 < *p && *p < w1);
     pts.sort_by(f64::total_cmp);
     pts.dedup();
     // Segments with a tentative label per relevant constraint.
-    let mut segs: Vec<Seg> = Vec::with_capacity(pts.len() + 1);
+    let mut segs: Vec<Seg> = Vec::with_capacity(pts.len() + 3);
+    let gap = |at: f64| Seg {
+        lo: at,
+        hi: at,
+        tentative: [None; MAX_CONSTRAINTS],
+        tree: None,
+    };
+    if on_end[0] {
+        segs.push(gap(w0));
+    }
     let mut lo = w0;
     for &hi in pts.iter().chain(std::iter::once(&w1)) {
         let m = 0.5 * lo + 0.5 * hi;
@@ -173,16 +186,24 @@ pub(super) fn contract<S: ConstraintSet>(
         }
         lo = hi;
     }
+    if on_end[1] {
+        segs.push(gap(w1));
+    }
     let k = qs.len();
     let decided = |s: &Seg| s.tentative[..k].iter().all(|t| t.is_some());
-    // Neighbouring decided parts with different labels cannot both be
-    // right: the later one is left undecided.
-    for j in 1..segs.len() {
+    // Neighbouring decided parts with different labels meet at a boundary
+    // the steering cannot resolve (one constant in θ, as θ̇ = 1/2): an
+    // empty undecided part between them leaves both ends free, so both
+    // shrink off it.
+    let mut j = 1;
+    while j < segs.len() {
         if decided(&segs[j - 1]) && decided(&segs[j]) {
-            segs[j].tentative[0] = None;
+            segs.insert(j, gap(segs[j].lo));
+            j += 1;
         }
+        j += 1;
     }
-    if segs.len() == 1 && !decided(&segs[0]) {
+    if !segs.iter().any(decided) {
         return None;
     }
     // Verify each decided part, stepping its ends inward as needed.
@@ -313,7 +334,9 @@ pub(super) fn contract<S: ConstraintSet>(
             None => segs[j].tentative[0] = None,
         }
     }
-    // Merge neighbouring undecided parts (slivers left by the steps).
+    // Drop empty parts (a gap no neighbour shrank off), then merge
+    // neighbouring undecided parts (slivers left by the steps).
+    segs.retain(|s| s.tree.is_some() || s.lo < s.hi);
     segs.dedup_by(|s, last| {
         let both = last.tree.is_none() && s.tree.is_none();
         if both {

@@ -12,10 +12,13 @@
 //! and its integral is enclosed by a Taylor rule with a Lagrange remainder:
 //! `∫ L = Σ_{k<n} L_k(m) ∫ (θ−m)^k + R`, `R ∈ L_n(piece) ∫ (θ−m)^n` (`n`
 //! even, so `(θ−m)^n ≥ 0`), the coefficients from interval Taylor arithmetic
-//! ([`taylor`]). Where the shape is not decided (a root crossing a window end
-//! or another root, the discriminant vanishing, a singular line), the piece is
-//! bisected; what is left undecided at the end is bounded by `[0, hi − lo]`
-//! times its width. Refinement goes to the pieces that hold most of the width.
+//! ([`taylor`]). Two ends the piece cannot order (a root crossing a window
+//! end or another root, or running along one) are kept as a tie whose error
+//! is bounded by the Taylor series of their difference ([`Gaps`]). Where the
+//! shape is not decided (the discriminant or the leading coefficient
+//! vanishing, a singular line), the piece is bisected; what is left
+//! undecided at the end is bounded by `[0, hi − lo]` times its width.
+//! Refinement goes to the pieces that hold most of the width.
 //!
 //! Everything is interval arithmetic: the domain ends (π) are enclosures, the
 //! slivers between them and the double grid are bounded separately.
@@ -287,19 +290,17 @@ fn is_zero(x: Interval) -> bool {
     x == ZERO
 }
 
-/// The decided slice of one literal over a piece, from interval coefficients.
+/// The decided set of one literal over a piece, from interval coefficients,
+/// as intervals whose ends are roots and window ends (not yet clipped to the
+/// window: the caller's intersection with the window orders a root against
+/// a window end, or keeps a tie where it cannot, as where a boundary runs
+/// along the window's edge).
 fn literal_slice(
     li: u8,
     (a2, a1, a0): (Interval, Interval, Interval),
     window: &[Bound; 2],
 ) -> Option<(Shape, Slice)> {
     let full = || vec![(window[0], window[1])];
-    let clip = |s: Slice| -> Option<Slice> {
-        // Intersect with the window; −∞/+∞ ends are already window ends. A
-        // root that the piece cannot order against a window end is not
-        // smoothed over: the piece is split instead.
-        intersect(&s, &full(), None)
-    };
     if is_zero(a2) {
         if is_zero(a1) {
             return if a0.sup() < 0.0 {
@@ -324,7 +325,7 @@ fn literal_slice(
         } else {
             return None;
         };
-        return Some((Shape::Linear, clip(s)?));
+        return Some((Shape::Linear, s));
     }
     let up = if a2.inf() > 0.0 {
         true
@@ -360,20 +361,14 @@ fn literal_slice(
         Ordering::Greater => (bb, ba),
         Ordering::Equal => return None,
     };
-    let s_set = if up {
+    // Between the roots, or below the lower and above the upper one (±∞
+    // become window ends).
+    let set = if up {
         vec![(lo, hi)]
     } else {
-        // Below the lower root, above the upper one; ±∞ become window ends.
-        let mut v = Vec::new();
-        if cmp(&lo, &window[0])? == Ordering::Greater {
-            v.push((window[0], lo));
-        }
-        if cmp(&hi, &window[1])? == Ordering::Less {
-            v.push((hi, window[1]));
-        }
-        return Some((Shape::Quad { s }, clip(v)?));
+        vec![(window[0], lo), (hi, window[1])]
     };
-    Some((Shape::Quad { s }, clip(s_set)?))
+    Some((Shape::Quad { s }, set))
 }
 
 /// The two roots by the cancellation-free pair `Q/a2`, `a0/Q`,

@@ -118,12 +118,14 @@ fn lex(text: &str) -> Result<Vec<(Tok<'_>, usize)>, Fail> {
             b'^' => Tok::Caret,
             b'(' => Tok::LParen,
             b')' => Tok::RParen,
-            b'0'..=b'9' => {
+            // Digits with an optional point, at least one digit before or
+            // after it (`1`, `1.5`, `1.`, `.5`), as FORMAT.md's `number`.
+            b'0'..=b'9' | b'.' => {
                 i = digits(i);
                 if b.get(i) == Some(&b'.') {
                     let j = digits(i + 1);
-                    if j == i + 1 {
-                        return Err((Some(i), "digits expected after '.'".into()));
+                    if i == start && j == i + 1 {
+                        return Err((Some(i), "digits expected before or after '.'".into()));
                     }
                     i = j;
                 }
@@ -1363,6 +1365,40 @@ mod tests {
         }
     }
 
+    /// Every form of FORMAT.md's `number` (digits before or after the point,
+    /// or both) is read as the checker reads it, and a point without digits
+    /// is refused by both.
+    #[test]
+    fn numbers_are_read_as_the_checker_reads_them() {
+        let (t, w) = (iv(0.25, 0.5), iv(-1.5, 2.0));
+        for text in [
+            "1.",
+            ".5",
+            "2.e1",
+            ".5e-1",
+            "0.1",
+            "3e2",
+            "X - .1*2.",
+            "1.E+2",
+        ] {
+            let p = one(&[], &text.replace('X', "theta"));
+            let want = detach_check::eval_on_box(&[], &[], &text.replace('X', "t"), t, w)
+                .unwrap_or_else(|e| panic!("{text}: {e}"));
+            assert!(
+                same_dec(eval1(&p, DecInterval::new(t), DecInterval::new(w)), want),
+                "{text}"
+            );
+        }
+        for text in [".", ".e1", "1 + .", "1.2.3", "1..2"] {
+            let mine = Program::compile(&params(), &[], &[("out".into(), text.into())]);
+            let theirs = detach_check::eval_on_box(&[], &[], text, t, w);
+            assert!(
+                mine.is_err() && theirs.is_err(),
+                "{text}: {mine:?} / {theirs:?}"
+            );
+        }
+    }
+
     /// Fixed expressions against a direct evaluation in inari.
     #[test]
     fn fixed_expressions_by_hand() {
@@ -1601,7 +1637,7 @@ mod tests {
         }
         assert!(err(&[], "1 +").offset == Some(4));
         assert!(err(&[], "sin theta").message.contains("'('"));
-        assert!(err(&[], "2.").offset == Some(2));
+        assert_eq!(err(&[], ". + 1").offset, Some(1));
         assert!(err(&[], "1e999").message.contains("decimal"));
     }
 

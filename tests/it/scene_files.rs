@@ -488,3 +488,59 @@ fn regions_of_any_form_pave_and_prove() {
     assert_eq!(r["target_met"], false);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Boundaries constant in θ (θ̇ = ±1 on the window's edges, θ̇ = 1/2 across
+/// it), numbers written `1.` and `.5`: by hand, Ω = {θ̇² < 1} has area 2
+/// (the whole window) and Ω₀ = {θ̇ < 1/2} area 3/2. Every method certifies
+/// them with the undecided area a sliver (the contraction once left the
+/// part above θ̇ = 1/2 undecided, and everything beside an edge root, on
+/// every slab: 10⁶ leaves and nothing decided), and the quadrature gets
+/// them in its first grid.
+#[test]
+fn boundaries_constant_in_theta_are_certified() {
+    let text = "name = \"flat\"\n[domain]\ntheta = [\"0\", \"1\"]\ntheta_dot = [\"-1\", \"1\"]\n\
+                [regions]\nomega = \"theta_dot^2 - 1. < 0\"\nomega0 = \"theta_dot - .5 < 0\"\n";
+    let scene = Scene::File(Box::new(FileScene::parse(text, &[]).unwrap()));
+    let exact = [2.0, 1.5, 1.5, 0.0, 0.0, 0.5];
+    for m in detach::pave::Method::ALL {
+        let p = detach::pave::pave_scene_method(
+            &scene,
+            Variant::Derived,
+            &scene.domain(),
+            PaveOptions::default(),
+            &detach::pave::MethodOptions::new(m),
+            |_, _, _| {},
+        )
+        .unwrap();
+        // The contracting methods cut at the lines; the bisecting ones
+        // leave a band of boxes along each.
+        let band = match m.name() {
+            "contract" | "slices" => 1e-9,
+            _ => 0.01,
+        };
+        for (i, want) in exact.iter().enumerate() {
+            let b = p.area_bounds(&standard_cells()[i], 0.0);
+            assert!(
+                b.inner_area <= *want
+                    && *want <= b.outer_area
+                    && b.outer_area - b.inner_area < band,
+                "{m} set {i}: {want} vs [{}, {}] ({} leaves)",
+                b.inner_area,
+                b.outer_area,
+                p.leaves.len()
+            );
+        }
+    }
+    for (i, want) in exact.iter().enumerate() {
+        let opts = AreaOptions {
+            tol: 1e-12,
+            max_pieces: 1 << 10,
+        };
+        let e = cell_area(&scene, Variant::Derived, &scene.domain(), CELLS[i], opts).unwrap();
+        assert!(
+            e.area.contains(*want) && e.area.wid() <= 1e-12,
+            "set {i}: {:?}",
+            e.area
+        );
+    }
+}
