@@ -195,8 +195,6 @@ type Slice = Vec<(Bound, Bound)>;
 struct Gap {
     from: End,
     to: End,
-    /// `sup (to − from)⁺` from the ends' enclosures over the piece.
-    reach: f64,
 }
 
 /// What a piece cannot order, kept as bounded corrections instead of
@@ -209,8 +207,10 @@ struct Gaps {
     /// computed one minus at most `sup |to − from|` over the piece.
     ties: Vec<Gap>,
     /// An interval `(from, to)` that may be empty: left out of the slice, its
-    /// length lies in `[0, sup |to − from|]`.
-    slivers: Vec<Gap>,
+    /// length lies in `[0, sup |to − from|]`; with `sup (to − from)⁺` from the
+    /// ends' enclosures over the piece (the ties need none: a tied end
+    /// keeps the enclosure of the true end).
+    slivers: Vec<(Gap, f64)>,
 }
 
 /// The lower (`upper = false`) or upper end of an intersection: the greater
@@ -235,7 +235,6 @@ fn meet(a: &Bound, b: &Bound, upper: bool, ties: &mut Vec<Gap>) -> Bound {
             ties.push(Gap {
                 from: a.end,
                 to: b.end,
-                reach: (b.enc - a.enc).mag(),
             });
             Bound {
                 end: a.end,
@@ -272,11 +271,13 @@ fn intersect(s: &Slice, t: &Slice, mut gaps: Option<&mut Gaps>) -> Option<Slice>
                     g.ties.extend(ties);
                 }
                 // (hi − lo)⁺ ≤ |hi − lo| whatever the ties resolve to.
-                None => g.slivers.push(Gap {
-                    from: lo.end,
-                    to: hi.end,
-                    reach: (hi.enc - lo.enc).sup().max(0.0),
-                }),
+                None => g.slivers.push((
+                    Gap {
+                        from: lo.end,
+                        to: hi.end,
+                    },
+                    (hi.enc - lo.enc).sup().max(0.0),
+                )),
                 Some(_) => {}
             }
         }
@@ -527,7 +528,7 @@ impl Job<'_> {
         for (lo, hi) in slice {
             total = total + (end(hi.end) - end(lo.end));
         }
-        let gaps: Vec<Taylor> = (gaps.ties.iter().chain(&gaps.slivers))
+        let gaps: Vec<Taylor> = (gaps.ties.iter().chain(gaps.slivers.iter().map(|(g, _)| g)))
             .map(|g| end(g.to) - end(g.from))
             .collect();
         (total.is_finite() && gaps.iter().all(Taylor::is_finite)).then_some((total, gaps))
@@ -553,8 +554,8 @@ impl Job<'_> {
         for (lo, hi) in &slice {
             l_range += (hi.enc - lo.enc).intersection(l_max);
         }
-        for g in &gaps.slivers {
-            l_range += Interval::try_from((0.0, g.reach)).unwrap_or(l_max);
+        for (_, reach) in &gaps.slivers {
+            l_range += Interval::try_from((0.0, *reach)).unwrap_or(l_max);
         }
         let mut integral = (h * l_range).intersection(crude.integral);
         let mut rounding = 0.0;
