@@ -10,7 +10,7 @@ use detach::pave::{
     pave_scene_method, standard_cell_bounds, standard_cells, Emptiness, Method, MethodOptions,
     PaveOptions, Paving,
 };
-use detach::scene::{Domain, FileScene, Scene, SceneId, Variant, REGION_LABELS, REGION_NAMES};
+use detach::scene::{Domain, Scene, SceneId, SceneText, Variant, REGION_LABELS, REGION_NAMES};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -569,18 +569,13 @@ fn overrides_for(id: SceneId, all: &[(String, String)]) -> Vec<(String, String)>
 }
 
 /// Where a scene file of an atlas run comes from.
-enum FileSource<'a> {
-    Path(&'a Path),
-    Shipped(&'a str),
-}
-
 pub fn run_atlas(args: &AtlasArgs) -> CliResult {
     // Shipped scene files named by --scene are read like --scene-file.
     let shipped: Vec<&str> = args
         .scene
         .iter()
         .map(String::as_str)
-        .filter(|n| n.parse::<SceneId>().is_err() && FileScene::shipped(n, &[]).is_some())
+        .filter(|n| n.parse::<SceneId>().is_err() && SceneText::shipped(n).is_some())
         .collect();
     let ids: Vec<SceneId> = if args.scene.is_empty() && !args.scene_file.is_empty() {
         Vec::new()
@@ -605,24 +600,22 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
     if !args.scene_file.is_empty() || !shipped.is_empty() {
         super::one_reading(args.flags.variant)?;
     }
-    let load = |src: &FileSource, o: &[(String, String)]| match src {
-        FileSource::Path(p) => FileScene::load(p, o),
-        FileSource::Shipped(n) => FileScene::shipped(n, o).expect("a shipped name"),
-    };
-    // Each file's declared parameters, to route the overrides.
+    // Each file read once; its declared parameters route the overrides.
     let files = shipped
         .iter()
-        .map(|n| FileSource::Shipped(n))
-        .chain(args.scene_file.iter().map(|p| FileSource::Path(p)))
-        .map(|src| {
-            let names: Vec<String> = load(&src, &[])
+        .map(|n| Ok(SceneText::shipped(n).expect("a shipped name")))
+        .chain(args.scene_file.iter().map(|p| SceneText::read(p)))
+        .map(|text| {
+            let text = text.map_err(CliError::usage)?;
+            let names: Vec<String> = text
+                .compile(&[])
                 .map_err(CliError::usage)?
                 .params
                 .specs
                 .iter()
                 .map(|s| s.name.to_string())
                 .collect();
-            Ok((src, names))
+            Ok((text, names))
         })
         .collect::<Result<Vec<_>, CliError>>()?;
     let for_file = |names: &[String]| -> Vec<(String, String)> {
@@ -666,8 +659,8 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
     let built = ids
         .iter()
         .map(|&id| Scene::build(id, &overrides_for(id, &overrides)).map_err(CliError::usage))
-        .chain(files.iter().map(|(src, names)| {
-            let f = load(src, &for_file(names)).map_err(CliError::usage)?;
+        .chain(files.iter().map(|(text, names)| {
+            let f = text.compile(&for_file(names)).map_err(CliError::usage)?;
             let params = f.params.clone();
             Ok((Scene::File(Box::new(f)), params))
         }))

@@ -113,15 +113,51 @@ pub struct FileScene {
     dynamics: Option<Program>,
 }
 
+/// A scene file's text with the name its errors give: read once, compiled
+/// as often as parameter overrides need.
+#[derive(Clone, Debug)]
+pub struct SceneText {
+    pub file: String,
+    pub text: std::borrow::Cow<'static, str>,
+}
+
+impl SceneText {
+    pub fn read(path: &Path) -> Result<SceneText, SceneFileError> {
+        let file = path.display().to_string();
+        match std::fs::read_to_string(path) {
+            Ok(text) => Ok(SceneText {
+                file,
+                text: text.into(),
+            }),
+            Err(e) => Err(SceneFileError {
+                file,
+                message: format!("cannot read: {e}"),
+            }),
+        }
+    }
+
+    /// A shipped scene file by name, if there is one.
+    pub fn shipped(name: &str) -> Option<SceneText> {
+        let (_, text) = SHIPPED.iter().find(|(n, _)| *n == name)?;
+        Some(SceneText {
+            file: format!("scenes/{name}.toml"),
+            text: (*text).into(),
+        })
+    }
+
+    /// Compiles the text with `name=value` parameter overrides.
+    pub fn compile(&self, overrides: &[(String, String)]) -> Result<FileScene, SceneFileError> {
+        FileScene::parse(&self.text, overrides).map_err(|message| SceneFileError {
+            file: self.file.clone(),
+            message,
+        })
+    }
+}
+
 impl FileScene {
     /// Reads and compiles `path`, with `name=value` parameter overrides.
     pub fn load(path: &Path, overrides: &[(String, String)]) -> Result<FileScene, SceneFileError> {
-        let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| SceneFileError {
-            file: file.clone(),
-            message: format!("cannot read: {e}"),
-        })?;
-        FileScene::parse(&text, overrides).map_err(|message| SceneFileError { file, message })
+        SceneText::read(path)?.compile(overrides)
     }
 
     /// A shipped scene file by name, if there is one.
@@ -129,13 +165,7 @@ impl FileScene {
         name: &str,
         overrides: &[(String, String)],
     ) -> Option<Result<FileScene, SceneFileError>> {
-        let (_, text) = SHIPPED.iter().find(|(n, _)| *n == name)?;
-        Some(
-            FileScene::parse(text, overrides).map_err(|message| SceneFileError {
-                file: format!("scenes/{name}.toml"),
-                message,
-            }),
-        )
+        Some(SceneText::shipped(name)?.compile(overrides))
     }
 
     /// Compiles the text of a scene file (errors without the file name).

@@ -21,7 +21,7 @@ use serde::Serialize;
 use std::fmt;
 use std::str::FromStr;
 
-pub use file::{FileScene, SceneFileError};
+pub use file::{FileScene, SceneFileError, SceneText};
 pub use ice::IceDisc;
 pub use smooth::SmoothDisc;
 pub use viscous::ViscousDisc;
