@@ -175,8 +175,12 @@ pub(super) fn contract<S: ConstraintSet>(
         for (k, s) in qs.iter().enumerate() {
             t[k] = s.tentative(m);
         }
+        // A boundary that touches without crossing (a double root, as
+        // θ̇² > 0 at θ̇ = 0) has the same label on both sides: not merged
+        // across, so that both sides shrink off it.
+        let touches = lo > w0 && qs.iter().any(|s| s.tentative(lo).is_none());
         match segs.last_mut() {
-            Some(last) if last.tentative == t => last.hi = hi,
+            Some(last) if last.tentative == t && !touches => last.hi = hi,
             _ => segs.push(Seg {
                 lo,
                 hi,

@@ -296,17 +296,25 @@ fn is_zero(x: Interval) -> bool {
 /// window: the caller's intersection with the window orders a root against
 /// a window end, or keeps a tie where it cannot, as where a boundary runs
 /// along the window's edge).
+/// The set is `{a(θ̇) < 0}` (`strict`) or `{a(θ̇) ≤ 0}`; the two differ only
+/// where `a ≡ 0`, or by roots (no area).
 fn literal_slice(
     li: u8,
     (a2, a1, a0): (Interval, Interval, Interval),
+    strict: bool,
     window: &[Bound; 2],
 ) -> Option<(Shape, Slice)> {
     let full = || vec![(window[0], window[1])];
     if is_zero(a2) {
         if is_zero(a1) {
-            return if a0.sup() < 0.0 {
+            let (all, none) = if strict {
+                (a0.sup() < 0.0, a0.inf() >= 0.0)
+            } else {
+                (a0.sup() <= 0.0, a0.inf() > 0.0)
+            };
+            return if all {
                 Some((Shape::Flat, full()))
-            } else if a0.inf() >= 0.0 {
+            } else if none {
                 Some((Shape::Flat, vec![]))
             } else {
                 None
@@ -336,7 +344,8 @@ fn literal_slice(
         return None;
     };
     let d = a1.sqr() - Interval::try_from((4.0, 4.0)).unwrap() * a2 * a0;
-    if d.sup() < 0.0 {
+    // No sign change in θ̇ (at most a double root: no area).
+    if d.sup() <= 0.0 {
         return Some((Shape::Flat, if up { vec![] } else { full() }));
     }
     if d.inf() <= 0.0 {
@@ -479,13 +488,27 @@ impl Job<'_> {
             iv(c[q][k]).and_then(sign)
         };
         for (i, l) in self.lits.iter().enumerate() {
+            // Inside is `{g < 0}`; outside, the complement, is `{g ≥ 0}`
+            // (they differ where g ≡ 0 on a set of positive area).
+            let strict = l.inside;
+            if iv(factor[l.q][0]) == Some(ZERO) {
+                // g ≡ 0 on the piece.
+                let set = if strict {
+                    vec![]
+                } else {
+                    vec![(window[0], window[1])]
+                };
+                shapes.push((*l, Shape::Flat));
+                slice = intersect(&slice, &set, Some(&mut gaps))?;
+                continue;
+            }
             let flip = negative(l.q, 0)? != negative(l.q, 1)?;
             let l = Lit {
                 q: l.q,
                 inside: l.inside != flip,
             };
             let (a2, a1, a0) = lit_coeffs(&quads[l.q], l.inside);
-            let (shape, s) = literal_slice(i as u8, (iv(a2)?, iv(a1)?, iv(a0)?), &window)?;
+            let (shape, s) = literal_slice(i as u8, (iv(a2)?, iv(a1)?, iv(a0)?), strict, &window)?;
             shapes.push((l, shape));
             slice = intersect(&slice, &s, Some(&mut gaps))?;
         }

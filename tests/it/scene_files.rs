@@ -544,3 +544,64 @@ fn boundaries_constant_in_theta_are_certified() {
         );
     }
 }
+
+/// Degenerate regions, by hand on θ ∈ [0, 1], θ̇ ∈ [−2, 2] (area 4), with
+/// Ω = {θ̇² > 1} (area 2):
+/// - Ω₀ = {0 < 0} (written as `theta_dot - theta_dot < 0`, g ≡ 0): empty,
+///   so its complement is the whole window: Ω∩Ω̄₀ = 2 and Ω̄∩Ω̄₀ = 2 (a
+///   complement taken as `{g > 0}` would give 0 for both);
+/// - Ω₀ = {θ̇² > 0}, a double root along θ̇ = 0: the whole window, so
+///   Ω∩Ω₀ = 2 and Ω̄∩Ω₀ = 2; the default method cuts at the double root
+///   (it once left the window undecided, 10⁶ leaves).
+#[test]
+fn degenerate_regions_are_measured_as_sets() {
+    let scene = |omega0: &str| {
+        let text = format!(
+            "name = \"flat\"\n[domain]\ntheta = [\"0\", \"1\"]\ntheta_dot = [\"-2\", \"2\"]\n\
+             [regions]\nomega = \"theta_dot^2 - 1 > 0\"\nomega0 = \"{omega0}\"\n"
+        );
+        Scene::File(Box::new(FileScene::parse(&text, &[]).unwrap()))
+    };
+    let cases = [
+        ("theta_dot - theta_dot < 0", [2.0, 0.0, 0.0, 2.0, 0.0, 2.0]),
+        ("theta_dot^2 > 0", [2.0, 4.0, 2.0, 0.0, 2.0, 0.0]),
+    ];
+    for (omega0, exact) in cases {
+        let s = scene(omega0);
+        for (i, want) in exact.iter().enumerate() {
+            let opts = AreaOptions {
+                tol: 1e-12,
+                max_pieces: 1 << 10,
+            };
+            let e = cell_area(&s, Variant::Derived, &s.domain(), CELLS[i], opts).unwrap();
+            assert!(
+                e.area.contains(*want) && e.area.wid() <= 1e-12,
+                "{omega0} set {i}: {:?}",
+                e.area
+            );
+        }
+    }
+    let s = scene("theta_dot^2 > 0");
+    for m in detach::pave::Method::ALL {
+        if !matches!(m.name(), "contract" | "slices") {
+            continue;
+        }
+        let p = detach::pave::pave_scene_method(
+            &s,
+            Variant::Derived,
+            &s.domain(),
+            PaveOptions::default(),
+            &detach::pave::MethodOptions::new(m),
+            |_, _, _| {},
+        )
+        .unwrap();
+        let b = p.area_bounds(&standard_cells()[1], 0.0);
+        assert!(
+            b.inner_area <= 4.0 && b.outer_area >= 4.0 && b.outer_area - b.inner_area < 1e-9,
+            "{m}: [{}, {}] in {} leaves",
+            b.inner_area,
+            b.outer_area,
+            p.leaves.len()
+        );
+    }
+}
