@@ -143,9 +143,28 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
         CliError::usage(format!("{} ({}): {e}", REGION_LABELS[i], REGION_NAMES[i]))
     };
     if not_quadratic.is_none() {
+        // Every set's rounding first, so that one refusal names them all and
+        // the digits that every one of them can reach.
+        let (mut below, mut floor, mut least) = (Vec::new(), 0f64, 0f64);
         for &i in &wanted {
-            check_target(&scene, args.variant, &domain, CELLS[i], tol)
-                .map_err(|e| refusal(i, e))?;
+            match check_target(&scene, args.variant, &domain, CELLS[i], tol) {
+                Ok(()) => {}
+                Err(AreaError::BelowRounding {
+                    floor: f, least: l, ..
+                }) => {
+                    below.push(format!("{} ({})", REGION_LABELS[i], REGION_NAMES[i]));
+                    (floor, least) = (floor.max(f), least.max(l));
+                }
+                Err(e) => return Err(refusal(i, e)),
+            }
+        }
+        if !below.is_empty() {
+            return Err(CliError::usage(format!(
+                "{}: a width of {tol:e} is below what binary64 arithmetic certifies \
+                 (rounding alone leaves up to about {floor:.1e}); ask for --digits {} or fewer",
+                below.join(", "),
+                (-least.log10()).floor() as i32
+            )));
         }
     }
     let mut regions = Vec::new();

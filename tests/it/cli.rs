@@ -382,12 +382,28 @@ fn root_maps_write_their_files_and_refuse_bad_figures() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// `area` refuses at once a width binary64 cannot certify, naming the set.
+/// `area` refuses at once a width binary64 cannot certify, naming every set
+/// that cannot reach it and the digits all of them can: asking for those
+/// digits then succeeds.
 #[test]
 fn area_refuses_places_below_binary64_rounding() {
     let err = assert_bad_input(
         &["area", "--scene", "viscous-disc", "--digits", "14"],
         "below what binary64 arithmetic certifies",
     );
-    assert!(err.contains("Ω (omega)"), "{err}");
+    for set in ["Ω (omega)", "Ω₀ (omega0)", "Ω∩Ω̄₀ (omega_and_not_omega0)"] {
+        assert!(err.contains(set), "{err}");
+    }
+    let digits = err
+        .split("--digits ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .unwrap_or_else(|| panic!("{err}"));
+    assert_eq!(digits, "12", "{err}");
+    let out = detach(&["area", "--scene", "viscous-disc", "--digits", digits]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
