@@ -59,6 +59,21 @@ pub enum ParamError {
     NotAssignment(String),
     #[error("parameter `{name}`: {reason}")]
     Invalid { name: String, reason: String },
+    /// A window end (`--theta`, `--theta-dot`), not a parameter.
+    #[error("--{name}: {reason}")]
+    Window { name: String, reason: String },
+}
+
+impl ParamError {
+    /// The same error said of the window option `--name`.
+    pub fn of_window(self, name: &str) -> ParamError {
+        let text = self.to_string();
+        let prefix = format!("parameter `{name}`: ");
+        ParamError::Window {
+            name: name.to_string(),
+            reason: text.strip_prefix(&prefix).unwrap_or(&text).to_string(),
+        }
+    }
 }
 
 /// A plain decimal literal: its sign and magnitude `0.d₁d₂… × 10^exp`, with

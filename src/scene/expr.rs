@@ -12,7 +12,7 @@
 //! left-associative, in the order written, so an interval evaluation of the
 //! tape gives the enclosure the checker computes for the same text.
 
-use crate::number::param::enclose_decimal;
+use crate::number::param::{enclose_decimal, ParamError};
 use crate::number::scalar::Scalar;
 use inari::Interval;
 use std::collections::{HashMap, HashSet};
@@ -328,8 +328,13 @@ impl<'a> Parser<'a> {
         self.pos += 1;
         match tok {
             Tok::Num(t) => {
-                let x = enclose_decimal("", t)
-                    .map_err(|_| (Some(at), format!("{t} is not a finite decimal number")))?;
+                let x = enclose_decimal("", t).map_err(|e| {
+                    let why = match e {
+                        ParamError::TooLarge { .. } => "is too large for double precision",
+                        _ => "is not a finite decimal number",
+                    };
+                    (Some(at), format!("{t} {why}"))
+                })?;
                 self.steps.push(Step::Num(x, t));
             }
             Tok::LParen => {
@@ -1638,7 +1643,8 @@ mod tests {
         assert!(err(&[], "1 +").offset == Some(4));
         assert!(err(&[], "sin theta").message.contains("'('"));
         assert_eq!(err(&[], ". + 1").offset, Some(1));
-        assert!(err(&[], "1e999").message.contains("decimal"));
+        assert!(err(&[], "1e999").message.contains("too large"));
+        assert!(err(&[], "1e99999999").message.contains("decimal"));
     }
 
     #[test]

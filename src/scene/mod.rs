@@ -234,8 +234,9 @@ impl Domain {
             }
             Ok([lo_c, hi_c])
         };
-        let theta = side("theta", self.theta, theta)?;
-        let theta_dot = side("theta-dot", self.theta_dot, theta_dot)?;
+        let theta = side("theta", self.theta, theta).map_err(|e| e.of_window("theta"))?;
+        let theta_dot =
+            side("theta-dot", self.theta_dot, theta_dot).map_err(|e| e.of_window("theta-dot"))?;
         Ok((Domain { theta, theta_dot }, clipped))
     }
 

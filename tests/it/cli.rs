@@ -60,6 +60,11 @@ fn bad_input_is_a_clear_error_with_exit_code_2() {
         "inside the scene's domain",
     );
     assert_bad_input(&["pave", "--scene", "smooth-disc", "--theta", "1"], "LO:HI");
+    // A window end is named by its option, not called a parameter.
+    for (opt, end) in [("--theta", "0:abc"), ("--theta-dot", "1e400:2")] {
+        let err = assert_bad_input(&["pave", "--scene", "smooth-disc", opt, end], opt);
+        assert!(!err.contains("parameter"), "{err}");
+    }
     assert_bad_input(&["atlas", "--scene", "nope"], "unknown scene");
     assert_bad_input(&["atlas", "--param", "zz=1"], "unknown parameter `zz`");
     assert_bad_input(&["pave"], "--scene");
