@@ -309,8 +309,8 @@ fn summarise(
 }
 
 /// The area of undefined leaves, and a warning when they are all of the
-/// paving or most of its area: then the enclosures under- or overflowed (or
-/// a formula is singular on the whole window) and the bounds say little.
+/// paving or most of its area: then a formula is undefined there or the
+/// enclosures under- or overflowed, and the bounds say little.
 fn undefined_warnings(paving: &Paving) -> (f64, Vec<String>) {
     use detach::pave::Label;
     use inari::Interval;
@@ -347,9 +347,10 @@ fn undefined_warnings(paving: &Paving) -> (f64, Vec<String>) {
         };
         let n = detach::number::param::short_num;
         warnings.push(format!(
-            "{what}, in θ ∈ [{}, {}], θ̇ ∈ [{}, {}]: the enclosures under- or \
-             overflowed the double range there (or a formula is singular), so the area \
-             bounds say little; rescale the parameters or the window",
+            "{what}, in θ ∈ [{}, {}], θ̇ ∈ [{}, {}]: a formula is undefined there \
+             (division by an interval holding 0, ln or sqrt of a value that may be ≤ 0), \
+             or the enclosures under- or overflowed the double range, so the area bounds \
+             say little; check the expressions, or rescale the parameters or the window",
             n(th[0]),
             n(th[1]),
             n(thd[0]),

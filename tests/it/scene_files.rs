@@ -605,3 +605,30 @@ fn degenerate_regions_are_measured_as_sets() {
         );
     }
 }
+
+/// A region undefined on half the window (`ln(theta_dot)` where θ̇ ≤ 0): the
+/// warning names an undefined formula as a cause, not only overflow.
+#[test]
+fn an_undefined_half_window_is_named_in_the_warning() {
+    let dir = std::env::temp_dir().join(format!("detach-ln-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("ln.toml");
+    std::fs::write(
+        &file,
+        "name = \"ln\"\n[domain]\ntheta = [\"0\", \"1\"]\ntheta_dot = [\"-1\", \"1\"]\n\
+         [regions]\nomega = \"ln(theta) + theta_dot < 0\"\nomega0 = \"ln(theta_dot) < 0\"\n",
+    )
+    .unwrap();
+    let v = json(&[
+        "pave",
+        "--scene-file",
+        file.to_str().unwrap(),
+        "--eps",
+        "0.05",
+        "--json",
+    ]);
+    let w = v["warnings"][0].as_str().unwrap_or_default();
+    assert!(w.contains("a formula is undefined there"), "{v}");
+    assert!(v["undefined_area"].as_f64().unwrap() >= 1.0, "{v}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
