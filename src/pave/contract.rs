@@ -149,11 +149,12 @@ pub(super) fn contract<S: ConstraintSet>(
     for s in qs {
         s.breakpoints(&mut pts);
     }
-    pts.push(0.0);
     // A boundary on (or next to) a window end, as θ̇² − 1 on [−1, 1]: the
-    // part beside it must leave that end free, like a root inside.
+    // part beside it must leave that end free, like a root inside. (Before
+    // the cut at 0 joins the roots: a window end at 0 is no boundary.)
     let near = SHRINK[0] * (w1 - w0);
     let on_end = [w0, w1].map(|w| pts.iter().any(|p| (p - w).abs() <= near));
+    pts.push(0.0);
     pts.retain(|p| w0 < *p && *p < w1);
     pts.sort_by(f64::total_cmp);
     pts.dedup();
