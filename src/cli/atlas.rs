@@ -569,7 +569,6 @@ fn overrides_for(id: SceneId, all: &[(String, String)]) -> Vec<(String, String)>
         .collect()
 }
 
-/// Where a scene file of an atlas run comes from.
 pub fn run_atlas(args: &AtlasArgs) -> CliResult {
     // Shipped scene files named by --scene are read like --scene-file.
     let shipped: Vec<&str> = args

@@ -65,13 +65,19 @@ pub enum ParamError {
 }
 
 impl ParamError {
-    /// The same error said of the window option `--name`.
-    pub fn of_window(self, name: &str) -> ParamError {
+    /// The message without its `parameter `name`: ` lead, for a caller
+    /// that names the value otherwise (a window option, a file's key).
+    pub fn reason(&self, name: &str) -> String {
         let text = self.to_string();
         let prefix = format!("parameter `{name}`: ");
+        text.strip_prefix(&prefix).unwrap_or(&text).to_string()
+    }
+
+    /// The same error said of the window option `--name`.
+    pub fn of_window(self, name: &str) -> ParamError {
         ParamError::Window {
             name: name.to_string(),
-            reason: text.strip_prefix(&prefix).unwrap_or(&text).to_string(),
+            reason: self.reason(name),
         }
     }
 }

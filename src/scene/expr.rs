@@ -1466,8 +1466,18 @@ mod tests {
         assert_eq!(one(&[], "1").theta_dot_degree(1), None);
     }
 
-    /// The three coefficients in f64 against the original at θ̇ = −1, 0, 1:
-    /// c0 = f(0), c1 = (f(1) − f(−1))/2, c2 = (f(1) + f(−1))/2 − f(0).
+    /// `c2, c1, c0` of the quadratic output 0 of `p` at θ, from its values
+    /// at θ̇ = −1, 0, 1 (c0 = f(0), c1 = (f(1) − f(−1))/2,
+    /// c2 = (f(1) + f(−1))/2 − f(0)), each with a tolerance for f64 rounding.
+    fn sampled_coefficients(p: &Program, theta: f64) -> [(f64, f64); 3] {
+        let f = |w: f64| eval1(p, theta, w);
+        let (f0, f1, fm) = (f(0.0), f(1.0), f(-1.0));
+        [(f1 + fm) / 2.0 - f0, (f1 - fm) / 2.0, f0]
+            .map(|c| (c, 1e-12 * (1.0 + c.abs() + f1.abs() + fm.abs())))
+    }
+
+    /// The three coefficients in f64 against the original at θ̇ = −1, 0, 1
+    /// ([`sampled_coefficients`]).
     #[test]
     fn quadratic_coefficients_reproduce_the_function() {
         let defs = [
@@ -1489,16 +1499,12 @@ mod tests {
             assert_eq!(q.outputs(), 3);
             assert!(q.tape.iter().all(|n| *n != Node::ThetaDot), "{text}");
             for theta in [0.5, -1.25, 2.0, 0.375] {
-                let f = |w: f64| eval1(&p, theta, w);
                 let mut c = [0.0; 3];
                 q.eval(theta, f64::NAN, &mut c);
-                let (f0, f1, fm) = (f(0.0), f(1.0), f(-1.0));
-                let want = [(f1 + fm) / 2.0 - f0, (f1 - fm) / 2.0, f0];
-                for k in 0..3 {
-                    let tol = 1e-12 * (1.0 + want[k].abs() + f1.abs() + fm.abs());
+                for (k, (want, tol)) in sampled_coefficients(&p, theta).into_iter().enumerate() {
                     assert!(
-                        (c[k] - want[k]).abs() <= tol,
-                        "{text} θ={theta}: {c:?} vs {want:?}"
+                        (c[k] - want).abs() <= tol,
+                        "{text} θ={theta}: {c:?} vs {want}"
                     );
                 }
             }
@@ -1536,15 +1542,11 @@ mod tests {
             assert_eq!(q.outputs(), 5);
             assert!(q.tape.iter().all(|n| *n != Node::ThetaDot), "{text}");
             for theta in [0.5, -1.25, 2.0, 0.375] {
-                let f = |w: f64| eval1(&p, theta, w);
                 let mut c = [0.0; 5];
                 q.eval(theta, f64::NAN, &mut c);
-                let (f0, f1, fm) = (f(0.0), f(1.0), f(-1.0));
-                let want = [(f1 + fm) / 2.0 - f0, (f1 - fm) / 2.0, f0];
-                for k in 0..3 {
+                for (k, (want, tol)) in sampled_coefficients(&p, theta).into_iter().enumerate() {
                     let got = c[0] / c[1] * c[k + 2];
-                    let tol = 1e-12 * (1.0 + want[k].abs() + f1.abs() + fm.abs());
-                    assert!((got - want[k]).abs() <= tol, "{text} θ={theta}: {c:?}");
+                    assert!((got - want).abs() <= tol, "{text} θ={theta}: {c:?}");
                 }
                 if peeled {
                     let t = iv(theta, theta);

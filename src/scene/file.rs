@@ -390,12 +390,8 @@ fn domain_ends(key: &str, text: &[String; 2]) -> Result<[Interval; 2], String> {
         if t.trim_start().starts_with('+') {
             return Err(format!("`{key}`: `{t}`: no leading `+`"));
         }
-        enclose_window_end(key, t).map_err(|e| {
-            // The message names the key itself, not a "parameter".
-            let e = e.to_string();
-            let prefix = format!("parameter `{key}`: ");
-            format!("`{key}`: {}", e.strip_prefix(&prefix).unwrap_or(&e))
-        })
+        // The message names the key itself, not a "parameter".
+        enclose_window_end(key, t).map_err(|e| format!("`{key}`: {}", e.reason(key)))
     };
     let ends = [end(&text[0])?, end(&text[1])?];
     if ends[0].sup() < ends[1].inf() {

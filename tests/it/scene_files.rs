@@ -435,18 +435,11 @@ fn regions_of_any_form_pave_and_prove() {
     assert_eq!(f.not_quadratic(), Some("omega"));
     let exact = [2.0 * 3f64.sqrt(), 6.0];
     for m in detach::pave::Method::ALL {
-        let p = detach::pave::pave_scene_method(
-            &scene,
-            Variant::Derived,
-            &scene.domain(),
-            PaveOptions {
-                eps: 1.0 / 256.0,
-                ..PaveOptions::default()
-            },
-            &detach::pave::MethodOptions::new(m),
-            |_, _, _| {},
-        )
-        .unwrap();
+        let opts = PaveOptions {
+            eps: 1.0 / 256.0,
+            ..PaveOptions::default()
+        };
+        let p = pave_with(&scene, m, opts);
         for (i, want) in exact.iter().enumerate() {
             let b = p.area_bounds(&standard_cells()[i], 0.0);
             assert!(
@@ -503,15 +496,7 @@ fn boundaries_constant_in_theta_are_certified() {
     let scene = Scene::File(Box::new(FileScene::parse(text, &[]).unwrap()));
     let exact = [2.0, 1.5, 1.5, 0.0, 0.0, 0.5];
     for m in detach::pave::Method::ALL {
-        let p = detach::pave::pave_scene_method(
-            &scene,
-            Variant::Derived,
-            &scene.domain(),
-            PaveOptions::default(),
-            &detach::pave::MethodOptions::new(m),
-            |_, _, _| {},
-        )
-        .unwrap();
+        let p = pave_with(&scene, m, PaveOptions::default());
         // The contracting methods cut at the lines; the bisecting ones
         // leave a band of boxes along each.
         let band = match m.name() {
@@ -531,18 +516,37 @@ fn boundaries_constant_in_theta_are_certified() {
             );
         }
     }
+    areas_within_1e12(&scene, &exact, "");
+}
+
+/// `area` of each of the six sets of `scene` contains `exact` and is at
+/// most 10⁻¹² wide, in at most 2¹⁰ θ-pieces.
+fn areas_within_1e12(scene: &Scene, exact: &[f64; 6], what: &str) {
     for (i, want) in exact.iter().enumerate() {
         let opts = AreaOptions {
             tol: 1e-12,
             max_pieces: 1 << 10,
         };
-        let e = cell_area(&scene, Variant::Derived, &scene.domain(), CELLS[i], opts).unwrap();
+        let e = cell_area(scene, Variant::Derived, &scene.domain(), CELLS[i], opts).unwrap();
         assert!(
             e.area.contains(*want) && e.area.wid() <= 1e-12,
-            "set {i}: {:?}",
+            "{what} set {i}: {:?}",
             e.area
         );
     }
+}
+
+/// `scene` paved by method `m`.
+fn pave_with(scene: &Scene, m: detach::pave::Method, opts: PaveOptions) -> detach::pave::Paving {
+    detach::pave::pave_scene_method(
+        scene,
+        Variant::Derived,
+        &scene.domain(),
+        opts,
+        &detach::pave::MethodOptions::new(m),
+        |_, _, _| {},
+    )
+    .unwrap()
 }
 
 /// Degenerate regions, by hand on θ ∈ [0, 1], θ̇ ∈ [−2, 2] (area 4), with
@@ -567,34 +571,14 @@ fn degenerate_regions_are_measured_as_sets() {
         ("theta_dot^2 > 0", [2.0, 4.0, 2.0, 0.0, 2.0, 0.0]),
     ];
     for (omega0, exact) in cases {
-        let s = scene(omega0);
-        for (i, want) in exact.iter().enumerate() {
-            let opts = AreaOptions {
-                tol: 1e-12,
-                max_pieces: 1 << 10,
-            };
-            let e = cell_area(&s, Variant::Derived, &s.domain(), CELLS[i], opts).unwrap();
-            assert!(
-                e.area.contains(*want) && e.area.wid() <= 1e-12,
-                "{omega0} set {i}: {:?}",
-                e.area
-            );
-        }
+        areas_within_1e12(&scene(omega0), &exact, omega0);
     }
     let s = scene("theta_dot^2 > 0");
     for m in detach::pave::Method::ALL {
         if !matches!(m.name(), "contract" | "slices") {
             continue;
         }
-        let p = detach::pave::pave_scene_method(
-            &s,
-            Variant::Derived,
-            &s.domain(),
-            PaveOptions::default(),
-            &detach::pave::MethodOptions::new(m),
-            |_, _, _| {},
-        )
-        .unwrap();
+        let p = pave_with(&s, m, PaveOptions::default());
         let b = p.area_bounds(&standard_cells()[1], 0.0);
         assert!(
             b.inner_area <= 4.0 && b.outer_area >= 4.0 && b.outer_area - b.inner_area < 1e-9,
