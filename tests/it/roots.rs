@@ -320,16 +320,14 @@ fn a_derivative_not_away_from_zero_gives_no_count_bound() {
 
 #[test]
 fn roots_cli_prints_one_cluster_near_kappa0() {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_detach"))
-        .args([
-            "roots",
-            "--equation",
-            "2.10",
-            "--kappa",
-            "0.1924500897298753",
-        ])
-        .output()
-        .unwrap();
+    let near_kappa0 = [
+        "roots",
+        "--equation",
+        "2.10",
+        "--kappa",
+        "0.1924500897298753",
+    ];
+    let out = crate::common::detach(&near_kappa0);
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
     let rows: Vec<&str> = text.lines().filter(|l| l.contains("cluster of")).collect();
@@ -345,18 +343,7 @@ fn roots_cli_prints_one_cluster_near_kappa0() {
         "{text}"
     );
     // the JSON keeps every member
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_detach"))
-        .args([
-            "roots",
-            "--equation",
-            "2.10",
-            "--kappa",
-            "0.1924500897298753",
-            "--json",
-        ])
-        .output()
-        .unwrap();
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = crate::common::json(&[&near_kappa0[..], &["--json"]].concat());
     let members = v["clusters"][0]["members"].as_array().unwrap();
     assert_eq!(members.len(), v["roots"].as_array().unwrap().len());
     assert!(members.len() > 1);
