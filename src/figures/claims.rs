@@ -10,7 +10,8 @@
 
 use super::roots::okabe_ito as oi;
 use super::{
-    class_swatch, draw_err, register_fonts, text_width, theta_ticks, AtlasError, CellLayer, Class,
+    class_swatch, draw_err, draw_x_ticks, register_fonts, text_width, theta_ticks, AtlasError,
+    CellLayer, Class,
 };
 use super::{native, nice_ticks, tick_label, Figure, THETA_DOT};
 use crate::pave::{Paving, PhaseBox};
@@ -419,16 +420,7 @@ fn render(root: &Area, prep: &Prepared) -> Result<(), AtlasError> {
     let tick_font = label_font
         .color(&INK)
         .pos(Pos::new(HPos::Center, VPos::Top));
-    for (t, label) in x_ticks {
-        let x = ((t - xr[0]) / (xr[1] - xr[0]) * f64::from(pw)).round() as i32;
-        let x = x.min(pw as i32 - 1);
-        below
-            .draw(&PathElement::new(vec![(x, 0), (x, 5)], INK.stroke_width(1)))
-            .map_err(draw_err)?;
-        below
-            .draw_text(&label, &tick_font, (x, 8))
-            .map_err(draw_err)?;
-    }
+    draw_x_ticks(&below, x_ticks, xr, pw, &tick_font)?;
     let desc = ("sans-serif", 18)
         .into_font()
         .color(&INK)

@@ -410,16 +410,7 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
     let tick_font = label_font
         .color(&INK)
         .pos(Pos::new(HPos::Center, VPos::Top));
-    for (t, label) in key_points {
-        let x = ((t - r.theta[0]) / (r.theta[1] - r.theta[0]) * f64::from(pw)).round() as i32;
-        let x = x.min(pw as i32 - 1);
-        below
-            .draw(&PathElement::new(vec![(x, 0), (x, 5)], INK.stroke_width(1)))
-            .map_err(draw_err)?;
-        below
-            .draw_text(&label, &tick_font, (x, 8))
-            .map_err(draw_err)?;
-    }
+    draw_x_ticks(&below, key_points, r.theta, pw, &tick_font)?;
     // Axis names, upright: θ below, θ̇ (θ with a dot) left of the plot.
     let desc = ("sans-serif", 20)
         .into_font()
@@ -553,6 +544,27 @@ impl CellLayer {
 }
 
 /// Whether the area draws to an SVG (vector regions) or a PNG (raster).
+/// Ticks under a plot `pw` pixels wide spanning `range`: a mark and its
+/// label, centred, at each tick, in the strip `below` (the atlas and the
+/// paper-check figures alike).
+fn draw_x_ticks(
+    below: &Area,
+    ticks: Vec<(f64, String)>,
+    range: [f64; 2],
+    pw: u32,
+    font: &TextStyle,
+) -> Result<(), AtlasError> {
+    for (t, label) in ticks {
+        let x = ((t - range[0]) / (range[1] - range[0]) * f64::from(pw)).round() as i32;
+        let x = x.min(pw as i32 - 1);
+        below
+            .draw(&PathElement::new(vec![(x, 0), (x, 5)], INK.stroke_width(1)))
+            .map_err(draw_err)?;
+        below.draw_text(&label, font, (x, 8)).map_err(draw_err)?;
+    }
+    Ok(())
+}
+
 fn plot_is_vector(area: &Area) -> bool {
     let flag = std::cell::Cell::new(false);
     let _ = native(area, |fig, _| {
