@@ -159,3 +159,44 @@ fn tightest_marks_the_cases_that_need_tight_basic_operations() {
     assert!(marked >= 20, "only {marked} cases marked tightest");
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
 }
+
+/// The stand-in loose checker is not a no-op: functions move by 4 ulps even
+/// where exact (`sin 0 = 0`), basic operations keep exact results unless
+/// `exact_too`.
+#[test]
+fn the_loose_stand_in_widens_what_it_says() {
+    use detach_check::eval_on_box;
+    use inari::Interval;
+    let p = Interval::try_from((0.0, 0.0)).unwrap();
+    let at = |l: Looseness, e: &str| {
+        with_looseness(l, || eval_on_box(&[], &[], e, p, p).unwrap())
+            .interval()
+            .unwrap()
+    };
+    let tiny = 4.0 * f64::from_bits(1);
+    let functions = Looseness {
+        functions: 4,
+        ..Looseness::default()
+    };
+    assert_eq!(
+        at(functions, "sin(t)"),
+        Interval::try_from((-tiny, tiny)).unwrap()
+    );
+    assert_eq!(
+        at(functions, "4 - 3"),
+        Interval::try_from((1.0, 1.0)).unwrap()
+    );
+    let basic = Looseness {
+        basic: 1,
+        exact_too: true,
+        functions: 0,
+    };
+    assert_eq!(
+        at(basic, "4 - 3"),
+        Interval::try_from((1.0f64.next_down(), 1.0f64.next_up())).unwrap()
+    );
+    assert_eq!(
+        at(Looseness::default(), "sin(t) + 4 - 3"),
+        Interval::try_from((1.0, 1.0)).unwrap()
+    );
+}
