@@ -167,7 +167,10 @@ impl AreaSum {
 mod tests {
     use super::*;
 
-    fn sum(leaves: &[((f64, f64), (f64, f64))]) -> Interval {
+    /// A leaf's `(t0, t1)` and `(w0, w1)`.
+    type Leaf = ((f64, f64), (f64, f64));
+
+    fn sum(leaves: &[Leaf]) -> Interval {
         let mut s = AreaSum::default();
         for &(t, w) in leaves {
             s.add(&LeafArea::of(t, w));

@@ -627,7 +627,7 @@ fn a_name_inf_is_refused_as_in_proof_files() {
         .replace("- g\"", "- inf\"");
     let def = GOOD.replace("\nV = ", "\ninf = ").replace("U/V", "U/inf");
     for text in [param, def] {
-        let err = FileScene::parse(&text, &[]).err().expect("refused");
+        let err = FileScene::parse(&text, &[]).expect_err("refused");
         assert!(err.contains("`inf` is reserved"), "{err}");
     }
     // Another spelling is a name like any other.
