@@ -77,47 +77,97 @@ fn lang_pow<T: Num>(x: T, k: i32) -> T {
     }
 }
 
+/// How much looser than tightest a stand-in checker rounds: tests use it to
+/// show that a verdict does not rest on the last bit (`proofs/FORMAT.md`,
+/// "Intervals", says which operations must be tightest).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Looseness {
+    /// Ulps added at each end of the basic operations' results (`+ − × ÷`,
+    /// `x^2`, `sqrt`, the steps of root pieces).
+    pub basic: u32,
+    /// Whether exact results of the basic operations (a point, an end at 0)
+    /// move too, as they do for a checker that is not tightest.
+    pub exact_too: bool,
+    /// Ulps added at each end of the functions' results (`sin`, `cos`,
+    /// `tan`, `ln`, `x^n` for n ≥ 3), exact or not.
+    pub functions: u32,
+}
+
 thread_local! {
-    static LOOSENESS: Cell<u32> = const { Cell::new(0) };
+    static LOOSENESS: Cell<Looseness> = const {
+        Cell::new(Looseness { basic: 0, exact_too: false, functions: 0 })
+    };
 }
 
 /// Runs `f` with the result of every interval operation of an expression
 /// (and of the Newton and mean-value steps of root pieces) widened outward
-/// by `ulps` ulps at each end (but not a point, nor an end at 0): a stand-in for a
-/// checker whose rounding is correct but looser than this one's. Constants
-/// (decimals, parameters, `pi`) keep their enclosures. A proof meant for
-/// any correct checker stays VALID under it.
+/// by `ulps` ulps at each end (but not an exact result of a basic
+/// operation: a point, an end at 0): a stand-in for a checker whose rounding
+/// is correct but looser than this one's. Constants (decimals, parameters,
+/// `pi`) keep their enclosures. A proof meant for any correct checker stays
+/// VALID under it.
 pub fn with_loose_rounding<R>(ulps: u32, f: impl FnOnce() -> R) -> R {
-    let old = LOOSENESS.replace(ulps);
+    with_looseness(
+        Looseness {
+            basic: ulps,
+            exact_too: false,
+            functions: ulps,
+        },
+        f,
+    )
+}
+
+/// Runs `f` with the given looseness (see [`with_loose_rounding`]).
+pub fn with_looseness<R>(l: Looseness, f: impl FnOnce() -> R) -> R {
+    let old = LOOSENESS.replace(l);
     let r = f();
     LOOSENESS.set(old);
     r
 }
 
-/// `x` widened by the current looseness ([`with_loose_rounding`]). A point
-/// stays a point, and an end at 0 stays there: an exactly representable
-/// result (`x − x`, `0·y`, `1/∞`) is exact under any rounding, so a correct
-/// checker returns it exactly.
-pub(crate) fn loosen_i(x: Interval) -> Interval {
-    let k = LOOSENESS.get();
-    if k == 0 || x.is_empty() || x.inf() == x.sup() {
-        return x;
-    }
+/// `x` moved outward by `k` doubles at each end.
+fn widen(x: Interval, k: u32) -> Interval {
     let (mut a, mut b) = (x.inf(), x.sup());
     for _ in 0..k {
-        if a != 0.0 {
-            a = a.next_down();
-        }
-        if b != 0.0 {
-            b = b.next_up();
-        }
+        a = a.next_down();
+        b = b.next_up();
     }
+    Interval::try_from((a, b)).unwrap_or(x)
+}
+
+/// `x` widened by the current looseness of the basic operations. Unless
+/// `exact_too`, a point stays a point and an end at 0 stays there: an
+/// exactly representable result (`x − x`, `0·y`, `1/∞`) is exact under any
+/// correct directed rounding.
+pub(crate) fn loosen_i(x: Interval) -> Interval {
+    let l = LOOSENESS.get();
+    if l.basic == 0 || x.is_empty() {
+        return x;
+    }
+    if l.exact_too {
+        return widen(x, l.basic);
+    }
+    if x.inf() == x.sup() {
+        return x;
+    }
+    let w = widen(x, l.basic);
+    let a = if x.inf() == 0.0 { 0.0 } else { w.inf() };
+    let b = if x.sup() == 0.0 { 0.0 } else { w.sup() };
     Interval::try_from((a, b)).unwrap_or(x)
 }
 
 fn loosen(x: DecInterval) -> DecInterval {
     match x.interval() {
-        Some(i) if LOOSENESS.get() > 0 => DecInterval::set_dec(loosen_i(i), x.decoration()),
+        Some(i) if LOOSENESS.get().basic > 0 => DecInterval::set_dec(loosen_i(i), x.decoration()),
+        _ => x,
+    }
+}
+
+/// A function's value widened by the current looseness of the functions.
+fn loosen_fn(x: DecInterval) -> DecInterval {
+    let k = LOOSENESS.get().functions;
+    match x.interval() {
+        Some(i) if k > 0 && !i.is_empty() => DecInterval::set_dec(widen(i, k), x.decoration()),
         _ => x,
     }
 }
@@ -145,22 +195,26 @@ impl Num for DecInterval {
         loosen(DecInterval::sqr(self))
     }
     fn pown(self, n: i32) -> Self {
-        loosen(self.powi(n))
+        if n >= 3 {
+            loosen_fn(self.powi(n))
+        } else {
+            loosen(self.powi(n))
+        }
     }
     fn sqrt(self) -> Self {
         loosen(DecInterval::sqrt(self))
     }
     fn sin(self) -> Self {
-        loosen(DecInterval::sin(self))
+        loosen_fn(DecInterval::sin(self))
     }
     fn cos(self) -> Self {
-        loosen(DecInterval::cos(self))
+        loosen_fn(DecInterval::cos(self))
     }
     fn tan(self) -> Self {
-        loosen(DecInterval::tan(self))
+        loosen_fn(DecInterval::tan(self))
     }
     fn ln(self) -> Self {
-        loosen(DecInterval::ln(self))
+        loosen_fn(DecInterval::ln(self))
     }
     fn abs(self) -> Self {
         DecInterval::abs(self)
@@ -377,7 +431,8 @@ impl Program {
         if !is_name(name) {
             return Err(format!("{name:?} is not a valid name"));
         }
-        if FUNCTIONS.contains(&name) || name == "pi" {
+        // `inf` is reserved so that an unbounded end `"inf"` reads one way only.
+        if FUNCTIONS.contains(&name) || name == "pi" || name == "inf" {
             return Err(format!("{name:?} is reserved"));
         }
         if self.names.contains_key(name) {

@@ -5,7 +5,7 @@
 use inari::{DecInterval, Decoration, Interval};
 
 use super::encoding::{decimal_enclosure, parse_hex_f64};
-use super::eval::{continuous, defined, show, show_i};
+use super::eval::{continuous, defined, loosen_i, show, show_i};
 use super::json::{arr_of, decls, obj_of, opt_str, str_of, Obj};
 use super::pieces::{self, cap_dec, Function, Kind};
 use super::roots::OneVar;
@@ -135,12 +135,13 @@ fn verify(
     let (Some(pn), Some(pm), Some(dpn)) = (pn.interval(), pm.interval(), dpn.interval()) else {
         return Err("NaI".into());
     };
-    let big_p = pn.intersection(pm + dpn * (n - point(peak)));
+    let l = loosen_i;
+    let big_p = pn.intersection(l(pm + l(dpn * l(n - point(peak)))));
     if big_p.is_empty() || big_p.inf() <= 0.0 {
         return Err(format!("P = {} is not positive", show_i(big_p)));
     }
     let two = Interval::try_from((2.0, 2.0)).unwrap_or(Interval::EMPTY);
-    let k = big_p / two;
+    let k = l(big_p / two);
     if k.inf() < lo.sup() {
         return Err(format!(
             "claimed kappa0 lo {:e} exceeds the certified lower bound {:e}",

@@ -64,7 +64,7 @@ mod pieces;
 mod roots;
 
 pub use self::encoding::{base64_decode, decimal_enclosure, parse_hex_f64};
-pub use self::eval::with_loose_rounding;
+pub use self::eval::{with_loose_rounding, with_looseness, Looseness};
 pub use self::output::{check_and_print, json_files, Status, Tally};
 
 use inari::{DecInterval, Interval};

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use super::area::{AreaSum, LeafArea};
 use super::encoding::{base64_decode, decimal_enclosure, parse_hex_f64, BitReader};
-use super::eval::{apply, continuous, defined, show, Dual, Num, Op, Program};
+use super::eval::{apply, continuous, defined, loosen_i, show, Dual, Num, Op, Program};
 use super::json::{arr_of, as_obj, decls, obj_of, opt_str, pair_of, str_of, u64_of, Obj};
 use super::roots::constant;
 use super::{Outcome, Unreadable};
@@ -429,9 +429,10 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
             ));
         }
     }
-    let area_d = (d[1] - d[0]) * (d[3] - d[2]);
-    let area_r = (iv(r[1], r[1]) - iv(r[0], r[0])) * (iv(r[3], r[3]) - iv(r[2], r[2]));
-    let uncovered = area_d - area_r;
+    let l = loosen_i;
+    let area_d = l(l(d[1] - d[0]) * l(d[3] - d[2]));
+    let area_r = l(l(iv(r[1], r[1]) - iv(r[0], r[0])) * l(iv(r[3], r[3]) - iv(r[2], r[2])));
+    let uncovered = l(area_d - area_r);
 
     // 2.–3. Replay the tree and check every leaf.
     let nc = st.roots.len();
@@ -551,7 +552,7 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
         let hi = if a.empty {
             0.0
         } else {
-            (iv(outer[k].bounds().sup(), outer[k].bounds().sup()) + uncovered).sup()
+            loosen_i(iv(outer[k].bounds().sup(), outer[k].bounds().sup()) + uncovered).sup()
         };
         if let Some((text, c)) = &a.inner {
             if c.sup() > lo {

@@ -1,9 +1,12 @@
 //! The conformance suite `proofs/conformance/`: every case file is checked
 //! through the library and must get the verdict its manifest entry expects
 //! (VALID, INVALID, or malformed = unreadable). A case file that is not
-//! listed, or a listed file that is missing, fails the test too.
+//! listed, or a listed file that is missing, fails the test too. A checker
+//! as loose as FORMAT.md allows ("Accuracy") must give every verdict as
+//! well, except the VALID cases marked `"tightest": true`, which only a
+//! checker whose basic operations are tightest passes.
 
-use detach_check::{check_file, Verdict};
+use detach_check::{check_file, with_looseness, Looseness, Verdict};
 use serde_json::Value;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -14,6 +17,15 @@ fn suite() -> PathBuf {
 
 /// The verdict as the manifest spells it.
 fn verdict_of(path: &Path) -> (&'static str, String) {
+    verdict_with(path, Looseness::default())
+}
+
+/// The verdict of a checker with the given looseness.
+fn verdict_with(path: &Path, loose: Looseness) -> (&'static str, String) {
+    with_looseness(loose, || verdict_raw(path))
+}
+
+fn verdict_raw(path: &Path) -> (&'static str, String) {
     match check_file(path) {
         Err(e) => ("malformed", e.0),
         Ok(r) => match r.verdict {
@@ -44,6 +56,11 @@ fn every_case_gets_its_expected_verdict() {
             c["rule"].as_str().is_some_and(|r| !r.is_empty()),
             "{file}: no rule"
         );
+        assert!(
+            c.get("tightest")
+                .is_none_or(|t| t == true && expect == "VALID"),
+            "{file}: tightest must be true, and only on a VALID case"
+        );
         assert!(listed.insert(file.to_string()), "{file} is listed twice");
         let path = dir.join(file);
         if !path.is_file() {
@@ -71,5 +88,115 @@ fn every_case_gets_its_expected_verdict() {
         failures.len(),
         cases.len(),
         failures.join("\n")
+    );
+}
+
+/// The listed cases with their expected verdicts and `tightest` marks.
+fn listed_cases() -> Vec<(PathBuf, String, bool)> {
+    let dir = suite();
+    let text = std::fs::read_to_string(dir.join("cases.json")).expect("cases.json is readable");
+    let manifest: Value = serde_json::from_str(&text).expect("cases.json is JSON");
+    let cases = manifest["cases"].as_array().expect("a case list");
+    cases
+        .iter()
+        .map(|c| {
+            (
+                dir.join(c["file"].as_str().expect("a file name")),
+                c["expect"].as_str().expect("a verdict").to_string(),
+                c.get("tightest") == Some(&Value::Bool(true)),
+            )
+        })
+        .collect()
+}
+
+/// FORMAT.md lets `sin`, `cos`, `tan`, `ln` and `x^n` (n ≥ 3) be 4 ulps
+/// looser than tightest at each end, even where the exact value is a
+/// double. A checker that loose must still give every case its verdict.
+#[test]
+fn the_loosest_allowed_checker_gives_every_verdict() {
+    let loose = Looseness {
+        functions: 4,
+        ..Looseness::default()
+    };
+    let mut failures = Vec::new();
+    for (path, expect, _) in listed_cases() {
+        let (got, why) = verdict_with(&path, loose);
+        if got != expect {
+            failures.push(format!(
+                "{}: expected {expect}, got {got} {why}",
+                path.display()
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A checker whose basic operations are one ulp looser than tightest, exact
+/// results included (`4 − 3` no longer `[1, 1]`), rejects exactly the VALID
+/// cases marked `"tightest"`: so the marks say which cases need tightness.
+#[test]
+fn tightest_marks_the_cases_that_need_tight_basic_operations() {
+    let loose = Looseness {
+        basic: 1,
+        exact_too: true,
+        functions: 4,
+    };
+    let mut wrong = Vec::new();
+    let mut marked = 0;
+    for (path, expect, tightest) in listed_cases() {
+        marked += usize::from(tightest);
+        if expect != "VALID" {
+            continue;
+        }
+        let (got, why) = verdict_with(&path, loose);
+        if (got == "VALID") == tightest {
+            wrong.push(format!(
+                "{}: tightest {tightest}, loose checker {got} {why}",
+                path.display()
+            ));
+        }
+    }
+    assert!(marked >= 20, "only {marked} cases marked tightest");
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
+/// The stand-in loose checker is not a no-op: functions move by 4 ulps even
+/// where exact (`sin 0 = 0`), basic operations keep exact results unless
+/// `exact_too`.
+#[test]
+fn the_loose_stand_in_widens_what_it_says() {
+    use detach_check::eval_on_box;
+    use inari::Interval;
+    let p = Interval::try_from((0.0, 0.0)).unwrap();
+    let at = |l: Looseness, e: &str| {
+        with_looseness(l, || eval_on_box(&[], &[], e, p, p).unwrap())
+            .interval()
+            .unwrap()
+    };
+    let tiny = 4.0 * f64::from_bits(1);
+    let functions = Looseness {
+        functions: 4,
+        ..Looseness::default()
+    };
+    assert_eq!(
+        at(functions, "sin(t)"),
+        Interval::try_from((-tiny, tiny)).unwrap()
+    );
+    assert_eq!(
+        at(functions, "4 - 3"),
+        Interval::try_from((1.0, 1.0)).unwrap()
+    );
+    let basic = Looseness {
+        basic: 1,
+        exact_too: true,
+        functions: 0,
+    };
+    assert_eq!(
+        at(basic, "4 - 3"),
+        Interval::try_from((1.0f64.next_down(), 1.0f64.next_up())).unwrap()
+    );
+    assert_eq!(
+        at(Looseness::default(), "sin(t) + 4 - 3"),
+        Interval::try_from((1.0, 1.0)).unwrap()
     );
 }

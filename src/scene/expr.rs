@@ -27,9 +27,9 @@ const FUNCTIONS: [&str; 6] = ["sqrt", "sin", "cos", "tan", "ln", "abs"];
 const THETA: &str = "theta";
 const THETA_DOT: &str = "theta_dot";
 /// Names a parameter or definition may not take besides the functions: the
-/// variables, also under the names `t`, `w` a proof file binds them to, and
-/// `pi`.
-const RESERVED: [&str; 5] = ["t", "w", "pi", THETA, THETA_DOT];
+/// variables, also under the names `t`, `w` a proof file binds them to,
+/// `pi`, and `inf`, reserved in proof files (where `"inf"` is an unbounded end).
+const RESERVED: [&str; 6] = ["t", "w", "pi", "inf", THETA, THETA_DOT];
 
 /// A mistake in one expression or name: `key` is the definition, parameter
 /// or output name, `offset` the 1-based character position when there is one.

@@ -412,7 +412,8 @@ fn check_name(key: &str, name: &str) -> Result<(), String> {
         Err(format!(
             "`{key}`: `{name}` is not a name (a letter, then letters, digits or `_`)"
         ))
-    } else if RESERVED.contains(&name) {
+    } else if RESERVED.contains(&name) || name == "inf" {
+        // `inf` is reserved in proof files (an unbounded end), so here too.
         Err(format!("`{key}`: `{name}` is reserved"))
     } else {
         Ok(())

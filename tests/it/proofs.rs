@@ -212,18 +212,29 @@ fn a_stale_manifest_entry_is_reported_once() {
 
 /// Every committed proof holds for a checker whose outward rounding is
 /// correct but looser than detach's: each operation's result widened by
-/// 2 ulps at each end. No claim may rest on the last bit: beside θ = π, where
-/// tan(θ/2) has its pole, the paver proves labels on θ-slabs widened by a
-/// few ulps (`THETA_SLACK_ULPS`), so such a leaf is left undecided.
+/// 2 ulps at each end (exact results of `+ − × ÷` kept), and for the
+/// loosest checker FORMAT.md allows ("Accuracy": basic operations tightest,
+/// functions up to 4 ulps wide at each end, exact values included). No
+/// claim may rest on the last bit: beside θ = π, where tan(θ/2) has its
+/// pole, the paver proves labels on θ-slabs widened by a few ulps
+/// (`THETA_SLACK_ULPS`), so such a leaf is left undecided.
 #[test]
 fn committed_proofs_hold_under_loose_rounding() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("proofs");
+    let loosest_allowed = detach::check::Looseness {
+        functions: 4,
+        ..Default::default()
+    };
     let mut failed = Vec::new();
     for name in HEADLINE.iter() {
         let bytes = std::fs::read(dir.join(file_name(name))).unwrap();
-        let r = detach::check::with_loose_rounding(2, || check_bytes(&bytes).unwrap());
-        if let Verdict::Invalid(why) = r.verdict {
-            failed.push(format!("{}: {why}", file_name(name)));
+        let two = detach::check::with_loose_rounding(2, || check_bytes(&bytes).unwrap());
+        let allowed =
+            detach::check::with_looseness(loosest_allowed, || check_bytes(&bytes).unwrap());
+        for (how, r) in [("2 ulps", two), ("functions 4 ulps", allowed)] {
+            if let Verdict::Invalid(why) = r.verdict {
+                failed.push(format!("{} ({how}): {why}", file_name(name)));
+            }
         }
     }
     assert!(failed.is_empty(), "{}", failed.join("\n"));

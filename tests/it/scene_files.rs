@@ -616,3 +616,23 @@ fn an_undefined_half_window_is_named_in_the_warning() {
     assert!(v["undefined_area"].as_f64().unwrap() >= 1.0, "{v}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `inf` is reserved in proof files (FORMAT.md, Expressions), so a scene
+/// file may not name a parameter or definition `inf`: its proofs would be
+/// unreadable.
+#[test]
+fn a_name_inf_is_refused_as_in_proof_files() {
+    let param = GOOD
+        .replace("g = \"9.81\"", "inf = \"9.81\"")
+        .replace("- g\"", "- inf\"");
+    let def = GOOD.replace("\nV = ", "\ninf = ").replace("U/V", "U/inf");
+    for text in [param, def] {
+        let err = FileScene::parse(&text, &[]).expect_err("refused");
+        assert!(err.contains("`inf` is reserved"), "{err}");
+    }
+    // Another spelling is a name like any other.
+    let other = GOOD
+        .replace("g = \"9.81\"", "Inf = \"9.81\"")
+        .replace("- g\"", "- Inf\"");
+    assert!(FileScene::parse(&other, &[]).is_ok());
+}
