@@ -49,16 +49,14 @@ fn a_smaller_eps_is_never_worse_under_the_same_budget() {
                     .map(|&e| undecided(id, v, m, e, max))
                     .collect();
                 for (k, w) in runs.windows(2).enumerate() {
-                    for i in 0..2 {
+                    for (i, (fine, coarse)) in w[1].iter().zip(w[0]).enumerate() {
                         // (equal trees sum their leaves alike: no slack)
                         assert!(
-                            w[1][i] <= w[0][i],
-                            "{m} {id:?} {v} max {max}, constraint {i}: eps {} gives {} \
-                             but eps {} gives {}",
+                            *fine <= coarse,
+                            "{m} {id:?} {v} max {max}, constraint {i}: eps {} gives {fine} \
+                             but eps {} gives {coarse}",
                             ladder[k + 1],
-                            w[1][i],
                             ladder[k],
-                            w[0][i]
                         );
                     }
                 }
