@@ -160,6 +160,14 @@ struct RegionReport {
 }
 
 #[derive(Serialize)]
+struct StopDetail {
+    reason: detach::pave::StopReason,
+    text: &'static str,
+    #[serde(flatten)]
+    budget: Option<detach::pave::BudgetStop>,
+}
+
+#[derive(Serialize)]
 struct BoxCounts {
     inner: usize,
     outer: usize,
@@ -194,6 +202,9 @@ pub struct PaveReport {
     /// Why refinement stopped: `all_decided`, `resolution`,
     /// `double_precision_limit` or `budget`.
     stop: detach::pave::StopReason,
+    /// The same with its explanation and, when the budget stopped
+    /// refinement, the option that sets it and what the asked eps needs.
+    stop_reason: StopDetail,
     elapsed_s: f64,
     leaves: usize,
     stats: detach::pave::PaveStats,
@@ -212,10 +223,11 @@ fn parse_overrides(texts: &[String]) -> Result<Vec<(String, String)>, CliError> 
         .collect()
 }
 
+/// A bar on stderr, drawn only when stderr is a terminal.
 fn progress_bar(levels: u64, label: &str) -> ProgressBar {
     let bar = ProgressBar::new(levels);
     bar.set_style(
-        ProgressStyle::with_template("{prefix:>14} [{bar:30}] level {pos}/{len} {msg}")
+        ProgressStyle::with_template("{prefix:>14} [{bar:30}] level {pos}/{len} {elapsed} {msg}")
             .expect("valid template")
             .progress_chars("=> "),
     );
@@ -236,10 +248,13 @@ fn pave_and_report(
     // and no double interval halves more than about 1100 times.
     let levels = (2.0 * (1.0 / opts.eps).log2().ceil().clamp(0.0, 1100.0)) as u64 + 1;
     let bar = progress_bar(levels, scene.name());
+    // Redrawn while a long level runs, so the clock moves.
+    bar.enable_steady_tick(std::time::Duration::from_millis(500));
     let start = Instant::now();
+    let max = opts.max_boxes;
     let paving = pave_scene_method(scene, variant, domain, opts, mo, |level, open, leaves| {
         bar.set_position(level as u64);
-        bar.set_message(format!("{open} open, {leaves} leaves"));
+        bar.set_message(format!("{open} open, {leaves}/{max} leaves"));
     })
     .map_err(CliError::usage)?;
     let elapsed_s = start.elapsed().as_secs_f64();
@@ -299,6 +314,11 @@ fn summarise(
         max_boxes: opts.max_boxes,
         complete: paving.complete,
         stop: paving.stop,
+        stop_reason: StopDetail {
+            reason: paving.stop,
+            text: paving.stop.describe(),
+            budget: paving.budget,
+        },
         elapsed_s,
         leaves: paving.leaves.len(),
         stats: paving.stats,
@@ -402,6 +422,18 @@ fn print_table(r: &PaveReport) {
         r.stop,
         r.stop.describe()
     );
+    if let Some(b) = &r.stop_reason.budget {
+        outln!(
+            "  {} {} stopped refinement; eps {:e} needs at least {} leaves \
+             (about {:.1e} by the growth of the last levels): raise {} (at most {MAX_LEAVES}) or eps",
+            b.option,
+            b.max_boxes,
+            r.eps,
+            b.leaves_needed_at_least,
+            b.leaves_needed_estimate,
+            b.option
+        );
+    }
     outln!(
         "  {} {:>12} {:>12} {:>12} {:>9} {:>9} {:>9}",
         pad("region", 7),

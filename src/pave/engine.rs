@@ -11,8 +11,8 @@
 use super::labels::{Labels, Scope};
 use super::tree::Tree;
 use super::{
-    ConstraintSet, Label, PaveOptions, PaveStats, Paving, PerConstraint, PhaseBox, SlabEnds,
-    StopReason, MAX_CONSTRAINTS,
+    BudgetStop, ConstraintSet, Label, PaveOptions, PaveStats, Paving, PerConstraint, PhaseBox,
+    SlabEnds, StopReason, MAX_CONSTRAINTS,
 };
 use inari::Interval;
 use rayon::prelude::*;
@@ -26,9 +26,6 @@ pub(super) trait Refine<S: ConstraintSet>: Sync {
     /// that need it. Otherwise a fresh box computes its own slab with the
     /// end data the monotone test needs.
     const SHARED_SLABS: bool = true;
-    /// When the budget cannot take every refinement of a level, the boxes
-    /// of largest area go first (otherwise frontier order).
-    const LARGEST_FIRST: bool = false;
 
     fn scope(&self) -> &Scope<'_, S>;
     /// The axis to bisect an undecided box along, if any.
@@ -84,6 +81,8 @@ pub(super) struct Done<Sl> {
     pub outcome: Outcome,
     pub work: Work,
     pub slab: Option<Arc<Sl>>,
+    /// Split before any interval work: its labels are not computed.
+    pub unevaluated: bool,
 }
 
 /// Per-box work counters.
@@ -169,6 +168,15 @@ impl Left {
 }
 
 /// Paves `root` with `method`; arguments already checked.
+///
+/// Under the budget a smaller ε must never give a worse result than a
+/// larger one: the levels are those of any ε until the budget stops one,
+/// and that level refines the boxes of largest area first ([`schedule`]).
+/// A box split before any interval work (a `slices` slab) would be left
+/// with no labels at all if the budget then stopped its children's
+/// contraction: such a run is started again with those splits stopped one
+/// level earlier (at most once per level: each try is cheaper), so every
+/// slab it keeps is labelled.
 pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
     method: &R,
     root: PhaseBox,
@@ -176,93 +184,36 @@ pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
     names: Vec<String>,
     mut progress: impl FnMut(u32, usize, usize),
 ) -> Paving {
-    let set = method.scope().set;
-    let mut tree = Tree::new();
-    let mut frontier: Vec<Open<S::Slab>> = vec![Open {
-        bx: root,
-        slab: None,
-        fresh: true,
-    }];
-    let mut stats = PaveStats::default();
-    let mut left = Left::default();
-    let mut level = 0u32;
+    let mut cap = u32::MAX;
+    let mut budget = None;
+    let mut abandoned = PaveStats::default();
     let mut peak = 0usize;
-    // Per-level buffers, reused (their pages are touched once): this
-    // level's results and plan, and the next level's frontier (the buffer
-    // of the level before).
-    let (mut done, mut plan, mut next) = (Vec::new(), Vec::new(), Vec::new());
-
-    while !frontier.is_empty() {
-        progress(level, frontier.len(), tree.leaves());
-        let shared = if R::SHARED_SLABS {
-            share_slabs(set, &mut frontier)
-        } else {
-            0
-        };
-        stats.slab_evaluations += shared as u64;
-
-        refill(&mut done, frontier.len(), PAR_MIN_HEAVY, |k| {
-            visit(method, &frontier[k])
-        });
-        let work = |d: &Done<S::Slab>| {
-            let heap = match &d.outcome {
-                Outcome::Tree(t) => t.capacity() * size_of::<Local>(),
-                _ => 0,
-            };
-            [
-                d.work.evals,
-                d.work.slabs,
-                heap as u64,
-                d.slab.is_some() as u64,
-            ]
-        };
-        let add = |a: [u64; 4], b: [u64; 4]| [a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3]];
-        let [evals, slabs, heap, own_slabs] = if done.len() < PAR_MIN {
-            done.iter().map(work).fold([0; 4], add)
-        } else {
-            done.par_iter().map(work).reduce(|| [0; 4], add)
-        };
-        stats.box_evaluations += evals;
-        stats.slab_evaluations += slabs;
-
-        schedule(
-            method,
-            &frontier,
-            &done,
-            &tree,
-            opts.max_boxes,
-            &mut left,
-            &mut plan,
-        );
-        tree.grow(&mut frontier, &mut done, &plan, &mut next);
-
-        // Everything held at this point: the tree and its bookkeeping, both
-        // frontiers, this level's results and plan, and the slabs computed
-        // for it.
-        let slab_bytes = size_of::<S::Slab>() + 2 * size_of::<usize>();
-        peak = peak.max(
-            tree.bytes()
-                + (frontier.capacity() + next.capacity()) * size_of::<Open<S::Slab>>()
-                + done.capacity() * size_of::<Done<S::Slab>>()
-                + heap as usize
-                + plan.capacity() * size_of::<Plan>()
-                + (shared + own_slabs as usize) * slab_bytes,
-        );
-        // Emptied off the main thread (the drops release slabs); the
-        // buffers are reused.
-        par_clear(&mut done);
-        par_clear(&mut frontier);
-        std::mem::swap(&mut frontier, &mut next);
-        if !frontier.is_empty() {
-            level += 1;
+    let run = loop {
+        match grow_levels(method, root, opts, cap, &mut progress) {
+            Err(again) => {
+                budget = budget.or(Some(again.budget));
+                abandoned.box_evaluations += again.stats.box_evaluations;
+                abandoned.slab_evaluations += again.stats.slab_evaluations;
+                peak = peak.max(again.peak);
+                cap = again.cap;
+            }
+            Ok(run) => break run,
         }
-    }
-    stats.depth = level;
+    };
+    let Run {
+        tree,
+        mut stats,
+        left,
+        peak: run_peak,
+        bite,
+    } = run;
+    stats.box_evaluations += abandoned.box_evaluations;
+    stats.slab_evaluations += abandoned.slab_evaluations;
     let stop = left.stop();
-    drop((done, plan, next));
+    let budget = budget.or(bite).filter(|_| stop == StopReason::Budget);
 
     let (nodes, leaves, assembly) = tree.into_preorder(root);
-    peak = peak.max(assembly);
+    let peak = peak.max(run_peak).max(assembly);
     let bytes =
         nodes.capacity() * size_of::<super::Node>() + leaves.capacity() * size_of::<super::Leaf>();
     stats.bytes_per_leaf = bytes as f64 / leaves.len().max(1) as f64;
@@ -275,8 +226,231 @@ pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
         leaves,
         complete: stop != StopReason::Budget,
         stop,
+        budget,
         same_as: method.scope().same_as.clone(),
         stats,
+    }
+}
+
+/// A finished run of the level loop.
+struct Run {
+    tree: Tree,
+    stats: PaveStats,
+    left: Left,
+    peak: usize,
+    /// What the asked ε needs, from the level the budget stopped.
+    bite: Option<BudgetStop>,
+}
+
+/// A run given up: the budget stopped a level while boxes were still
+/// split unevaluated; the next run evaluates every fresh box from level
+/// `cap` on (the deepest level whose fresh boxes, contracted as the run's
+/// were, fit in the budget).
+struct Again {
+    cap: u32,
+    budget: BudgetStop,
+    stats: PaveStats,
+    peak: usize,
+}
+
+/// The level loop: boxes split unevaluated only below level `cap`.
+fn grow_levels<S: ConstraintSet, R: Refine<S>>(
+    method: &R,
+    root: PhaseBox,
+    opts: PaveOptions,
+    mut cap: u32,
+    progress: &mut impl FnMut(u32, usize, usize),
+) -> Result<Run, Again> {
+    let set = method.scope().set;
+    let mut tree = Tree::new();
+    let mut frontier: Vec<Open<S::Slab>> = vec![Open {
+        bx: root,
+        slab: None,
+        fresh: true,
+    }];
+    let mut stats = PaveStats::default();
+    let mut left = Left::default();
+    let mut level = 0u32;
+    let mut peak = 0usize;
+    // Open boxes per level (for the estimate of what ε needs), the last
+    // level with a box split unevaluated, and what the budget stopped.
+    let mut opens = Vec::new();
+    let mut unevaluated_at: Option<u32> = None;
+    // Per level, leaves if stopped there and fresh boxes; over the run,
+    // fresh boxes evaluated and the leaves and open boxes they asked for.
+    let (mut start, mut fresh) = (Vec::new(), Vec::new());
+    let mut evaluated = [0u64; 2];
+    let mut bite = None;
+    // Per-level buffers, reused (their pages are touched once): this
+    // level's results and plan, and the next level's frontier (the buffer
+    // of the level before).
+    let (mut done, mut plan, mut next) = (Vec::new(), Vec::new(), Vec::new());
+
+    while !frontier.is_empty() {
+        progress(level, frontier.len(), tree.leaves());
+        opens.push(frontier.len());
+        start.push(tree.leaves() + frontier.len());
+        let shared = if R::SHARED_SLABS {
+            share_slabs(set, &mut frontier)
+        } else {
+            0
+        };
+        stats.slab_evaluations += shared as u64;
+
+        let may_skip = level < cap;
+        refill(&mut done, frontier.len(), PAR_MIN_HEAVY, |k| {
+            visit(method, &frontier[k], may_skip)
+        });
+        let work = |k: usize| {
+            let d = &done[k];
+            let heap = match &d.outcome {
+                Outcome::Tree(t) => t.capacity() * size_of::<Local>(),
+                _ => 0,
+            };
+            let p = Plan::of(&d.outcome);
+            let fresh = frontier[k].fresh;
+            let evaluated = fresh && !d.unevaluated;
+            [
+                d.work.evals,
+                d.work.slabs,
+                heap as u64,
+                d.slab.is_some() as u64,
+                d.unevaluated as u64,
+                fresh as u64,
+                evaluated as u64,
+                if evaluated {
+                    (p.leaves + p.opens) as u64
+                } else {
+                    0
+                },
+            ]
+        };
+        let add = |a: [u64; 8], b: [u64; 8]| std::array::from_fn(|i| a[i] + b[i]);
+        let [evals, slabs, heap, own_slabs, unevaluated, new, evals_fresh, made] =
+            par_fold(done.len(), [0; 8], work, add);
+        stats.box_evaluations += evals;
+        stats.slab_evaluations += slabs;
+        if unevaluated > 0 {
+            unevaluated_at = Some(level);
+        }
+        fresh.push(new as usize);
+        evaluated = [evaluated[0] + evals_fresh, evaluated[1] + made];
+
+        let demand = schedule(
+            method,
+            &frontier,
+            &done,
+            &tree,
+            opts.max_boxes,
+            &mut left,
+            &mut plan,
+        );
+        if let (Some(needed), None) = (demand, bite) {
+            let leaves = tree.leaves();
+            bite = Some(BudgetStop::new(opts, level, &opens, leaves, needed));
+        }
+        // Everything held at this point: the tree and its bookkeeping, both
+        // frontiers, this level's results and plan, and the slabs computed
+        // for it.
+        let slabs_held = (shared + own_slabs as usize) * (size_of::<S::Slab>() + 16);
+        let held = |tree: &Tree, opens: [usize; 2], done: usize, plan: usize| {
+            tree.bytes()
+                + opens[0] * size_of::<Open<S::Slab>>()
+                + done * size_of::<Done<S::Slab>>()
+                + heap as usize
+                + plan * size_of::<Plan>()
+                + slabs_held
+        };
+        let sizes =
+            |f: &Vec<Open<S::Slab>>, n: &Vec<Open<S::Slab>>| [f.capacity() + n.capacity(), 0];
+        if demand.is_some() {
+            if let Some(u) = unevaluated_at.filter(|&u| u + 1 >= level) {
+                // The budget stopped this level, and boxes of it (or their
+                // parents) were split without labels: start again,
+                // evaluating every fresh box from a level where, at the
+                // run's leaves per evaluated fresh box, they fit.
+                let per_box = match evaluated {
+                    [0, _] => 8.0,
+                    [n, m] => m as f64 / n as f64,
+                };
+                let fits = |c: &usize| {
+                    start[*c] as f64 + fresh[*c] as f64 * (per_box - 1.0).max(0.0)
+                        <= opts.max_boxes as f64
+                };
+                let cap = (0..=u as usize).rev().find(fits).unwrap_or(0) as u32;
+                return Err(Again {
+                    cap,
+                    budget: bite.expect("set with the demand"),
+                    stats,
+                    peak: peak.max(held(
+                        &tree,
+                        sizes(&frontier, &next),
+                        done.capacity(),
+                        plan.capacity(),
+                    )),
+                });
+            }
+            // Nothing more fits: no box is split unevaluated again.
+            cap = cap.min(level + 1);
+        }
+        tree.grow(&mut frontier, &mut done, &plan, &mut next);
+        peak = peak.max(held(
+            &tree,
+            sizes(&frontier, &next),
+            done.capacity(),
+            plan.capacity(),
+        ));
+        // Emptied off the main thread (the drops release slabs); the
+        // buffers are reused.
+        par_clear(&mut done);
+        par_clear(&mut frontier);
+        std::mem::swap(&mut frontier, &mut next);
+        if !frontier.is_empty() {
+            level += 1;
+        }
+    }
+    stats.depth = level;
+    Ok(Run {
+        tree,
+        stats,
+        left,
+        peak,
+        bite,
+    })
+}
+
+impl BudgetStop {
+    /// At level `level`, where `opens` boxes were open per level so far
+    /// and `leaves` leaves made, the budget could not take the `needed`
+    /// leaves the level asked for (open boxes counted as leaves).
+    fn new(opts: PaveOptions, level: u32, opens: &[usize], leaves: usize, needed: usize) -> Self {
+        // Levels at the resolution: two per halving of each axis (slices
+        // halve θ alone down to ε²: as many).
+        let depth = 2.0 * (1.0 / opts.eps).log2().ceil().clamp(0.0, 1100.0);
+        let d = (depth - f64::from(level)).max(0.0);
+        let n = *opens.last().expect("a level") as f64;
+        // Growth per level of the open boxes over the last four levels: of
+        // the 2n boxes a level makes, g·n stay open and (2 − g)·n are leaves.
+        let back = (opens.len() - 1).min(4);
+        let g = if back == 0 {
+            2.0
+        } else {
+            (n / opens[opens.len() - 1 - back] as f64)
+                .powf(1.0 / back as f64)
+                .clamp(1.0, 2.0)
+        };
+        let series = if g == 1.0 {
+            d
+        } else {
+            (g.powf(d) - 1.0) / (g - 1.0)
+        };
+        let estimate = leaves as f64 + n * ((2.0 - g) * series + g.powf(d));
+        BudgetStop {
+            option: "--max-boxes",
+            max_boxes: opts.max_boxes,
+            leaves_needed_at_least: needed,
+            leaves_needed_estimate: estimate.max(needed as f64).min(f64::MAX),
+        }
     }
 }
 
@@ -320,17 +494,22 @@ fn share_slabs<S: ConstraintSet>(set: &S, frontier: &mut [Open<S::Slab>]) -> usi
 
 /// Processes one open box: natural labels, then, while a relevant
 /// constraint is undecided, the method's subtree or a bisection.
-fn visit<S: ConstraintSet, R: Refine<S>>(method: &R, o: &Open<S::Slab>) -> Done<S::Slab> {
+fn visit<S: ConstraintSet, R: Refine<S>>(
+    method: &R,
+    o: &Open<S::Slab>,
+    may_skip: bool,
+) -> Done<S::Slab> {
     let scope = method.scope();
     let mut work = Work::default();
     // A fresh slab the method calls too coarse is split in θ without
-    // interval work (undecided as far as computed).
-    if o.fresh && method.split_unevaluated(&o.bx) {
+    // interval work (undecided as far as computed), where allowed.
+    if may_skip && o.fresh && method.split_unevaluated(&o.bx) {
         return Done {
             labels: [Label::Undecided; MAX_CONSTRAINTS],
             outcome: Outcome::Split(0),
             work,
             slab: None,
+            unevaluated: true,
         };
     }
     let (slab, ends, own) = match o.slab.as_ref() {
@@ -358,12 +537,15 @@ fn visit<S: ConstraintSet, R: Refine<S>>(method: &R, o: &Open<S::Slab>) -> Done<
         outcome,
         work,
         slab: own,
+        unevaluated: false,
     }
 }
 
 /// Which boxes of a level are refined: every one that asks when the budget
-/// takes them all, otherwise in priority order while it does. Records what
-/// is left unrefined.
+/// takes them all, otherwise the boxes of largest area first (ties in
+/// frontier order, so the choice is the same whatever the thread count)
+/// while it does. Records what is left unrefined; returns the leaves the
+/// level asked for (open boxes counted) when the budget could not take them.
 fn schedule<S: ConstraintSet, R: Refine<S>>(
     method: &R,
     frontier: &[Open<S::Slab>],
@@ -372,7 +554,7 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
     max_boxes: usize,
     left: &mut Left,
     plan: &mut Vec<Plan>,
-) {
+) -> Option<usize> {
     let scope = method.scope();
     // What each box asks for, then cut back to what the budget allows.
     refill(plan, done.len(), PAR_MIN, |k| Plan::of(&done[k].outcome));
@@ -412,15 +594,15 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
         });
         left.undecided |= undecided;
         left.ulp_limit |= ulp_limit;
-        return;
+        return None;
     }
+    // Refining a box removes at most its own undecided area: the largest
+    // first (a stable sort keeps frontier order on ties).
     let mut order: Vec<usize> = (0..frontier.len()).collect();
-    if R::LARGEST_FIRST {
-        let area = |o: &Open<S::Slab>| {
-            (o.bx.theta[1] - o.bx.theta[0]) * (o.bx.theta_dot[1] - o.bx.theta_dot[0])
-        };
-        order.sort_by(|&a, &b| area(&frontier[b]).total_cmp(&area(&frontier[a])));
-    }
+    let area = |o: &Open<S::Slab>| {
+        (o.bx.theta[1] - o.bx.theta[0]) * (o.bx.theta_dot[1] - o.bx.theta_dot[0])
+    };
+    order.sort_by(|&a, &b| area(&frontier[b]).total_cmp(&area(&frontier[a])));
     let mut leaves_if_stopped = tree.leaves() + frontier.len();
     let mut nodes_planned = 0usize;
     for &k in &order {
@@ -451,6 +633,7 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
             }
         }
     }
+    Some(tree.leaves() + frontier.len() + want_leaves)
 }
 
 fn slab_key(b: &PhaseBox) -> (u64, u64) {

@@ -499,6 +499,20 @@ impl std::fmt::Display for StopReason {
     }
 }
 
+/// What the asked resolution needs when the leaf budget stopped refinement.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct BudgetStop {
+    /// The option that sets the budget.
+    pub option: &'static str,
+    pub max_boxes: usize,
+    /// A lower bound: the leaves of the level the budget stopped, each box
+    /// refined as asked (open boxes counted as one leaf each).
+    pub leaves_needed_at_least: usize,
+    /// An estimate, not a bound: the open boxes' growth over the last
+    /// levels carried on down to the resolution.
+    pub leaves_needed_estimate: f64,
+}
+
 /// The result of paving: the tree, its leaves, and whether it finished.
 #[derive(Clone, Debug)]
 pub struct Paving {
@@ -511,6 +525,8 @@ pub struct Paving {
     pub complete: bool,
     /// Why refinement stopped (`complete` is `stop != Budget`).
     pub stop: StopReason,
+    /// When the budget stopped refinement: what the asked ε needs.
+    pub budget: Option<BudgetStop>,
     /// Per constraint, `Some(j)` if it is the same function as constraint `j`
     /// ([`ConstraintSet::same_as`]); its labels are copies of `j`'s.
     pub same_as: Vec<Option<usize>>,

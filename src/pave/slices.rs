@@ -79,7 +79,6 @@ impl<'a, S: ConstraintSet> Slices<'a, S> {
 impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
     /// Each fresh slab is computed with its end data, for the monotone test.
     const SHARED_SLABS: bool = false;
-    const LARGEST_FIRST: bool = true;
 
     fn scope(&self) -> &Scope<'_, S> {
         &self.scope

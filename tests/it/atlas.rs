@@ -209,6 +209,7 @@ fn synthetic(leaves: Vec<Leaf>) -> Paving {
         leaves,
         complete: true,
         stop: StopReason::Resolution,
+        budget: None,
         same_as: vec![None, None],
         stats: PaveStats::default(),
     }

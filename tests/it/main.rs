@@ -5,6 +5,7 @@ mod common;
 
 mod area;
 mod atlas;
+mod budget;
 mod check_expr;
 mod check_fuzz;
 mod check_proofs;
