@@ -476,6 +476,13 @@ fn options(flags: &PaveFlags, default_eps: f64) -> Result<PaveOptions, CliError>
 }
 
 pub fn run_pave(args: &PaveArgs) -> CliResult {
+    super::take_stdout(
+        &[
+            ("--leaves", args.leaves.as_deref()),
+            ("--proof", args.proof.as_deref()),
+        ],
+        args.json,
+    )?;
     let overrides = parse_overrides(&args.flags.params)?;
     let (scene, params) = args.source.build(&overrides, args.flags.variant)?;
     let opts = options(&args.flags, PaveOptions::default().eps)?;
@@ -552,12 +559,10 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
 
 /// `pave --leaves FILE`: the CSV of [`detach::pave::export`].
 fn write_leaves(paving: &Paving, provenance: &str, path: &Path) -> CliResult {
-    let fail =
-        |e: std::io::Error| CliError::runtime(format!("cannot write {}: {e}", path.display()));
     detach::files::write_atomic_with(path, |w| {
         detach::pave::export::write_leaves_csv(paving, provenance, w)
     })
-    .map_err(fail)
+    .map_err(|e| super::cannot_write(path, e))
 }
 
 /// Parameter overrides for one scene of a multi-scene run: only the names it
@@ -715,7 +720,7 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
     )
     .expect("serialisable");
     detach::files::write_atomic(&summary, text.as_bytes())
-        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", summary.display())))?;
+        .map_err(|e| super::cannot_write(&summary, e))?;
     outln!("wrote {}", summary.display());
     Ok(())
 }

@@ -342,7 +342,7 @@ fn write_roots_proof(path: &std::path::Path, args: &RootsArgs) -> CliResult {
     let (bytes, _, units) = super::write_checked(path, &proof)?;
     eprintln!(
         "wrote {} ({bytes} B, {units}, checked VALID)",
-        path.display()
+        detach::files::shown(path)
     );
     Ok(())
 }
@@ -468,6 +468,7 @@ fn incomplete_summary(rows: &[Row]) -> String {
 
 /// `detach roots`.
 pub fn run_roots(args: &RootsArgs) -> CliResult {
+    super::take_stdout(&[("--proof", args.proof.as_deref())], args.json)?;
     let (result, parts) = solve(args)?;
     if let Some(path) = &args.proof {
         write_roots_proof(path, args)?;
@@ -612,7 +613,7 @@ fn write_json<T: Serialize>(
         .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", dir.display())))?;
     let path = dir.join(name);
     detach::files::write_atomic(&path, (to_json(x, arguments)? + "\n").as_bytes())
-        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
+        .map_err(|e| super::cannot_write(&path, e))?;
     Ok(path)
 }
 
