@@ -107,10 +107,11 @@ pub struct PaveArgs {
     #[arg(long)]
     pub json: bool,
     /// Also write this run as a proof file (`proofs/FORMAT.md`), checked
-    /// before it is reported.
+    /// before it is reported; `-`: standard output.
     #[arg(long, value_name = "FILE")]
     pub proof: Option<PathBuf>,
-    /// Write every leaf (exact endpoints, one label per constraint) as CSV.
+    /// Write every leaf (exact endpoints, one label per constraint) as CSV;
+    /// `-`: standard output.
     #[arg(long, value_name = "FILE")]
     pub leaves: Option<PathBuf>,
 }

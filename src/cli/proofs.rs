@@ -203,7 +203,7 @@ pub fn write_paving_proof(
     let (bytes, _, units) = write_checked(path, &proof)?;
     eprintln!(
         "wrote {} ({bytes} B, {units}, checked VALID)",
-        path.display()
+        detach::files::shown(path)
     );
     Ok(())
 }

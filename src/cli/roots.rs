@@ -44,7 +44,8 @@ pub struct RootsArgs {
     #[arg(long)]
     pub json: bool,
     /// Also write the roots as a proof file (`proofs/FORMAT.md`), checked
-    /// before it is reported: (2.9) with --kappa/--alpha, (2.10), (2.12).
+    /// before it is reported: (2.9) with --kappa/--alpha, (2.10), (2.12);
+    /// `-`: standard output.
     #[arg(long, value_name = "FILE")]
     pub proof: Option<PathBuf>,
 }
