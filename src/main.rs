@@ -75,6 +75,8 @@ fn run(command: Command) -> CliResult {
 }
 
 fn main() -> std::process::ExitCode {
+    // First, before any thread: a signal removes temporaries, not outputs.
+    detach::files::remove_temporaries_on_signals();
     match run(parse()).and_then(|()| cli::stdout_status()) {
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(e) => {

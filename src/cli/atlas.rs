@@ -107,10 +107,11 @@ pub struct PaveArgs {
     #[arg(long)]
     pub json: bool,
     /// Also write this run as a proof file (`proofs/FORMAT.md`), checked
-    /// before it is reported.
+    /// before it is reported; `-`: standard output.
     #[arg(long, value_name = "FILE")]
     pub proof: Option<PathBuf>,
-    /// Write every leaf (exact endpoints, one label per constraint) as CSV.
+    /// Write every leaf (exact endpoints, one label per constraint) as CSV;
+    /// `-`: standard output.
     #[arg(long, value_name = "FILE")]
     pub leaves: Option<PathBuf>,
 }
@@ -508,6 +509,13 @@ fn options(flags: &PaveFlags, default_eps: f64) -> Result<PaveOptions, CliError>
 }
 
 pub fn run_pave(args: &PaveArgs) -> CliResult {
+    super::take_stdout(
+        &[
+            ("--leaves", args.leaves.as_deref()),
+            ("--proof", args.proof.as_deref()),
+        ],
+        args.json,
+    )?;
     let overrides = parse_overrides(&args.flags.params)?;
     let (scene, params) = args.source.build(&overrides, args.flags.variant)?;
     let opts = options(&args.flags, PaveOptions::default().eps)?;
@@ -584,12 +592,10 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
 
 /// `pave --leaves FILE`: the CSV of [`detach::pave::export`].
 fn write_leaves(paving: &Paving, provenance: &str, path: &Path) -> CliResult {
-    let fail =
-        |e: std::io::Error| CliError::runtime(format!("cannot write {}: {e}", path.display()));
     detach::files::write_atomic_with(path, |w| {
         detach::pave::export::write_leaves_csv(paving, provenance, w)
     })
-    .map_err(fail)
+    .map_err(|e| super::cannot_write(path, e))
 }
 
 /// Parameter overrides for one scene of a multi-scene run: only the names it
@@ -747,7 +753,7 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
     )
     .expect("serialisable");
     detach::files::write_atomic(&summary, text.as_bytes())
-        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", summary.display())))?;
+        .map_err(|e| super::cannot_write(&summary, e))?;
     outln!("wrote {}", summary.display());
     Ok(())
 }

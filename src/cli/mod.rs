@@ -24,9 +24,17 @@ use std::sync::Mutex;
 
 static STDOUT_CLOSED: AtomicBool = AtomicBool::new(false);
 static STDOUT_ERROR: Mutex<Option<String>> = Mutex::new(None);
+/// Set when a file option is `-`: standard output then carries that file
+/// alone, and the command's table goes to stderr.
+static STDOUT_TAKEN: AtomicBool = AtomicBool::new(false);
 
-/// Writes one line to stdout; see `outln!`.
+/// Writes one line to stdout (stderr if a file option took stdout); see
+/// `outln!`.
 pub fn write_stdout(args: fmt::Arguments) {
+    if STDOUT_TAKEN.load(Ordering::Relaxed) {
+        eprintln!("{args}");
+        return;
+    }
     if STDOUT_CLOSED.load(Ordering::Relaxed) {
         return;
     }
@@ -50,6 +58,30 @@ pub fn stdout_status() -> CliResult {
     match STDOUT_ERROR.lock().ok().and_then(|s| s.clone()) {
         Some(e) => Err(CliError::runtime(format!("cannot write to stdout: {e}"))),
         None => Ok(()),
+    }
+}
+
+/// Lets at most one output go to standard output: of the file options given
+/// as `(flag, path)`, one may be `-` (or `/dev/stdout`), and not with
+/// `--json`; the table then goes to stderr.
+pub fn take_stdout(files: &[(&str, Option<&Path>)], json: bool) -> CliResult {
+    let dashes: Vec<&str> = files
+        .iter()
+        .filter(|(_, p)| p.is_some_and(detach::files::is_stdout))
+        .map(|(flag, _)| *flag)
+        .collect();
+    match (dashes.as_slice(), json) {
+        ([], _) => Ok(()),
+        ([_], false) => {
+            STDOUT_TAKEN.store(true, Ordering::Relaxed);
+            Ok(())
+        }
+        ([flag], true) => Err(CliError::usage(format!(
+            "--json and {flag} - both write to standard output; give {flag} a file"
+        ))),
+        ([a, b, ..], _) => Err(CliError::usage(format!(
+            "{a} and {b} both write to standard output; give one of them a file"
+        ))),
     }
 }
 
@@ -105,22 +137,34 @@ pub fn write_checked(
     let report = detach::check::check_bytes(&bytes).map_err(|e| {
         CliError::runtime(format!(
             "{}: the checker cannot read it: {e}",
-            path.display()
+            detach::files::shown(path)
         ))
     })?;
     if let detach::check::Verdict::Invalid(why) = &report.verdict {
         return Err(CliError::runtime(format!(
             "{}: the checker rejects it: {why}",
-            path.display()
+            detach::files::shown(path)
         )));
     }
     // Written only once the checker accepts it.
-    detach::files::write_atomic(path, &bytes)
-        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
+    detach::files::write_atomic(path, &bytes).map_err(|e| cannot_write(path, e))?;
     Ok((
         bytes.len(),
         report.seconds,
         format!("{} {}", report.checked, report.unit),
+    ))
+}
+
+/// `cannot write PATH: why`, with a file-size limit (`ulimit -f`) named.
+pub fn cannot_write(path: &Path, e: std::io::Error) -> CliError {
+    let why = if e.kind() == std::io::ErrorKind::FileTooLarge {
+        format!("{e}; the file-size limit (ulimit -f) is too small")
+    } else {
+        e.to_string()
+    };
+    CliError::runtime(format!(
+        "cannot write {}: {why}",
+        detach::files::shown(path)
     ))
 }
 

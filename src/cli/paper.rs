@@ -25,20 +25,23 @@ pub fn run_check_paper(a: &CheckPaperArgs) -> CliResult {
         print!("{}", report::table(&results));
     }
     if a.claims.is_empty() {
-        std::fs::create_dir_all(&a.out)
-            .map_err(|e| CliError::runtime(format!("{}: {e}", a.out.display())))?;
+        // The folder is replaced as a whole (files it holds that this run
+        // does not write are kept): a kill leaves the old report or the new.
+        let fail = |e: std::io::Error| CliError::runtime(format!("{}: {e}", a.out.display()));
+        let draft = detach::files::FolderDraft::begin(&a.out).map_err(fail)?;
         let write = |name: &str, text: String| {
-            let path = a.out.join(name);
+            let path = draft.path().join(name);
             detach::files::write_atomic(&path, text.as_bytes())
-                .map_err(|e| CliError::runtime(format!("{}: {e}", path.display())))
+                .map_err(|e| super::cannot_write(&path, e))
         };
         write("REPORT.md", report::markdown(&results))?;
         write("report.json", report::json(&results))?;
         write("claims.toml", claims::TABLE.to_string())?;
         for r in results.iter().filter(|r| r.figure.is_some()) {
             let mark = claims::figures::witness_box(&r.witness);
-            claims::figures::draw(&r.id, &a.out, mark).map_err(CliError::runtime)?;
+            claims::figures::draw(&r.id, draft.path(), mark).map_err(CliError::runtime)?;
         }
+        draft.commit().map_err(fail)?;
     }
     let written = if a.claims.is_empty() {
         format!("; wrote {}", a.out.join("REPORT.md").display())

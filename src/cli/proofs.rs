@@ -39,14 +39,10 @@ fn hex_digest(bytes: &[u8]) -> String {
         .collect()
 }
 
-/// The manifest of every `.json` file in `dir`, in `sha256sum` format.
-fn write_manifest(dir: &Path) -> CliResult {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .map_err(|e| CliError::runtime(format!("cannot read {}: {e}", dir.display())))?
-        .filter_map(|e| e.ok())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.ends_with(".json"))
-        .collect();
+/// The manifest of the proof files `names` (this run's) in `dir`, in
+/// `sha256sum` format.
+fn write_manifest(dir: &Path, names: &[String]) -> CliResult {
+    let mut names = names.to_vec();
     names.sort();
     let mut text = String::new();
     for n in &names {
@@ -55,8 +51,7 @@ fn write_manifest(dir: &Path) -> CliResult {
         text.push_str(&format!("{}  {n}\n", hex_digest(&bytes)));
     }
     let path = dir.join("MANIFEST.sha256");
-    detach::files::write_atomic(&path, text.as_bytes())
-        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))
+    detach::files::write_atomic(&path, text.as_bytes()).map_err(|e| super::cannot_write(&path, e))
 }
 
 pub fn run_prove(args: &ProveArgs) -> CliResult {
@@ -74,15 +69,19 @@ pub fn run_prove(args: &ProveArgs) -> CliResult {
             )));
         }
     }
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", args.out.display())))?;
+    // The folder is replaced as a whole (files it holds that this run does
+    // not write are kept): a kill leaves the old folder or the new one.
+    let draft = detach::files::FolderDraft::begin(&args.out)
+        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", args.out.display())))?;
     let mut lines = Vec::new();
+    let mut written = Vec::new();
     for n in &names {
         let t = Instant::now();
         let proof = prove_named(n).map_err(CliError::usage)?;
         let prover_s = t.elapsed().as_secs_f64();
-        let path = args.out.join(file_name(n));
+        let path = draft.path().join(file_name(n));
         let (bytes, check_s, units) = write_checked(&path, &proof)?;
+        written.push(file_name(n));
         lines.push(format!(
             "{:<34} {:>9} B  {:<16} prover {:.3} s  checker {:.3} s",
             file_name(n),
@@ -92,7 +91,10 @@ pub fn run_prove(args: &ProveArgs) -> CliResult {
             check_s
         ));
     }
-    write_manifest(&args.out)?;
+    write_manifest(draft.path(), &written)?;
+    draft
+        .commit()
+        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", args.out.display())))?;
     let mut out = std::io::stdout().lock();
     for l in lines {
         let _ = writeln!(out, "{l}");
@@ -201,7 +203,7 @@ pub fn write_paving_proof(
     let (bytes, _, units) = write_checked(path, &proof)?;
     eprintln!(
         "wrote {} ({bytes} B, {units}, checked VALID)",
-        path.display()
+        detach::files::shown(path)
     );
     Ok(())
 }

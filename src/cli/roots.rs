@@ -44,7 +44,8 @@ pub struct RootsArgs {
     #[arg(long)]
     pub json: bool,
     /// Also write the roots as a proof file (`proofs/FORMAT.md`), checked
-    /// before it is reported: (2.9) with --kappa/--alpha, (2.10), (2.12).
+    /// before it is reported: (2.9) with --kappa/--alpha, (2.10), (2.12);
+    /// `-`: standard output.
     #[arg(long, value_name = "FILE")]
     pub proof: Option<PathBuf>,
 }
@@ -342,7 +343,7 @@ fn write_roots_proof(path: &std::path::Path, args: &RootsArgs) -> CliResult {
     let (bytes, _, units) = super::write_checked(path, &proof)?;
     eprintln!(
         "wrote {} ({bytes} B, {units}, checked VALID)",
-        path.display()
+        detach::files::shown(path)
     );
     Ok(())
 }
@@ -468,6 +469,7 @@ fn incomplete_summary(rows: &[Row]) -> String {
 
 /// `detach roots`.
 pub fn run_roots(args: &RootsArgs) -> CliResult {
+    super::take_stdout(&[("--proof", args.proof.as_deref())], args.json)?;
     let (result, parts) = solve(args)?;
     if let Some(path) = &args.proof {
         write_roots_proof(path, args)?;
@@ -612,7 +614,7 @@ fn write_json<T: Serialize>(
         .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", dir.display())))?;
     let path = dir.join(name);
     detach::files::write_atomic(&path, (to_json(x, arguments)? + "\n").as_bytes())
-        .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
+        .map_err(|e| super::cannot_write(&path, e))?;
     Ok(path)
 }
 

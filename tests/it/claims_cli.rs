@@ -31,6 +31,12 @@ fn one_claim_prints_its_row_and_writes_nothing() {
 fn full_run_writes_the_report_and_json() {
     let dir = std::env::temp_dir().join(format!("detach-claims-full-{}", std::process::id()));
     let out = dir.to_str().unwrap();
+    // The folder is replaced as a whole: a file check-paper does not write
+    // is kept, a temporary an older killed run left is dropped.
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("NOTES.md"), "mine").unwrap();
+    std::fs::write(dir.join(".REPORT.1234.tmp.md"), "debris").unwrap();
     let o = detach(&["check-paper", "--json", "--out", out]);
     assert_eq!(
         o.status.code(),
@@ -58,6 +64,11 @@ fn full_run_writes_the_report_and_json() {
         .contains("## Claims not confirmed"));
     assert!(dir.join("figures/F1_10.svg").exists() && dir.join("figures/F1_10.png").exists());
     assert_figures_differ(&dir.join("figures"));
+    assert_eq!(
+        std::fs::read_to_string(dir.join("NOTES.md")).unwrap(),
+        "mine"
+    );
+    assert!(!dir.join(".REPORT.1234.tmp.md").exists());
     let toml = std::fs::read_to_string(dir.join("claims.toml")).unwrap();
     assert_eq!(toml.matches("[[claim]]").count(), arr.len());
     // The summary line (on stderr under --json): the verdict counts of the
