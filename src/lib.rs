@@ -24,8 +24,9 @@
 //! // `Cell::Omega0`, `Cell::OmegaAndOmega0`, …); `spec()` gives its literals.
 //! let omega0 = Cell::Omega0.spec();
 //!
-//! // The paving method: Natural (the default), Centred, Contract or Slices
+//! // The paving method: Slices (the default), Natural, Centred or Contract
 //! // (`"slices".parse::<Method>()` reads the command line's spelling).
+//! assert_eq!(Method::default(), Method::Slices);
 //! // `for_cell` refines only the constraints Ω₀ uses; `MethodOptions::new`
 //! // refines all of them.
 //! let method = MethodOptions::for_cell(Method::Slices, &omega0);

@@ -699,6 +699,37 @@ pub fn s1_friction(mutant: bool) -> Outcome {
     }
 }
 
+/// S1.nonunique: Ω̄ ∩ Ω₀ (contact possible with N ≥ 0, detachment possible
+/// too) is not empty in Example 1: a certified box out of Ω and in Ω₀ at the
+/// defaults, where θ̇ cos θ < 0 (there Ω ⊂ Ω₀ by S1.12). Mutant: μ = 0, where
+/// Ω = Ω₀ (S1.ideal) and no such box exists.
+pub fn s1_nonunique(mutant: bool) -> Outcome {
+    let mu = if mutant { "0" } else { DEFAULTS[4] };
+    let t = [
+        DEFAULTS[0],
+        DEFAULTS[1],
+        DEFAULTS[2],
+        DEFAULTS[3],
+        mu,
+        DEFAULTS[5],
+    ];
+    let f = move |th: Interval, w: Interval| {
+        let p = P1::texts(t).map(DecInterval::new);
+        let (s, c) = dec_angle(th);
+        let w = DecInterval::new(w);
+        [derived_omega(&p, s, c, w), derived_omega0(&p, s, c, w)]
+    };
+    let found = find_leaf(f, window([0.5, 1.5], [-10.0, -4.0]), 1.0 / 64.0, |l| {
+        l == [Label::ProvedOut, Label::ProvedIn]
+    });
+    match found {
+        Some(b) => Outcome::new(Verdict::Confirmed, Strength::Certified,
+            format!("μ = {mu}: box θ ∈ [{:.4}, {:.4}], θ̇ ∈ [{:.4}, {:.4}] lies in Ω̄ ∩ Ω₀ (paradox of non-uniqueness): certified witness that the cell is not empty", b.bx.theta[0], b.bx.theta[1], b.bx.theta_dot[0], b.bx.theta_dot[1]),
+            json!({"params": params_json(t), "witness": b.json(), "first": "Ω", "second": "Ω₀"})),
+        None => Outcome::new(Verdict::False, Strength::Certified, format!("μ = {mu}: no box of Ω₀ ∖ Ω found"), json!({"params": params_json(t)})),
+    }
+}
+
 /// S1.contact: a motion without detachment lies in Ω ∩ Ω₀. Under the
 /// report's reading `Λ̈ = U + V N` with `V = 1/m + h'²/C > 0` (exact, N
 /// free), so contact (Λ̈ = 0) has `N = −U/V` and keeps `N ≥ 0` exactly on the
@@ -876,6 +907,8 @@ pub fn s1_eq(mutant: bool) -> Outcome {
         let saddle = a_up.signum() > 0;
         let stable = a_dn.signum() < 0 && d_dn.signum() < 0;
         let focus = disc.signum() < 0;
+        // Trace 0, determinant > 0: the linearisation is a centre.
+        let centre = a_dn.signum() < 0 && d_dn.signum() == 0;
         (
             saddle,
             stable,
@@ -884,7 +917,7 @@ pub fn s1_eq(mutant: bool) -> Outcome {
             "params": params_json(t),
             "at_pi_over_2": {"d_thdd_d_theta": a_up.get().to_string(), "d_thdd_d_theta_dot": d_up.get().to_string(), "type": if saddle {"saddle"} else {"not a saddle"}},
             "at_minus_pi_over_2": {"d_thdd_d_theta": a_dn.get().to_string(), "d_thdd_d_theta_dot": d_dn.get().to_string(), "discriminant_trace2_minus_4det": disc.get().to_string(),
-                "type": if !stable {"not stable"} else if focus {"stable focus"} else {"stable node"}}}),
+                "type": if centre {"centre of the linearisation"} else if !stable {"not stable"} else if focus {"stable focus"} else {"stable node"}}}),
         )
     };
     // Jacobian entries in closed form for all parameters (exact identity):
@@ -925,9 +958,20 @@ pub fn s1_eq(mutant: bool) -> Outcome {
         "20",
         DEFAULTS[5],
     ];
+    // a = b: the rim passes through the centre of mass, h(−π/2) = 0, and the
+    // friction μh²θ̇ vanishes to second order there.
+    let d2 = [
+        "0.5",
+        DEFAULTS[1],
+        DEFAULTS[2],
+        DEFAULTS[3],
+        DEFAULTS[4],
+        DEFAULTS[5],
+    ];
     let (s0, st0, f0, w0) = classify(d0);
     let (s1, st1, f1, w1) = classify(d1);
-    let w = json!({"equilibria_identity": eq.json(), "jacobian_closed_forms": closed.json(), "side_true": w0, "side_false": w1});
+    let (s2, st2, _, w2) = classify(d2);
+    let w = json!({"equilibria_identity": eq.json(), "jacobian_closed_forms": closed.json(), "side_true": w0, "side_false": w1, "side_a_equals_b": w2});
     if !(eq.agrees() && closed.agrees() && s0 && st0) {
         return Outcome::new(
             Verdict::False,
@@ -936,10 +980,10 @@ pub fn s1_eq(mutant: bool) -> Outcome {
             w,
         );
     }
-    if f0 && !f1 && s1 && st1 {
+    if f0 && !f1 && s1 && st1 && s2 && !st2 {
         Outcome::new(Verdict::Conditional, Strength::Exact,
-            "equilibria exactly at cos θ = 0; Jacobians in closed form for all parameters (proved identity): θ = π/2 a saddle for every b > 0, θ = −π/2 stable for μ > 0 and a focus iff μ²(a−b)⁴ < 4mgbC; at the defaults a focus (μ = 0.8), a stable node at μ = 20 (exact)", w)
-            .correct("θ = π/2 is a saddle; θ = −π/2 is asymptotically stable for μ > 0: a focus iff μ²(a − b)⁴ < 4 m g b C, a node otherwise (a centre of the linearisation at μ = 0)")
+            "equilibria exactly at cos θ = 0; Jacobians in closed form for all parameters (proved identity): θ = π/2 a saddle for every b > 0; at θ = −π/2 trace −μ(a − b)²/C, determinant m g b/C: a stable focus iff 0 < μ²(a − b)⁴ < 4mgbC, a stable node iff μ²(a − b)⁴ ≥ 4mgbC, a centre of the linearisation iff μ(a − b) = 0; at the defaults a focus (μ = 0.8), a stable node at μ = 20, a centre of the linearisation at a = b = 0.5 (exact)", w)
+            .correct("θ = π/2 is a saddle; at θ = −π/2 the linearisation is a stable focus iff 0 < μ²(a − b)⁴ < 4 m g b C, a stable node iff μ²(a − b)⁴ ≥ 4 m g b C, and a centre iff μ(a − b) = 0 (μ = 0, or a = b, where the friction μh²θ̇ vanishes at the lowest point)")
     } else {
         Outcome::new(
             Verdict::Confirmed,
@@ -1016,6 +1060,7 @@ pub(super) const CHECKS: &[(&str, Check)] = &[
     ("F1.11", f1_11),
     ("S1.ideal", s1_ideal),
     ("S1.friction", s1_friction),
+    ("S1.nonunique", s1_nonunique),
     ("S1.contact", s1_contact),
     ("S1.12", s1_12),
     ("S1.12mu", s1_12mu),

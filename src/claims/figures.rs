@@ -8,7 +8,7 @@ use super::witness::{window, PairSet};
 use crate::figures::claims::{
     draw_claim_figure, Axis, ClaimFigure, Curves, Marks, RegionFigure, Series, Shape,
 };
-use crate::figures::THETA_DOT;
+use crate::figures::{THETA_DOT_UNITS, THETA_RAD};
 use crate::pave::{pave, PaveOptions, PhaseBox};
 use crate::roots::equations::kappa_alpha;
 use crate::roots::isolate::RealFn;
@@ -204,8 +204,8 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
             Fig::Lines(Curves {
                 title: format!("F1.7: {theta_dd} of (1.7) as printed against the Newton equations"),
                 subtitle: format!("θ\u{307} = 1; {}", example1_text()),
-                x: axis("θ", [-pi, pi], true),
-                y: axis(theta_dd, [-12.0, 9.0], false),
+                x: axis(THETA_RAD, [-pi, pi], true),
+                y: axis("θ\u{308} (rad/s²)", [-12.0, 9.0], false),
                 series: vec![
                     series(
                         "(1.7) as printed",
@@ -236,8 +236,8 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
             Fig::Lines(Curves {
                 title: "F1.9: Λ\u{308} of (1.9) as printed against (1.8)".into(),
                 subtitle: format!("θ\u{307} = 1, N = mg; {}", example1_text()),
-                x: axis("θ", [-pi, pi], true),
-                y: axis("Λ\u{308}", [-1.0, 6.0], false),
+                x: axis(THETA_RAD, [-pi, pi], true),
+                y: axis("Λ\u{308} (m/s²)", [-1.0, 6.0], false),
                 series: vec![
                     series(
                         "(1.9) as printed",
@@ -264,8 +264,8 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
             Fig::Lines(Curves {
                 title: "F3.4: V_{0} of (3.4) as printed against Newton–Euler".into(),
                 subtitle: "disc on ice, m = 1, a = 1, A = 0.25".into(),
-                x: axis("θ", [0.0, pi], true),
-                y: axis("V_{0}", [0.0, 5.5], false),
+                x: axis(THETA_RAD, [0.0, pi], true),
+                y: axis("V_{0} (1/kg)", [0.0, 5.5], false),
                 series: vec![
                     series(
                         "printed: 1/m",
@@ -297,8 +297,8 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                         &["1", "0.5", "1", "0.3", "9.81"]
                     )
                 ),
-                x: axis("μ", [0.0, 21.0], false),
-                y: axis("trace² − 4 det", [-80.0, 260.0], false),
+                x: axis("μ (kg/s)", [0.0, 21.0], false),
+                y: axis("trace² − 4 det (1/s²)", [-80.0, 260.0], false),
                 series: vec![series(
                     "(μ²(a − b)⁴ − 4mgbC)/C²",
                     grid(0.0, 21.0, 210).map(|u| (u, disc(u))).collect(),
@@ -322,8 +322,8 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
         "S2.case1fr" => Fig::Lines(Curves {
             title: "S2.case1fr: f_{r}(θ) = −cos²θ at α = 0 is not < 0".into(),
             subtitle: "§2, case 1 of the proof that Φ > 0".into(),
-            x: axis("θ", [0.0, pi], true),
-            y: axis("f_{r}", [-1.1, 0.3], false),
+            x: axis(THETA_RAD, [0.0, pi], true),
+            y: axis("f_{r} (dimensionless)", [-1.1, 0.3], false),
             series: vec![series(
                 "f_{r} = −cos²θ",
                 grid(0.0, pi, 300).map(|t| (t, -t.cos().powi(2))).collect(),
@@ -360,39 +360,47 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
             Fig::Lines(Curves {
                 title: "S2.12count: how many roots (2.12) has".into(),
                 subtitle: format!("{SLOPE_TITLE}; {}", p2_text()),
-                x: axis("θ", [0.0, pi], true),
-                y: axis("scaled slope", [-1.05, 1.05], false),
+                x: axis(THETA_RAD, [0.0, pi], true),
+                y: axis("scaled slope (dimensionless)", [-1.05, 1.05], false),
                 series: ss,
                 marks: vec![marks("certified roots (enclosures)", roots, Shape::Dot)],
                 zero: true,
             })
         }
         "S2.12type" => {
+            // Π̃ of (2.5): its minima are centres, its maxima saddles.
             let samples = [("0.3", "0.3"), ("1", "0.2"), ("2.5", "2")];
             let mut ss = Vec::new();
             let (mut centres, mut saddles) = (Vec::new(), Vec::new());
             for (pf, ps) in samples {
+                let p = p2_texts(pf, ps).map(|x| x.mid());
+                let pot = |t: f64| {
+                    p.m * p.g * p.a * t.sin()
+                        + (p.ps - p.pf * t.cos()).powi(2) / (2.0 * p.big_a * t.sin().powi(2))
+                };
                 let (found, types, _) = smooth::equilibria(pf, ps);
                 let rs = found.unwrap_or_default();
-                let kinds: Vec<&str> = types.clone();
                 ss.push(series(
-                    format!("{}: {}", momenta(pf, ps), kinds.join(", ")),
-                    scaled_slope(pf, ps),
+                    format!("{}: {}", momenta(pf, ps), types.join(", ")),
+                    grid(0.02, pi - 0.02, 600).map(|t| (t, pot(t))).collect(),
                 ));
                 for (r, t) in rs.iter().zip(&types) {
-                    let at = (0.5 * (r[0] + r[1]), 0.0);
+                    let th = 0.5 * (r[0] + r[1]);
                     match *t {
-                        "centre" => centres.push(at),
-                        "saddle" => saddles.push(at),
+                        "centre" => centres.push((th, pot(th))),
+                        "saddle" => saddles.push((th, pot(th))),
                         _ => {}
                     }
                 }
             }
             Fig::Lines(Curves {
                 title: "S2.12type: the types of the equilibria of (2.5)".into(),
-                subtitle: format!("{SLOPE_TITLE}; {}", p2_text()),
-                x: axis("θ", [0.0, pi], true),
-                y: axis("scaled slope", [-1.05, 1.05], false),
+                subtitle: format!(
+                    "reduced potential Π\u{303}(θ) of (2.5): a centre at a minimum, a saddle at a maximum; {}",
+                    p2_text()
+                ),
+                x: axis(THETA_RAD, [0.0, pi], true),
+                y: axis("Π\u{303} (J)", [0.0, 25.0], false),
                 series: ss,
                 marks: vec![
                     marks("centre: Π\u{303} minimum (certified)", centres, Shape::Dot),
@@ -402,30 +410,52 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                         Shape::Square,
                     ),
                 ],
-                zero: true,
+                zero: false,
             })
         }
         "S2.12components" => {
+            // The gap of Ω is where Φ < 0, i.e. where κ sin³θ − f_r(θ) < 0
+            // (F2.9: Φ·A²sin⁴θ/p_M² = κ sin³θ − f_r); equilibria on the axis.
             let samples = [("2", "2"), ("2.5", "2")];
             let mut ss = Vec::new();
             let mut eq = Vec::new();
             let mut counts = Vec::new();
             let mut gap_marks = Vec::new();
-            for ((pf, ps), shape) in samples.into_iter().zip([Shape::Ring, Shape::Square]) {
-                ss.push(series(momenta(pf, ps), scaled_slope(pf, ps)));
+            for (((pf, ps), shape), dashed) in samples
+                .into_iter()
+                .zip([Shape::Ring, Shape::Square])
+                .zip([false, true])
+            {
+                let d = smooth::disc(pf, ps);
+                let ka = kappa_alpha(&d).ok();
+                if let Some((kappa, alpha)) = ka.map(|(k, a)| (k.mid(), a.mid())) {
+                    let f = |t: f64| {
+                        let c = t.cos();
+                        kappa * t.sin().powi(3) - c * (alpha - c) * (1.0 - alpha * c)
+                    };
+                    ss.push(Series {
+                        dashed,
+                        ..series(
+                            format!(
+                                "{} ({}): κ = {kappa:.4}, α = {alpha:.2}",
+                                momenta(pf, ps),
+                                if dashed { "dashed" } else { "solid" }
+                            ),
+                            grid(0.0, pi, 600).map(|t| (t, f(t))).collect(),
+                        )
+                    });
+                }
                 let (found, _, _) = smooth::equilibria(pf, ps);
                 let found = found.unwrap_or_default();
                 counts.push(format!("{} at ({pf}, {ps})", found.len()));
                 eq.extend(found.iter().map(|r| (0.5 * (r[0] + r[1]), 0.0)));
-                let d = smooth::disc(pf, ps);
-                let gaps: Vec<(f64, f64)> = kappa_alpha(&d)
-                    .ok()
+                let gaps: Vec<(f64, f64)> = ka
                     .and_then(|(kappa, alpha)| solve_2_9(kappa, alpha, &Budget::default()).ok())
                     .filter(|g| g.complete)
                     .map(|g| g.roots.iter().map(|r| (0.5 * (r.lo + r.hi), 0.0)).collect())
                     .unwrap_or_default();
                 gap_marks.push(marks(
-                    format!("({pf}, {ps}): ends of the gap of Ω, roots of (2.9)"),
+                    format!("({pf}, {ps}): ends of the gap of Ω, certified roots of (2.9)"),
                     gaps,
                     shape,
                 ));
@@ -438,9 +468,12 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
             all.extend(gap_marks);
             Fig::Lines(Curves {
                 title: "S2.12components: equilibria on the two sides of the gap of Ω".into(),
-                subtitle: format!("{SLOPE_TITLE}; {}", p2_text()),
-                x: axis("θ", [0.0, pi], true),
-                y: axis("scaled slope", [-1.05, 1.05], false),
+                subtitle: format!(
+                    "κ sin³θ − f_{{r}}(θ), the sign of Φ of (2.8): Ω has a gap where it is < 0; {}",
+                    p2_text()
+                ),
+                x: axis(THETA_RAD, [0.0, pi], true),
+                y: axis("κ sin³θ − f_{r} (dimensionless)", [-0.1, 0.3], false),
                 series: ss,
                 marks: all,
                 zero: true,
@@ -449,20 +482,49 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
         "S3.c0invariant" => {
             let ts = (0.8f64).acos();
             let boundary = |c0: f64| -> Vec<(f64, f64)> {
-                grid(0.02, pi - 0.02, 600)
-                    .map(|t| {
-                        let r = rhs("2.5", "2", c0, t);
-                        // Ω₀ ∩ {θ̇ > 0} is θ̇ < √(R/(a sin θ)); none where R ≤ 0.
-                        (
-                            t,
-                            if r > 0.0 {
-                                (r / t.sin()).sqrt()
+                let r = |t: f64| rhs("2.5", "2", c0, t);
+                // Ω₀ ∩ {θ̇ > 0} is θ̇ < √(R/(a sin θ)); none where R ≤ 0.
+                let at = |t: f64| {
+                    let v = r(t);
+                    (
+                        t,
+                        if v > 0.0 {
+                            (v / t.sin()).sqrt()
+                        } else {
+                            f64::NAN
+                        },
+                    )
+                };
+                let mut pts: Vec<(f64, f64)> = Vec::new();
+                for t in grid(0.02, pi - 0.02, 600) {
+                    let next = at(t);
+                    // Where R changes sign between samples the boundary meets
+                    // θ̇ = 0: add that point (bisection), so it does not stop
+                    // a grid step short of the axis.
+                    if let Some(&(t0, y0)) = pts.last() {
+                        if y0.is_nan() != next.1.is_nan() {
+                            let (mut lo, mut hi) = (t0, t);
+                            for _ in 0..60 {
+                                let mid = 0.5 * (lo + hi);
+                                if (r(mid) > 0.0) == (r(lo) > 0.0) {
+                                    lo = mid;
+                                } else {
+                                    hi = mid;
+                                }
+                            }
+                            let z = if r(lo) > 0.0 { lo } else { hi };
+                            if y0.is_nan() {
+                                pts.push((z, f64::NAN));
+                                pts.push((z, 0.0));
                             } else {
-                                f64::NAN
-                            },
-                        )
-                    })
-                    .collect()
+                                pts.push((z, 0.0));
+                                pts.push((z, f64::NAN));
+                            }
+                        }
+                    }
+                    pts.push(next);
+                }
+                pts
             };
             Fig::Lines(Curves {
                 title: "S3.c0invariant: the boundary of Ω_{0} for three c_{0}".into(),
@@ -471,8 +533,8 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                     momenta("2.5", "2"),
                     p2_text()
                 ),
-                x: axis("θ", [0.0, pi], true),
-                y: axis(THETA_DOT, [0.0, 8.0], false),
+                x: axis(THETA_RAD, [0.0, pi], true),
+                y: axis(THETA_DOT_UNITS, [0.0, 8.0], false),
                 series: [-5.0, 0.0, 5.0]
                     .into_iter()
                     .map(|c0| series(format!("c_{{0}} = {}", signed(c0)), boundary(c0)))
@@ -497,8 +559,8 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                     momenta("2.5", "2"),
                     p2_text()
                 ),
-                x: axis("θ", [0.0, pi], true),
-                y: axis("R(θ)", [-20.0, 30.0], false),
+                x: axis(THETA_RAD, [0.0, pi], true),
+                y: axis("R(θ) (m/s²)", [-20.0, 30.0], false),
                 series: [-5.0, 0.0, 5.0]
                     .into_iter()
                     .map(|c0| {
@@ -518,7 +580,64 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                 zero: true,
             })
         }
-        "S3.forms" | "S3.sub2" => {
+        "S3.sub2" => {
+            // Subcase 2, p_φ = p_ψ = 1: equilibria where c₀ = G(θ) (S3.sub2).
+            let p = p2_texts("1", "1");
+            let pm = p.map(|x| x.mid());
+            let g = |t: f64| {
+                let th = (t / 2.0).tan();
+                super::ice::g_sub2(&pm, th, ((1.0 + th * th) / 2.0).ln())
+            };
+            let (tstar, gmin) = super::ice::min_g_sub2("1");
+            let t_min = 2.0 * tstar.mid().atan();
+            let g_min = gmin.mid();
+            let curve: Vec<(f64, f64)> = grid(0.05, pi - 0.05, 600).map(|t| (t, g(t))).collect();
+            let level = |c0: f64| vec![(0.0, c0), (pi, c0)];
+            let eqs: Vec<(f64, f64)> = super::ice::equilibria_sub2("1", "3")
+                .into_iter()
+                .map(|r| (0.5 * (r[0] + r[1]), 3.0))
+                .collect();
+            Fig::Lines(Curves {
+                title: "S3.sub2: subcase 2, equilibria where c_{0} = G(θ)".into(),
+                subtitle: format!(
+                    "disc on ice, p_{{φ}} = p_{{ψ}} = 1, {}; G falls then rises (proved)",
+                    p2_text()
+                ),
+                x: axis(THETA_RAD, [0.0, pi], true),
+                y: axis("c_{0}, G (m/s)", [-4.0, 12.0], false),
+                series: vec![
+                    series(
+                        "G(θ): (3.3) at θ\u{307} = 0 vanishes where G = c_{0}",
+                        curve,
+                    ),
+                    Series {
+                        dashed: true,
+                        ..series("c_{0} = 3: two equilibria", level(3.0))
+                    },
+                    Series {
+                        dashed: true,
+                        ..series(
+                            format!("c_{{0}} = min G ≈ {g_min:.4}: one (tangent)"),
+                            level(g_min),
+                        )
+                    },
+                    Series {
+                        dashed: true,
+                        ..series("c_{0} = −3: none", level(-3.0))
+                    },
+                ],
+                marks: vec![
+                    marks("equilibria at c_{0} = 3 (certified)", eqs, Shape::Dot),
+                    marks(
+                        "the tangent point (certified min G)",
+                        vec![(t_min, g_min)],
+                        Shape::Ring,
+                    ),
+                ],
+                zero: false,
+            })
+        }
+        "S3.forms" => {
             let samples: &[(&str, &str, f64)] = &[
                 ("2.5", "2", 0.0),
                 ("2.5", "2", 20.0),
@@ -533,12 +652,7 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                         let an = Angle::new(t);
                         let (l1, l2) = logs(&an);
                         let vx = vx_printed(&p, *c0, l1, l2, 1);
-                        let r = if id == "S3.forms" {
-                            rhs_3_5(&p, an.sin, an.cos, vx)
-                        } else {
-                            super::ice::thdd_3_3(&p, an.sin, an.cos, vx, 1)
-                        };
-                        (t, r)
+                        (t, rhs_3_5(&p, an.sin, an.cos, vx))
                     })
                     .collect();
                 ss.push(series(
@@ -549,23 +663,15 @@ fn spec(id: &str, mark: Option<PhaseBox>) -> Option<Fig> {
                     pts,
                 ));
             }
-            let (title, y, range) = if id == "S3.forms" {
-                (
-                    "S3.forms: right side R(θ) of (3.5); Ω_{0}-slices where R > 0",
-                    "R(θ)",
-                    [-40.0, 40.0],
-                )
-            } else {
-                (
-                    "S3.sub2: θ\u{308} of (3.3) at θ\u{307} = 0; equilibria where it vanishes",
-                    theta_dd,
-                    [-40.0, 40.0],
-                )
-            };
+            let (title, y, range) = (
+                "S3.forms: right side R(θ) of (3.5); Ω_{0}-slices where R > 0",
+                "R(θ) (m/s²)",
+                [-40.0, 40.0],
+            );
             Fig::Lines(Curves {
                 title: title.into(),
                 subtitle: format!("disc on ice, {}", p2_text()),
-                x: axis("θ", [0.0, pi], true),
+                x: axis(THETA_RAD, [0.0, pi], true),
                 y: axis(y, range, false),
                 series: ss,
                 marks: vec![],

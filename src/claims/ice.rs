@@ -318,7 +318,8 @@ pub fn f3_4(mutant: bool) -> Outcome {
         + p.a.sqr() * an.cos.sqr() / (p.big_a + p.m * p.a.sqr() * an.sin.sqr());
     let vp = DecInterval::new(point(1.0)) / p.m;
     let (vd, vp) = (vd.interval().unwrap(), vp.interval().unwrap());
-    Outcome::new(Verdict::Error, Strength::Certified,
+    // A slip, not an error: U₀/V₀, hence N, (3.5) and Ω₀, are right.
+    Outcome::new(Verdict::Typo, Strength::Certified,
         format!("under the report's reading (N free, the blade reaction kept): V₀ = ∂Λ̈/∂N at θ = 1 (m = 1, a = 1, A = 0.25): printed {:.4} vs Newton–Euler {:.4}, certified disjoint; U₀ (Λ̈ at N = 0) also differs, but U₀/V₀ agrees exactly ({}), so N = −U₀/V₀, (3.5) and Ω₀ are unaffected; the printed pair is the other reading (coefficient 1/m)", vp.mid(), vd.mid(), ratio.how()),
         json!({"identity": w, "theta": "1", "V0_printed": enc(vp), "V0_newton_euler": enc(vd), "disjoint": vp.disjoint(vd)}))
         .correct("Λ̈ = U₀ + V₀ N with V₀ = 1/m + a² cos²θ/(A + m a² sin²θ) and U₀ = m V₀ × (the printed U₀): the printed (3.4) is the true Λ̈ divided by m V₀ > 0, so its sign, the reaction N = −U₀/V₀ and the condition (3.5) are right")
@@ -803,10 +804,10 @@ pub fn s3_symreduce(mutant: bool) -> Outcome {
     let w = json!({"time_reversal": reversal.json(),
         "p_phi_sign_alone": shown_at(&flip_alone, at, thdd_3_3(&qp, qs, qc, qv, 1), thdd_3_3(&flipped(&qp), qs, qc, qv, 1))});
     if reversal.agrees() && !flip_alone.agrees() {
-        Outcome::new(Verdict::Typo, strength_of(&[&reversal, &flip_alone]),
-            format!("the stated mirror changes only the sign of p_ψ, and the sign of p_φ alone changes θ̈ of (3.3) at the same θ and v_x (exact difference); the time reversal t → −t (θ̇, p_φ, p_ψ, v_x, c₀ → −) leaves θ̈ of (3.3) and (3.5) unchanged ({}), so with it p_φ ≥ 0, p_ψ ≥ 0 does suffice", agreement(&[&reversal])),
+        // True, with a step the paper leaves out: confirmed, the step named.
+        Outcome::new(Verdict::Confirmed, strength_of(&[&reversal, &flip_alone]),
+            format!("true, with a step the paper leaves out: the stated mirror changes only the sign of p_ψ, and the sign of p_φ alone changes θ̈ of (3.3) at the same θ and v_x (exact difference); the missing step is the time reversal t → −t (θ̇, p_φ, p_ψ, v_x, c₀ → −), which leaves θ̈ of (3.3) and (3.5) unchanged ({}); with both, p_φ ≥ 0, p_ψ ≥ 0 suffices", agreement(&[&reversal])),
             w)
-            .correct("p_ψ → −p_ψ, θ → π − θ gives p_ψ ≥ 0; p_φ ≥ 0 needs in addition the time reversal t → −t (θ̇, p_φ, p_ψ, v_x, c₀ change sign), which leaves (3.3) and (3.5) unchanged; together they reduce to p_φ, p_ψ ≥ 0")
     } else {
         Outcome::new(
             Verdict::False,
@@ -906,6 +907,12 @@ fn ice_equilibria(pf: &str, ps: &str, c0: &str) -> (Option<Vec<[f64; 2]>>, serde
     }
 }
 
+/// The certified equilibria of subcase 2 (p_φ = p_ψ = `p`) at `c0`, for the
+/// figure (none if the search is incomplete).
+pub(super) fn equilibria_sub2(p: &str, c0: &str) -> Vec<[f64; 2]> {
+    ice_equilibria(p, p, c0).0.unwrap_or_default()
+}
+
 /// U(θ, 0) over an enclosure (Ω: U < 0).
 fn u_on(pf: &str, ps: &str, th: [f64; 2]) -> Interval {
     let p = p2(pf, ps);
@@ -957,37 +964,308 @@ fn subcase(
     (js, counts, outside)
 }
 
-/// S3.sub2: p_φ = p_ψ ≠ 0: certified equilibrium counts over c₀, the Ω₀
-/// identity, and an equilibrium outside Ω. Mutant: p_ψ ≠ p_φ samples.
+/// Subcase 2 (p_φ = p_ψ = p > 0) in `t = tg(θ/2) ∈ (0, ∞)`: equilibria of
+/// (3.3) are the solutions of `G(t) = c₀`, with `l = ln tg(θ/2) − ln sin θ
+/// = ln((1 + t²)/2)` and
+///
+///   G(t) = α(1 − t²)/(t(1 + t²)) + β(1 + t²)/2 + (a p/A)·l,
+///   α = A g/p, β = p/(m a), γ = 2 a p/A.
+pub(super) fn g_sub2<T: Scalar>(p: &P2<T>, t: T, l: T) -> T {
+    let one = T::int(1);
+    let alpha = p.big_a * p.g / p.pf;
+    let beta = p.pf / (p.m * p.a);
+    alpha * (one - t.sqr()) / (t * (one + t.sqr()))
+        + beta * (one + t.sqr()) / T::int(2)
+        + p.a * p.pf / p.big_a * l
+}
+
+/// `t²(1 + t²)² G'(t)`, a polynomial with one sign change in its
+/// coefficients for α, β, γ > 0 (p > 0): by Descartes' rule of signs it has
+/// exactly one positive zero.
+fn h_sub2<T: Scalar>(p: &P2<T>, t: T) -> T {
+    let alpha = p.big_a * p.g / p.pf;
+    let beta = p.pf / (p.m * p.a);
+    let gamma = T::int(2) * p.a * p.pf / p.big_a;
+    beta * t.pown(7)
+        + (T::int(2) * beta + gamma) * t.pown(5)
+        + alpha * t.pown(4)
+        + (beta + gamma) * t.pown(3)
+        - T::int(4) * alpha * t.sqr()
+        - alpha
+}
+
+/// min G for p_φ = p_ψ = `p` (other parameters the defaults): the zero t* of
+/// `h_sub2` bracketed by a certified sign change, and G over the bracket,
+/// which holds G(t*) = min G.
+pub(super) fn min_g_sub2(p: &str) -> (Interval, Interval) {
+    let q = p2(p, p);
+    let h = |t: f64| h_sub2(&q, point(t));
+    let (mut lo, mut hi) = (1e-3, 10.0);
+    assert!(h(lo).sup() < 0.0 && h(hi).inf() > 0.0, "bracket of t*");
+    for _ in 0..40 {
+        let mid = 0.5 * (lo + hi);
+        let v = h(mid);
+        if v.sup() < 0.0 {
+            lo = mid;
+        } else if v.inf() > 0.0 {
+            hi = mid;
+        } else {
+            break;
+        }
+    }
+    let t = Interval::try_from((lo, hi)).unwrap();
+    let one = Interval::try_from((1.0, 1.0)).unwrap();
+    let l = ((one + t.sqr()) / Interval::try_from((2.0, 2.0)).unwrap()).ln();
+    (t, g_sub2(&q, t, l))
+}
+
+/// S3.sub2: p_φ = p_ψ ≠ 0: "depending on c₀, two equilibria or none". A
+/// short proof (strength `argument`): the identity `balance` gives
+/// `(A + m a²)θ̈ = (m a p t/A)(c₀ − G(t))` at θ̇ = 0, so equilibria solve
+/// G(t) = c₀; `slope` gives `t²(1 + t²)² G' = h_sub2`, whose coefficients
+/// change sign once, so G' has one positive zero t*: G falls on (0, t*) and
+/// rises after, and G → +∞ at both ends (α/t at 0, βt²/2 at ∞). Hence none
+/// for c₀ < min G, two for c₀ > min G, and one (the tangent case, a double
+/// root, which the paper omits) at c₀ = min G. The certified counts at
+/// samples must agree with the side of min G they lie on. Equilibria lie in
+/// Ω₀ (exact) and one lies outside Ω (certified). Mutant: p_ψ ≠ p_φ.
 pub fn s3_sub2(mutant: bool) -> Outcome {
+    let balance = identity_test(396, |r| {
+        let x = rp(r);
+        let mut q = x.p;
+        if !mutant {
+            q.ps = q.pf;
+        }
+        let vx = vx_printed(&q, x.c0, x.l1, x.l2, 1);
+        Sample {
+            point: x.pt,
+            lhs: thdd_3_3(&q, x.s, x.c, vx, 1) * (q.big_a + q.m * q.a.sqr()),
+            rhs: q.m * q.a * q.pf * x.t / q.big_a * (x.c0 - g_sub2(&q, x.t, x.l1 - x.l2)),
+        }
+    });
+    let slope = identity_test(397, |r| {
+        let x = rp(r);
+        let q = x.p.map(Dual::constant);
+        let (z, one, two) = (Q::int(0), Q::int(1), Q::int(2));
+        // d/dθ: t' = (1 + t²)/2, (ln tg(θ/2))' = 1/sin θ, (ln sin θ)' = cos θ/sin θ
+        let t = Dual {
+            value: x.t,
+            grad: [(one + x.t.sqr()) / two, z],
+        };
+        let l = Dual {
+            value: x.l1 - x.l2,
+            grad: [one / x.s - x.c / x.s, z],
+        };
+        let dg_dt = g_sub2(&q, t, l).grad[0] * two / (one + x.t.sqr());
+        Sample {
+            point: x.pt,
+            lhs: x.t.sqr() * (one + x.t.sqr()).sqr() * dg_dt,
+            rhs: h_sub2(&x.p, x.t),
+        }
+    });
+    let c0s = ["-10", "-3", "0", "3", "10"];
     let pairs: &[(&str, &str)] = if mutant {
         &[("2", "1")]
     } else {
         &[("1", "1"), ("2", "2")]
     };
-    let c0s = ["-10", "-3", "0", "3", "10"];
     let (js, counts, outside) = subcase(pairs, &c0s);
+    // Each certified count against the side of min G its c₀ lies on.
+    let mut minima = Vec::new();
+    let mut agree = counts.iter().all(|&n| n != usize::MAX);
+    for (i, (pf, _)) in pairs.iter().enumerate() {
+        let (t, gmin) = min_g_sub2(pf);
+        for (j, c0) in c0s.iter().enumerate() {
+            let c = super::dec(c0);
+            let want = if c.sup() < gmin.inf() {
+                Some(0)
+            } else if c.inf() > gmin.sup() {
+                Some(2)
+            } else {
+                None
+            };
+            agree &= want == Some(counts[i * c0s.len() + j]);
+        }
+        minima.push(json!({"p": pf, "t_star": enc(t), "min_G": enc(gmin)}));
+    }
     let id = in_omega0_identity();
-    let all_known = counts.iter().all(|&n| n != usize::MAX);
-    let zero_or_two = all_known
-        && counts.iter().all(|&n| n == 0 || n == 2)
-        && counts.contains(&0)
-        && counts.contains(&2);
-    let w = json!({"samples": js, "in_omega0_identity": id.json(), "outside_omega": outside});
-    if zero_or_two && id.agrees() && outside.is_some() {
-        Outcome::new(Verdict::ConfirmedOn, Strength::Certified,
-            format!("certified counts over c₀ ∈ {{−10, −3, 0, 3, 10}}, p = 1, 2: {:?} (two or none); at θ̇ = 0 = θ̈ the slack of (3.5) is g > 0 (exact): equilibria in Ω₀; {}", counts, outside.clone().unwrap_or_default()), w)
+    let w = json!({"balance": balance.json(), "slope": slope.json(), "min_G": minima,
+        "samples": js, "in_omega0_identity": id.json(), "outside_omega": outside});
+    let shown: Vec<String> = minima
+        .iter()
+        .map(|m| {
+            format!(
+                "min G ∈ [{:.4}, {:.4}] at p = {}",
+                m["min_G"][0].as_f64().unwrap_or(f64::NAN),
+                m["min_G"][1].as_f64().unwrap_or(f64::NAN),
+                m["p"].as_str().unwrap_or("")
+            )
+        })
+        .collect();
+    if balance.agrees() && slope.agrees() && agree && id.agrees() && outside.is_some() {
+        Outcome::new(Verdict::Conditional, Strength::Argument,
+            format!("proof: at θ̇ = 0, (A + m a²)θ̈ = (m a p t/A)(c₀ − G(t)), t = tg(θ/2), and t²(1 + t²)²G'(t) = βt⁷ + (2β + γ)t⁵ + αt⁴ + (β + γ)t³ − 4αt² − α with α = Ag/p, β = p/(ma), γ = 2ap/A > 0 ({}): one sign change, so G' has one positive zero (Descartes), G falls then rises and → +∞ at t → 0, ∞; so two equilibria for c₀ > min G, none for c₀ < min G, and exactly one, a double root (tangent case, omitted by the paper), at c₀ = min G; {}; certified counts at c₀ ∈ {{−10, −3, 0, 3, 10}}, p = 1, 2: {:?}, each on its side of min G; at θ̇ = 0 = θ̈ the slack of (3.5) is g > 0 (exact): equilibria in Ω₀; {}", agreement(&[&balance, &slope]), shown.join(", "), counts, outside.clone().unwrap_or_default()), w)
+            .correct("p_ψ = p_φ = p > 0: (3.2) has two equilibria for c₀ > c*(p) = min G, none for c₀ < c*(p), and one degenerate equilibrium (the two merged, a tangency) at c₀ = c*(p); they lie in Ω₀ but may lie outside Ω")
     } else {
         Outcome::new(
             Verdict::False,
             Strength::Certified,
             format!(
-                "counts {counts:?}, outside Ω: {}",
+                "balance or slope identity fails, or counts {counts:?} disagree with min G ({}); outside Ω: {}",
+                shown.join(", "),
                 outside.unwrap_or_else(|| "none found".into())
             ),
             w,
         )
     }
+}
+
+/// A.onlyN (the abstract): "checking only N ≥ 0 leads to wrong qualitative
+/// conclusions". N ≥ 0 alone marks Ω₀; where a point of Ω₀ lies outside Ω,
+/// free flight is possible too, and the N ≥ 0 test misses that second motion.
+/// Evidence: an equilibrium of subcase 2 (p_φ = p_ψ = 2, c₀ = 0) in Ω₀
+/// (exact) and outside Ω (certified U > 0), as S3.sub2 finds, and a certified
+/// box of Ω̄ ∩ Ω₀ in Example 1 (S1.nonunique). Mutant: c₀ = −3 (no
+/// equilibrium, S3.sub2) and μ = 0 (Ω = Ω₀).
+pub fn a_only_n(mutant: bool) -> Outcome {
+    let c0 = if mutant { "-3" } else { "0" };
+    let (js, _, outside) = subcase(&[("2", "2")], &[c0]);
+    let id = in_omega0_identity();
+    let ex1 = super::example1::s1_nonunique(mutant);
+    let w = json!({"ice_equilibria": js, "in_omega0_identity": id.json(), "outside_omega": outside,
+        "example_1": ex1.witness});
+    match (&outside, id.agrees(), ex1.verdict == Verdict::Confirmed) {
+        (Some(o), true, true) => Outcome::new(Verdict::Confirmed, Strength::Certified,
+            format!("where Ω₀ (N ≥ 0 possible) leaves Ω, free flight is possible as well, so N ≥ 0 alone would conclude that contact persists where the motion is not unique: on ice (S3.sub2, S3.sub3) an equilibrium lies in Ω₀ (exact) and outside Ω: {o}; in Example 1 (S1.nonunique) {}", ex1.summary), w),
+        _ => Outcome::new(Verdict::False, Strength::Certified,
+            format!("no point of Ω₀ outside Ω found (p_φ = p_ψ = 2, c₀ = {c0}; Example 1: {})", ex1.summary), w),
+    }
+}
+
+/// The images of `(cos θ, p_φ, p_ψ, v_x)` under two maps of the disc's
+/// state, from vectors: up `k`, the disc's axis `n`, its angular velocity
+/// ω, its centre's velocity `v`; `p_φ = C ω·n`, `p_ψ = K·k` with `K = Aω +
+/// (C − A)(ω·n)n`, and `v_x = v·e₁`, `e₁ = k × n / sin θ` along the
+/// horizontal diameter. Returns the state and its images under reversing OZ
+/// (`k → −k`; with `keep_e1`, a mutant, `e₁` left as it was) and under a
+/// mirror in the vertical plane y = 0 (ω a pseudovector) composed with
+/// reversing the axis (`n → −n`).
+type State = [Q; 4];
+fn symmetry_images(r: &mut Rng, keep_e1: bool) -> (State, State, State, P2<Q>) {
+    let p = P2::random(r);
+    let (s, c) = sin_cos_of_tan_half(r.tan_half());
+    let (sp, cp) = sin_cos_of_tan_half(r.tan_half());
+    let n = [s * cp, s * sp, c];
+    let om = [r.signed(), r.signed(), r.signed()];
+    let v = [r.signed(), r.signed(), r.signed()];
+    let dot = |a: &[Q; 3], b: &[Q; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let cross = |a: &[Q; 3], b: &[Q; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let (z, one) = (Q::int(0), Q::int(1));
+    let state = |k: &[Q; 3], e1_k: &[Q; 3], n: &[Q; 3], om: &[Q; 3], v: &[Q; 3]| -> State {
+        let wn = dot(om, n);
+        let big_k: Vec<Q> = (0..3)
+            .map(|i| p.big_a * om[i] + (p.big_c - p.big_a) * wn * n[i])
+            .collect();
+        let big_k = [big_k[0], big_k[1], big_k[2]];
+        [
+            dot(n, k),
+            p.big_c * wn,
+            dot(&big_k, k),
+            dot(v, &cross(e1_k, n)) / s,
+        ]
+    };
+    let k = [z, z, one];
+    let down = [z, z, -one];
+    let orig = state(&k, &k, &n, &om, &v);
+    let oz = state(&down, if keep_e1 { &k } else { &down }, &n, &om, &v);
+    let mirror = |a: &[Q; 3]| [a[0], -a[1], a[2]];
+    let neg = |a: [Q; 3]| [-a[0], -a[1], -a[2]];
+    let mf = state(&k, &k, &neg(mirror(&n)), &neg(mirror(&om)), &mirror(&v));
+    (orig, oz, mf, p)
+}
+
+/// S3.symOZ: "(reversing the OZ axis)", the paper's reading of the symmetry
+/// p_ψ → −p_ψ, θ → π − θ. Exact vectors: reversing OZ maps (cos θ, p_φ, p_ψ,
+/// v_x) to (−cos θ, p_φ, −p_ψ, −v_x): it reverses the horizontal diameter
+/// and so v_x, and with v_x reversed θ̈ of (3.3) is not mapped to −θ̈ (exact
+/// difference); the map that holds (v_x kept, S3.symmetry) is a mirror in a
+/// vertical plane composed with reversing the disc's axis. Mutant: reversing
+/// OZ without reversing e₁.
+pub fn s3_sym_oz(mutant: bool) -> Outcome {
+    let expect = |x: &State, v_sign: i32| -> State { [-x[0], x[1], -x[2], Q::int(v_sign) * x[3]] };
+    let combine = |r: &mut Rng, a: &State, b: &State| {
+        let k = [r.signed(), r.signed(), r.signed(), r.signed()];
+        let f = |x: &State| k[0] * x[0] + k[1] * x[1] + k[2] * x[2] + k[3] * x[3];
+        (f(a), f(b))
+    };
+    // v_x's sign under reversing OZ, as the vector model gives it
+    let v_sign = if mutant { 1 } else { -1 };
+    let oz_image = identity_test(398, |r| {
+        let (o, oz, _, _) = symmetry_images(r, mutant);
+        let (lhs, rhs) = combine(r, &oz, &expect(&o, v_sign));
+        Sample {
+            point: vec![],
+            lhs,
+            rhs,
+        }
+    });
+    let mf_image = identity_test(399, |r| {
+        let (o, _, mf, _) = symmetry_images(r, false);
+        let (lhs, rhs) = combine(r, &mf, &expect(&o, 1));
+        Sample {
+            point: vec![],
+            lhs,
+            rhs,
+        }
+    });
+    // θ̈ of (3.3) at the image of reversing OZ as the vectors give it
+    let image_33 = |p: &P2<Q>, s: Q, c: Q, vx: Q| {
+        let mut q = *p;
+        q.ps = -p.ps;
+        (
+            thdd_3_3(p, s, c, vx, 1),
+            -thdd_3_3(&q, s, -c, Q::int(v_sign) * vx, 1),
+        )
+    };
+    let oz_33 = identity_test(3910, |r| {
+        let x = rp(r);
+        let (lhs, rhs) = image_33(&x.p, x.s, x.c, x.c0);
+        Sample {
+            point: x.pt,
+            lhs,
+            rhs,
+        }
+    });
+    let qp = P2::exact(super::smooth::DEFAULTS);
+    let (a, b) = image_33(&qp, Q::ratio(4, 5), Q::ratio(3, 5), Q::int(1));
+    let at = json!({"params": super::smooth::params_json(&super::smooth::DEFAULTS), "sin_theta": "4/5", "cos_theta": "3/5", "v_x": "1"});
+    let w = json!({"reversing_OZ_image": oz_image.json(), "mirror_and_axis_flip_image": mf_image.json(),
+        "theta_ddot_3_3_under_reversing_OZ": shown_at(&oz_33, at, a, b)});
+    if !(oz_image.agrees() && mf_image.agrees()) {
+        return Outcome::new(
+            Verdict::NotCheckable,
+            Strength::Symbolic,
+            "the vector images are not those derived (check the model)",
+            w,
+        );
+    }
+    if oz_33.agrees() {
+        return Outcome::new(
+            Verdict::Confirmed,
+            strength_of(&[&oz_image, &oz_33]),
+            "reversing OZ maps the equations onto themselves",
+            w,
+        );
+    }
+    Outcome::new(Verdict::False, strength_of(&[&oz_image, &mf_image]),
+        format!("reversing OZ (k → −k) maps (cos θ, p_φ, p_ψ, v_x) to (−cos θ, p_φ, −p_ψ, −v_x) ({}): it reverses the horizontal diameter e₁ ∝ k × n, and with v_x reversed θ̈ of (3.3) is not mapped to −θ̈ (exact difference at sin θ = 4/5, cos θ = 3/5, v_x = 1), nor is (3.1) a first integral; a mirror in a vertical plane composed with reversing the disc's axis gives (−cos θ, p_φ, −p_ψ, v_x) ({}), the symmetry that holds (S3.symmetry)", agreement(&[&oz_image]), agreement(&[&mf_image])), w)
+        .correct("p_ψ → −p_ψ, θ → π − θ (p_φ and v_x kept) is a mirror in a vertical plane composed with reversing the disc's symmetry axis, not a reversal of OZ, which would also reverse v_x")
 }
 
 /// The (p_φ, p_ψ) samples of subcase 3 (p_ψ ≠ p_φ), in both orders.
@@ -1117,6 +1395,7 @@ pub fn s3_sub3fig(mutant: bool) -> Outcome {
 
 /// This section's check functions, by claim id (`claims.toml` holds the rest).
 pub(super) const CHECKS: &[(&str, Check)] = &[
+    ("A.onlyN", a_only_n),
     ("F3.1", f3_1),
     ("F3.2", f3_2),
     ("F3.3", f3_3),
@@ -1130,6 +1409,7 @@ pub(super) const CHECKS: &[(&str, Check)] = &[
     ("S3.c0anypoint", s3_c0anypoint),
     ("S3.forms", s3_forms),
     ("S3.symmetry", s3_symmetry),
+    ("S3.symOZ", s3_sym_oz),
     ("S3.symreduce", s3_symreduce),
     ("S3.sub1", s3_sub1),
     ("S3.sub2", s3_sub2),

@@ -40,21 +40,28 @@ systems with unilateral constraint*, Nelineinaya Dinamika (Russian Journal of No
 /// How the report reads `Λ̈ = U + V N`, for every claim that names U or V.
 ///
 /// N is a free applied force: the equations of motion (with every other
-/// constraint kept) are solved for the accelerations with N given, so Λ̈ is
-/// affine in N; the contact condition Λ̈ = 0 is imposed only afterwards and
-/// fixes N = −U/V. Then U is Λ̈ at zero reaction (the paper's definition of
-/// Ω) and V = ∂Λ̈/∂N = ∇Λ·M⁻¹∇Λ > 0. Substituting instead an acceleration
-/// already solved from the contact equations makes the coefficient of N
-/// 1/m and the rest U/(mV): same sign, same N at contact, other U and V.
-pub const READING: &str = "N is a free force: the equations of motion are solved for the \
-accelerations with N given, and the contact condition Λ̈ = 0 is imposed afterwards (N = −U/V). \
-So U = Λ̈ at zero reaction (the paper's Ω) and V = ∂Λ̈/∂N = ∇Λ·M⁻¹∇Λ > 0. An acceleration \
-taken from the contact equations (N eliminated before) would give the coefficient 1/m and \
-U/(mV) instead: the same sign of U and the same N at contact, so Ω, Ω₀ and N do not change \
-with the reading, only the formulas for U and V do. F1.9, F2.6, F2.7 and F3.4 are graded under \
-this reading.";
+/// constraint kept, in §3 the blade's) are solved for the accelerations with
+/// N given, so Λ̈ is affine in N; the contact condition Λ̈ = 0 is imposed only
+/// afterwards and fixes N = −U/V. U (Λ̈ at N = 0) then decides Ω₀; the
+/// paper's Ω is the sign of Λ̈ in free flight, which is U only on the smooth
+/// plane of §2. V = ∂Λ̈/∂N is ∇Λ·M⁻¹∇Λ in §1 and §2, and the blade of §3
+/// changes it. Substituting instead an acceleration already solved from the
+/// contact equations makes the coefficient of N 1/m and the rest U/(mV):
+/// same sign, same N at contact, other U and V.
+pub const READING: &str = "N is a free force: the equations of motion, with every other \
+constraint kept (in §3 the blade's), are solved for the accelerations with N given, so Λ̈ = U + V N \
+is affine in N, and the contact condition Λ̈ = 0 is imposed afterwards (N = −U/V). U is Λ̈ at \
+N = 0 and V = ∂Λ̈/∂N > 0, so contact is kept with N ≥ 0 exactly where U ≤ 0: the sign of U decides \
+Ω₀. The paper's Ω is the sign of Λ̈ in free flight (no contact force at all): that is U only on \
+the smooth plane of §2, where Ω = Ω₀; in §1 U also holds the viscous friction, and in §3 the \
+blade's reaction, so Ω and Ω₀ differ. V is ∇Λ·M⁻¹∇Λ in §1 (1/m + h'²/C) and §2 \
+(1/m + a²cos²θ/A); in §3 the blade changes it to V₀ = 1/m + a²cos²θ/(A + m a² sin²θ). An \
+acceleration taken from the contact equations (N eliminated before) would give the coefficient \
+1/m and U/(mV) instead: the same sign of U and the same N at contact, so Ω, Ω₀ and N do not \
+change with the reading, only the formulas for U and V do. F1.9, F2.6, F2.7 and F3.4 are graded \
+under this reading.";
 
-/// What the computation shows about a claim.
+/// What the computation shows about a claim ([`Verdict::meaning`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Verdict {
@@ -62,9 +69,9 @@ pub enum Verdict {
     Confirmed,
     /// Certified over a stated parameter box or set.
     ConfirmedOn,
-    /// A slip without consequence.
+    /// Wrong as printed, but changes none of Ω, Ω₀, N or what follows.
     Typo,
-    /// A formula is wrong: the right one and what it changes are given.
+    /// A formula is wrong and changes Ω, Ω₀, N or what follows.
     Error,
     /// The statement fails: certified witness.
     False,
@@ -84,6 +91,35 @@ impl Verdict {
         Verdict::Conditional,
         Verdict::NotCheckable,
     ];
+}
+
+impl Verdict {
+    /// What the verdict means, as `REPORT.md` defines it.
+    pub fn meaning(self) -> &'static str {
+        match self {
+            Verdict::Confirmed => {
+                "true for all parameters; the argument is checked by computation (a step \
+                 the paper leaves out is named in the evidence)"
+            }
+            Verdict::ConfirmedOn => {
+                "true on a stated parameter box or set of samples, checked there; not \
+                 shown beyond it"
+            }
+            Verdict::Typo => {
+                "wrong as printed, but the slip changes none of Ω, Ω₀, the reaction N or \
+                 any later formula or statement; the right form is given"
+            }
+            Verdict::Error => {
+                "a formula is wrong and the mistake changes Ω, Ω₀, N or a later formula or \
+                 statement; the right one and what it changes are given"
+            }
+            Verdict::False => "the statement fails: a certified or exact witness is given",
+            Verdict::Conditional => {
+                "true exactly under a stated condition, with witnesses on both sides"
+            }
+            Verdict::NotCheckable => "cannot be checked; the reason is given",
+        }
+    }
 }
 
 impl fmt::Display for Verdict {
@@ -116,6 +152,44 @@ pub enum Strength {
     RandomTest,
     /// A written derivation whose steps are checked by computation.
     Argument,
+}
+
+impl Strength {
+    pub const ALL: [Strength; 5] = [
+        Strength::Symbolic,
+        Strength::Exact,
+        Strength::Certified,
+        Strength::Argument,
+        Strength::RandomTest,
+    ];
+
+    /// What backs a verdict of this strength, as `REPORT.md` defines it.
+    pub fn meaning(self) -> &'static str {
+        match self {
+            Strength::Symbolic => {
+                "identities proved: both sides computed as rational functions with integer \
+                 coefficients of every sampled quantity (parameters, tan(θ/2), velocities, \
+                 path coefficients), their cleared difference the zero polynomial \
+                 (`src/claims/exact.rs`); where two sides differ, a rational point where they \
+                 differ exactly is given"
+            }
+            Strength::Exact => {
+                "exact rational arithmetic at stated points (decimal parameters read exactly)"
+            }
+            Strength::Certified => {
+                "interval enclosures with outward rounding, decimal parameters enclosed from \
+                 their text (the paver, the root isolator, the κ₀ proof)"
+            }
+            Strength::Argument => {
+                "a written derivation (in the evidence) whose every step is an identity, \
+                 exact value or enclosure computed here"
+            }
+            Strength::RandomTest => {
+                "agreement at random rational points only (Schwartz–Zippel with an asserted, \
+                 not proved, degree bound)"
+            }
+        }
+    }
 }
 
 impl fmt::Display for Strength {

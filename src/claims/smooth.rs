@@ -449,8 +449,9 @@ pub fn f2_6(mutant: bool) -> Outcome {
 
 /// F2.6route: "to get U, substitute θ̈ from (2.5)". (2.5) is the contact
 /// equation (N already eliminated), so this gives `−g + a θ̇² sin θ − a θ̈ cos θ
-/// = A/(A + m a² cos²θ)·U = U/(mV)`, the other reading, not U. Mutant: θ̈
-/// from the θ equation of (2.2) at N = 0 instead.
+/// = A/(A + m a² cos²θ)·U = U/(mV)`, the other reading, not U: a typo, as the
+/// positive factor changes none of Ω, Ω₀, N. Mutant: θ̈ from the θ equation
+/// of (2.2) at N = 0 instead.
 pub fn f2_6route(mutant: bool) -> Outcome {
     let via = |p: &P2<Q>, s: Q, c: Q, w: Q| {
         let thdd = if mutant {
@@ -489,8 +490,10 @@ pub fn f2_6route(mutant: bool) -> Outcome {
         );
     }
     let f = |x: Q| x.get().to_f64();
-    Outcome::new(Verdict::Error, Strength::Exact,
-        format!("θ̈ of (2.5) is the contact acceleration (N eliminated): substituted into (2.6) it gives A/(A + m a² cos²θ)·U ({}), not U; at sin θ = 4/5, cos θ = 3/5, θ̇ = 1 (defaults) {:.4} against U = {:.4} (exact)",
+    // A slip, not an error: the factor is positive, so Ω, Ω₀ and N = −U/V
+    // are those of U itself.
+    Outcome::new(Verdict::Typo, Strength::Exact,
+        format!("θ̈ of (2.5) is the contact acceleration (N eliminated): substituted into (2.6) it gives A/(A + m a² cos²θ)·U ({}), not U; at sin θ = 4/5, cos θ = 3/5, θ̇ = 1 (defaults) {:.4} against U = {:.4} (exact); the factor is positive, so Ω, Ω₀ and N do not change",
             scaled.how(), f(gave), f(u0)),
         w)
         .correct("substituting θ̈ from (2.5) gives A/(A + m a² cos²θ)·U = U/(mV), with the same sign as U; U itself comes from the θ equation of (2.2) at N = 0 with the integrals (2.3) (F2.6)")

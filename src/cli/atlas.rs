@@ -436,14 +436,14 @@ fn print_table(r: &PaveReport) {
         );
     }
     outln!(
-        "  {} {:>12} {:>12} {:>12} {:>9} {:>9} {:>9}",
+        "  {} {:>12} {:>12} {:>12} {:>12} {:>12} {:>12}",
         pad("region", 7),
         "inner area",
         "outer area",
         "undecided",
-        "in boxes",
-        "not out",
-        "undec."
+        "inner boxes",
+        "outer boxes",
+        "undec. boxes"
     );
     for w in &r.warnings {
         outln!("  warning: {w}");
@@ -456,7 +456,7 @@ fn print_table(r: &PaveReport) {
                 "Ω₀ ⊂ Ω, p_φ = p_ψ = 0"
             };
             outln!(
-                "  {} {:>12} {:>12} {:>12} {:>9} {:>9} {:>9}  empty ({why})",
+                "  {} {:>12} {:>12} {:>12} {:>12} {:>12} {:>12}  empty ({why})",
                 pad(g.label, 7),
                 "0",
                 "0",
@@ -468,7 +468,7 @@ fn print_table(r: &PaveReport) {
             continue;
         }
         outln!(
-            "  {} {:>12} {:>12} {:>12} {:>9} {:>9} {:>9}",
+            "  {} {:>12} {:>12} {:>12} {:>12} {:>12} {:>12}",
             pad(g.label, 7),
             fmt_area(g.inner_area),
             fmt_area(g.outer_area),
@@ -725,6 +725,9 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
         .collect::<Result<Vec<_>, CliError>>()?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", args.out.display())))?;
+    // Read before the work: a summary that cannot be merged stops the run.
+    let summary = args.out.join("summary.json");
+    let earlier = read_summary(&summary)?;
     let mut reports = Vec::new();
     for (scene, params, domain) in &scenes {
         let (paving, report) =
@@ -747,15 +750,83 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
         );
         reports.push(report);
     }
-    let summary = args.out.join("summary.json");
+    let scenes = merge_summary(earlier, &args.out, reports);
     let text = serde_json::to_string_pretty(
-        &serde_json::json!({ "detach": detach::provenance(), "scenes": reports }),
+        &serde_json::json!({ "detach": detach::provenance(), "scenes": scenes }),
     )
     .expect("serialisable");
     detach::files::write_atomic(&summary, text.as_bytes())
         .map_err(|e| super::cannot_write(&summary, e))?;
     outln!("wrote {}", summary.display());
     Ok(())
+}
+
+/// The scenes of an existing `summary.json` (none if there is none). One that
+/// cannot be read is an error, not silently replaced.
+fn read_summary(summary: &Path) -> Result<Vec<serde_json::Value>, CliError> {
+    Ok(match std::fs::read(summary) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Vec::new(),
+        Err(e) => {
+            return Err(CliError::runtime(format!(
+                "cannot read {}: {e}",
+                summary.display()
+            )))
+        }
+        Ok(bytes) => {
+            let v: serde_json::Value = serde_json::from_slice(&bytes).map_err(|e| {
+                CliError::runtime(format!(
+                    "{} is not a summary ({e}); move it away to start a new one",
+                    summary.display()
+                ))
+            })?;
+            match v.get("scenes").and_then(|s| s.as_array()) {
+                Some(a) => a.clone(),
+                None => {
+                    return Err(CliError::runtime(format!(
+                        "{} has no \"scenes\" list; move it away to start a new one",
+                        summary.display()
+                    )))
+                }
+            }
+        }
+    })
+}
+
+/// The scenes `summary.json` lists after this run: those of the folder's
+/// summary whose pictures are still beside it, in their order, each replaced
+/// by this run's report if it paved the scene again, then the new scenes. So
+/// the summary describes every picture in the folder, and each entry says
+/// which `detach` wrote it.
+fn merge_summary(
+    old: Vec<serde_json::Value>,
+    dir: &Path,
+    reports: Vec<PaveReport>,
+) -> Vec<serde_json::Value> {
+    let mut new: Vec<(String, serde_json::Value)> = reports
+        .into_iter()
+        .map(|r| {
+            let scene = r.scene.clone();
+            (scene, serde_json::to_value(r).expect("serialisable"))
+        })
+        .collect();
+    let has_pictures = |scene: &str| {
+        ["svg", "png"]
+            .iter()
+            .any(|ext| dir.join(format!("{scene}.{ext}")).is_file())
+    };
+    let mut out = Vec::new();
+    for entry in old {
+        let Some(scene) = entry.get("scene").and_then(|s| s.as_str()) else {
+            continue;
+        };
+        if let Some(i) = new.iter().position(|(s, _)| s == scene) {
+            out.push(new.remove(i).1);
+        } else if has_pictures(scene) {
+            out.push(entry);
+        }
+    }
+    out.extend(new.into_iter().map(|(_, v)| v));
+    out
 }
 
 fn draw(

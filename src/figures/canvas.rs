@@ -352,8 +352,11 @@ impl SvgDoc {
 
     fn present(&mut self) -> Result<(), FigureError> {
         let (w, h) = self.size;
+        // xml:space="preserve": text runs are split at accents and
+        // subscripts, and a renderer would otherwise drop the space that
+        // ends a run ("θ̈of" for "θ̈ of").
         let mut doc = format!(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n\
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" xml:space=\"preserve\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n\
              <desc>detach {}</desc>\n",
             // The version only: committed figures must not change with each commit.
             crate::VERSION

@@ -13,7 +13,7 @@ use super::{
     class_swatch, draw_err, draw_x_ticks, register_fonts, text_width, theta_ticks, AtlasError,
     CellLayer, Class,
 };
-use super::{native, nice_ticks, tick_label, Figure, THETA_DOT};
+use super::{native, nice_ticks, tick_label, Figure};
 use crate::pave::{Paving, PhaseBox};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -288,12 +288,12 @@ fn render(root: &Area, prep: &Prepared) -> Result<(), AtlasError> {
             let b = r.paving.root;
             (
                 Axis {
-                    name: "θ",
+                    name: super::THETA_RAD,
                     range: b.theta,
                     angle: true,
                 },
                 Axis {
-                    name: THETA_DOT,
+                    name: super::THETA_DOT_UNITS,
                     range: b.theta_dot,
                     angle: false,
                 },
@@ -420,7 +420,7 @@ fn render(root: &Area, prep: &Prepared) -> Result<(), AtlasError> {
     let tick_font = label_font
         .color(&INK)
         .pos(Pos::new(HPos::Center, VPos::Top));
-    draw_x_ticks(&below, x_ticks, xr, pw, &tick_font)?;
+    draw_x_ticks(&below, x_ticks, xr, pw, &tick_font, 1.0)?;
     let desc = ("sans-serif", 18)
         .into_font()
         .color(&INK)
@@ -493,7 +493,7 @@ fn draw_legend(area: &Area, entries: &[Entry]) -> Result<(), AtlasError> {
     let mut y = MARGIN_TOP as i32 + 4;
     for e in entries {
         match e.swatch {
-            Swatch::Fill(class) => class_swatch(area, class, (x0, y), (sw, sh))?,
+            Swatch::Fill(class) => class_swatch(area, class, (x0, y), (sw, sh), 1.0)?,
             Swatch::Line { rgb, dashed } => {
                 let ly = f64::from(y + sh / 2);
                 let seg = vec![(f64::from(x0), ly), (f64::from(x0 + sw), ly)];

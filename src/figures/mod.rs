@@ -97,7 +97,8 @@ pub const MIN_HEIGHT: u32 = 400;
 /// Least distance in pixels between two drawn phase curves.
 const LINE_SPACING: f64 = 6.0;
 
-// Layout in pixels, independent of the picture size.
+// Layout in pixels at the default size; every length of the picture (these,
+// fonts, lines, ticks) is multiplied by `scale_of(style)`.
 const TITLE_H: u32 = 62;
 const LEGEND_W: u32 = 300;
 const MARGIN_TOP: u32 = 6;
@@ -106,16 +107,37 @@ const MARGIN_BOTTOM: u32 = 8;
 const X_LABELS_H: u32 = 46;
 const Y_LABELS_W: u32 = 64;
 
+/// How much larger than the default 1200×800 a picture is: the smaller of
+/// the two ratios, and at least 1. Text, lines, ticks and margins grow by it,
+/// so `--size 4000x3000` reads like the default picture, only finer.
+pub fn scale_of(style: &AtlasStyle) -> f64 {
+    let d = AtlasStyle::default();
+    (f64::from(style.width) / f64::from(d.width))
+        .min(f64::from(style.height) / f64::from(d.height))
+        .max(1.0)
+}
+
+/// `v` pixels at the default size, at scale `s`.
+fn px(s: f64, v: u32) -> u32 {
+    (f64::from(v) * s).round() as u32
+}
+
+/// [`px`] as a drawing coordinate.
+fn pxi(s: f64, v: i32) -> i32 {
+    (f64::from(v) * s).round() as i32
+}
+
 /// The plot area (the part showing the paving) in pixels for a style, so the
 /// caller can choose `eps` of about one pixel. Zero if the style is too small.
 pub fn plot_area_pixels(style: &AtlasStyle) -> (u32, u32) {
+    let s = scale_of(style);
     (
         style
             .width
-            .saturating_sub(LEGEND_W + Y_LABELS_W + MARGIN_RIGHT),
-        style
-            .height
-            .saturating_sub(TITLE_H + MARGIN_TOP + X_LABELS_H + MARGIN_BOTTOM),
+            .saturating_sub(px(s, LEGEND_W) + px(s, Y_LABELS_W) + px(s, MARGIN_RIGHT)),
+        style.height.saturating_sub(
+            px(s, TITLE_H) + px(s, MARGIN_TOP) + px(s, X_LABELS_H) + px(s, MARGIN_BOTTOM),
+        ),
     )
 }
 
@@ -154,6 +176,8 @@ struct Prepared {
     /// What an undefined leaf means in this scene, for the legend.
     undefined: &'static str,
     incomplete: bool,
+    /// [`scale_of`] the picture.
+    scale: f64,
 }
 
 /// Draws `paving` with its phase portrait to an SVG and a PNG file (parent
@@ -230,7 +254,14 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         root.theta[1] - root.theta[0],
         root.theta_dot[1] - root.theta_dot[0],
     );
-    let lines = phase_portrait_px(info.scene, info.variant, &root, (pw, ph), LINE_SPACING);
+    let scale = scale_of(style);
+    let lines = phase_portrait_px(
+        info.scene,
+        info.variant,
+        &root,
+        (pw, ph),
+        LINE_SPACING * scale,
+    );
     let mut shares = [0.0; 6];
     for leaf in &paving.leaves {
         let i = Class::ALL
@@ -278,6 +309,7 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
             None => "a formula undefined; hatched",
         },
         incomplete: !(info.complete && paving.complete),
+        scale,
     }
 }
 
@@ -346,30 +378,42 @@ type Area<'a> = DrawingArea<Figure<'a>, Shift>;
 
 fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasError> {
     let (width, height) = root.dim_in_pixel();
+    let s = prep.scale;
+    let (title_h, legend_w) = (px(s, TITLE_H), px(s, LEGEND_W));
+    let (margin_top, y_labels_w, x_labels_h) =
+        (px(s, MARGIN_TOP), px(s, Y_LABELS_W), px(s, X_LABELS_H));
     root.fill(&WHITE).map_err(draw_err)?;
 
     // Title and subtitle.
-    let title_font = ("sans-serif", 22).into_font().style(FontStyle::Bold);
-    root.draw_text(&prep.title, &title_font.color(&INK), (16, 10))
-        .map_err(draw_err)?;
-    let sub_font = ("sans-serif", 16).into_font();
-    root.draw_text(&prep.subtitle, &sub_font.color(&INK), (16, 38))
-        .map_err(draw_err)?;
+    let title_font = ("sans-serif", 22.0 * s).into_font().style(FontStyle::Bold);
+    root.draw_text(
+        &prep.title,
+        &title_font.color(&INK),
+        (pxi(s, 16), pxi(s, 10)),
+    )
+    .map_err(draw_err)?;
+    let sub_font = ("sans-serif", 16.0 * s).into_font();
+    root.draw_text(
+        &prep.subtitle,
+        &sub_font.color(&INK),
+        (pxi(s, 16), pxi(s, 38)),
+    )
+    .map_err(draw_err)?;
 
     // Chart: axes and plot area.
     let chart_area = root
         .clone()
-        .shrink((0, TITLE_H), (width - LEGEND_W, height - TITLE_H));
+        .shrink((0, title_h), (width - legend_w, height - title_h));
     let r = paving.root;
     // θ ticks at multiples of π/4, or plain numbers in a narrow window.
     let key_points = theta_ticks(r.theta[0], r.theta[1]);
     let (_, y_step) = nice_ticks(r.theta_dot[0], r.theta_dot[1], 11);
     let mut chart = ChartBuilder::on(&chart_area)
-        .margin_top(MARGIN_TOP)
-        .margin_right(MARGIN_RIGHT)
-        .margin_bottom(MARGIN_BOTTOM)
-        .x_label_area_size(X_LABELS_H)
-        .y_label_area_size(Y_LABELS_W)
+        .margin_top(margin_top)
+        .margin_right(px(s, MARGIN_RIGHT))
+        .margin_bottom(px(s, MARGIN_BOTTOM))
+        .x_label_area_size(x_labels_h)
+        .y_label_area_size(y_labels_w)
         .build_cartesian_2d(r.theta[0]..r.theta[1], r.theta_dot[0]..r.theta_dot[1])
         .map_err(draw_err)?;
     let plot = chart.plotting_area().strip_coord_spec();
@@ -385,14 +429,15 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
     native(&plot, |fig, o| {
         for l in &prep.lines {
             let pts: Vec<(f64, f64)> = l.iter().map(|p| (o.0 + p.0, o.1 + p.1)).collect();
-            fig.stroke(&pts, LINE.mix(0.8).to_backend_color(), 1.1)?;
+            fig.stroke(&pts, LINE.mix(0.8).to_backend_color(), 1.1 * s)?;
         }
         Ok(())
     })
     .map_err(AtlasError::Draw)?;
 
     // Axes: θ̇ ticks by plotters, θ ticks at multiples of π/4 by hand.
-    let label_font = ("sans-serif", 16).into_font();
+    let label_font = ("sans-serif", 16.0 * s).into_font();
+    let ink = INK.stroke_width(px(s, 1));
     chart
         .configure_mesh()
         .disable_mesh()
@@ -400,38 +445,38 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
         .x_labels(0)
         .y_label_formatter(&|v| tick_label(*v, y_step))
         .y_labels(11)
-        .axis_style(INK)
+        .axis_style(ink)
         .draw()
         .map_err(draw_err)?;
     let (pw, ph) = plot.dim_in_pixel();
     let below = chart_area
         .clone()
-        .shrink((Y_LABELS_W, MARGIN_TOP + ph), (pw, X_LABELS_H));
+        .shrink((y_labels_w, margin_top + ph), (pw, x_labels_h));
     let tick_font = label_font
         .color(&INK)
         .pos(Pos::new(HPos::Center, VPos::Top));
-    draw_x_ticks(&below, key_points, r.theta, pw, &tick_font)?;
+    draw_x_ticks(&below, key_points, r.theta, pw, &tick_font, s)?;
     // Axis names, upright: θ below, θ̇ (θ with a dot) left of the plot.
-    let desc = ("sans-serif", 20)
+    let desc = ("sans-serif", 20.0 * s)
         .into_font()
         .color(&INK)
         .pos(Pos::new(HPos::Center, VPos::Center));
     below
-        .draw_text("θ", &desc, (pw as i32 / 2, 34))
+        .draw_text("θ", &desc, (pw as i32 / 2, pxi(s, 34)))
         .map_err(draw_err)?;
-    let left = chart_area.clone().shrink((0, MARGIN_TOP), (Y_LABELS_W, ph));
-    left.draw_text(THETA_DOT, &desc, (12, ph as i32 / 2))
+    let left = chart_area.clone().shrink((0, margin_top), (y_labels_w, ph));
+    left.draw_text(THETA_DOT, &desc, (pxi(s, 12), ph as i32 / 2))
         .map_err(draw_err)?;
     plot.draw(&Rectangle::new(
         [(0, 0), (pw as i32 - 1, ph as i32 - 1)],
-        INK.stroke_width(1),
+        ink,
     ))
     .map_err(draw_err)?;
 
     // Legend.
     let legend = root
         .clone()
-        .shrink((width - LEGEND_W, TITLE_H), (LEGEND_W, height - TITLE_H));
+        .shrink((width - legend_w, title_h), (legend_w, height - title_h));
     draw_legend(&legend, prep)?;
     Ok(())
 }
@@ -546,21 +591,27 @@ impl CellLayer {
 /// Whether the area draws to an SVG (vector regions) or a PNG (raster).
 /// Ticks under a plot `pw` pixels wide spanning `range`: a mark and its
 /// label, centred, at each tick, in the strip `below` (the atlas and the
-/// paper-check figures alike).
+/// paper-check figures alike), with lengths at scale `s` ([`scale_of`]).
 fn draw_x_ticks(
     below: &Area,
     ticks: Vec<(f64, String)>,
     range: [f64; 2],
     pw: u32,
     font: &TextStyle,
+    s: f64,
 ) -> Result<(), AtlasError> {
     for (t, label) in ticks {
         let x = ((t - range[0]) / (range[1] - range[0]) * f64::from(pw)).round() as i32;
         let x = x.min(pw as i32 - 1);
         below
-            .draw(&PathElement::new(vec![(x, 0), (x, 5)], INK.stroke_width(1)))
+            .draw(&PathElement::new(
+                vec![(x, 0), (x, pxi(s, 5))],
+                INK.stroke_width(px(s, 1)),
+            ))
             .map_err(draw_err)?;
-        below.draw_text(&label, font, (x, 8)).map_err(draw_err)?;
+        below
+            .draw_text(&label, font, (x, pxi(s, 8)))
+            .map_err(draw_err)?;
     }
     Ok(())
 }
@@ -639,6 +690,9 @@ const HATCH_WIDEN: u32 = 6;
 
 /// θ̇ as θ followed by a combining dot above (placed by the text layout).
 pub const THETA_DOT: &str = "θ\u{307}";
+/// Axis names with units (rad, rad/s), for the paper-check figures.
+pub const THETA_RAD: &str = "θ (rad)";
+pub const THETA_DOT_UNITS: &str = "θ\u{307} (rad/s)";
 
 /// The symbol of a class as markup: complements carry a combining overbar.
 /// A legend swatch of `class` at `(x, y)`, `(w, h)` pixels: its colour,
@@ -648,6 +702,7 @@ fn class_swatch(
     class: Class,
     (x, y): (i32, i32),
     (w, h): (i32, i32),
+    s: f64,
 ) -> Result<(), AtlasError> {
     area.draw(&Rectangle::new(
         [(x, y), (x + w, y + h)],
@@ -666,7 +721,7 @@ fn class_swatch(
     }
     area.draw(&Rectangle::new(
         [(x, y), (x + w, y + h)],
-        INK.stroke_width(1),
+        INK.stroke_width(px(s, 1)),
     ))
     .map_err(draw_err)?;
     Ok(())
@@ -684,53 +739,55 @@ fn symbol_markup(class: Class) -> &'static str {
 }
 
 fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), AtlasError> {
-    let head = ("sans-serif", 17).into_font().style(FontStyle::Bold);
-    let name = ("sans-serif", 17).into_font();
-    let body = ("sans-serif", 14).into_font();
-    let (x0, sw, sh) = (12, 34, 24);
-    let mut y = MARGIN_TOP as i32 + 2;
+    let s = prep.scale;
+    let k = |v: i32| pxi(s, v);
+    let head = ("sans-serif", 17.0 * s).into_font().style(FontStyle::Bold);
+    let name = ("sans-serif", 17.0 * s).into_font();
+    let body = ("sans-serif", 14.0 * s).into_font();
+    let (x0, sw, sh) = (k(12), k(34), k(24));
+    let mut y = k(MARGIN_TOP as i32 + 2);
     area.draw_text("Certified cells", &head.color(&INK), (x0, y))
         .map_err(draw_err)?;
-    y += 26;
+    y += k(26);
     for (i, class) in Class::ALL.into_iter().enumerate() {
         if i == 4 {
-            y += 6;
+            y += k(6);
             area.draw_text("Not certified", &head.color(&INK), (x0, y))
                 .map_err(draw_err)?;
-            y += 26;
+            y += k(26);
         }
-        class_swatch(area, class, (x0, y), (sw, sh))?;
-        let tx = x0 + sw + 10;
+        class_swatch(area, class, (x0, y), (sw, sh), s)?;
+        let tx = x0 + sw + k(10);
         let share = match prep.empty[i] {
             Some(why) => format!("empty ({why})"),
             None => format!("{:.1} % of box", 100.0 * prep.shares[i]),
         };
-        area.draw_text(symbol_markup(class), &name.color(&INK), (tx, y - 3))
+        area.draw_text(symbol_markup(class), &name.color(&INK), (tx, y - k(3)))
             .map_err(draw_err)?;
-        area.draw_text(&share, &body.color(&INK), (tx + 110, y))
+        area.draw_text(&share, &body.color(&INK), (tx + k(110), y))
             .map_err(draw_err)?;
         let meaning = if class == Class::Undefined {
             prep.undefined
         } else {
             class.meaning()
         };
-        area.draw_text(meaning, &body.color(&INK), (tx, y + 15))
+        area.draw_text(meaning, &body.color(&INK), (tx, y + k(15)))
             .map_err(draw_err)?;
-        y += sh + 22;
+        y += sh + k(22);
     }
-    y += 4;
+    y += k(4);
     let ly = y + sh / 2;
     area.draw(&PathElement::new(
         vec![(x0, ly), (x0 + sw, ly)],
-        LINE.mix(0.75).stroke_width(1),
+        LINE.mix(0.75).stroke_width(px(s, 1)),
     ))
     .map_err(draw_err)?;
-    let tx = x0 + sw + 10;
-    area.draw_text("phase portrait", &name.color(&INK), (tx, y - 3))
+    let tx = x0 + sw + k(10);
+    area.draw_text("phase portrait", &name.color(&INK), (tx, y - k(3)))
         .map_err(draw_err)?;
-    area.draw_text("f64, not certified", &body.color(&INK), (tx, y + 15))
+    area.draw_text("f64, not certified", &body.color(&INK), (tx, y + k(15)))
         .map_err(draw_err)?;
-    y += sh + 26;
+    y += sh + k(26);
     let notes = [
         "Cell colours only where leaves proved",
         "in that cell cover the pixel (PNG) or",
@@ -740,18 +797,18 @@ fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), AtlasError> {
     for n in notes {
         area.draw_text(n, &body.color(&INK), (x0, y))
             .map_err(draw_err)?;
-        y += 17;
+        y += k(17);
     }
     if prep.incomplete {
-        y += 10;
-        let warn = ("sans-serif", 15).into_font().style(FontStyle::Bold);
+        y += k(10);
+        let warn = ("sans-serif", 15.0 * s).into_font().style(FontStyle::Bold);
         for n in [
             "INCOMPLETE: box budget reached,",
             "refinement stopped early",
         ] {
             area.draw_text(n, &warn.color(&WARN), (x0, y))
                 .map_err(draw_err)?;
-            y += 18;
+            y += k(18);
         }
     }
     Ok(())

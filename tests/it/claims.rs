@@ -113,12 +113,12 @@ fn claim_table_pairs_with_the_checks_one_to_one() {
     let dropped = format!("{}{}", &table[..first], &table[second..]);
     assert_eq!(
         pair(&dropped, &checks).err(),
-        Some(TableError::NoRow("F1.3".into()))
+        Some(TableError::NoRow("A.onlyN".into()))
     );
     let doubled = format!("{table}\n{}", &table[first..second]);
     assert_eq!(
         pair(&doubled, &checks).err(),
-        Some(TableError::Repeated("F1.3".into()))
+        Some(TableError::Repeated("A.onlyN".into()))
     );
     let extra_key = table.replacen("[[claim]]\n", "[[claim]]\nverdict = \"confirmed\"\n", 1);
     assert!(matches!(
@@ -214,6 +214,47 @@ fn s1_eq_focus_is_conditional() {
     assert_eq!(at("side_true"), q("-2923/45"));
     // μ = 20: (400·0.0625 − 5.886)/0.09 = 19.114/0.09 = 9557/45
     assert_eq!(at("side_false"), q("9557/45"));
+    // a = b = 0.5: the damping −μ(a − b)²/C vanishes, trace 0: a centre of
+    // the linearisation, not a focus (the discriminant −4mgb/C < 0 alone
+    // would call it one)
+    let c = &r.witness["side_a_equals_b"]["at_minus_pi_over_2"];
+    assert_eq!(c["d_thdd_d_theta_dot"], "0");
+    assert_eq!(c["type"], "centre of the linearisation");
+    assert!(r
+        .correction
+        .as_deref()
+        .unwrap()
+        .contains("a centre iff μ(a − b) = 0"));
+}
+
+/// Subcase 2 is proved, not sampled: equilibria solve G(tg(θ/2)) = c₀ with
+/// G falling then rising, so 0, 1 (tangent) or 2. min G is checked against
+/// mpmath (findroot of t²(1 + t²)²G' by bisection, 30 digits, defaults
+/// m = a = 1, A = 0.25, g = 9.81): 0.6977163994188339 at p = 1 (t* =
+/// 0.7868003501703082), −1.0635832141321968 at p = 2 (t* = 0.4630139300288331).
+#[test]
+fn s3_sub2_is_proved_with_its_tangent_case() {
+    let r = expect("S3.sub2", Verdict::Conditional);
+    assert_eq!(r.witness["balance"]["identity"], "proved");
+    assert_eq!(r.witness["slope"]["identity"], "proved");
+    for (i, (gmin, tstar)) in [
+        (0.6977163994188339, 0.7868003501703082),
+        (-1.0635832141321968, 0.4630139300288331),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let m = &r.witness["min_G"][i];
+        let (g, t) = (&m["min_G"], &m["t_star"]);
+        assert!(num(&g[0]) <= gmin && gmin <= num(&g[1]), "{g}");
+        assert!(num(&g[1]) - num(&g[0]) < 1e-6, "{g}");
+        assert!(num(&t[0]) <= tstar && tstar <= num(&t[1]), "{t}");
+    }
+    assert!(r
+        .correction
+        .as_deref()
+        .unwrap()
+        .contains("one degenerate equilibrium"));
 }
 
 // ---------------------------------------------------------------- §2
@@ -276,7 +317,8 @@ fn section_3_formulas() {
     for id in ["F3.1", "F3.2", "F3.3", "F3.5"] {
         expect(id, Verdict::Confirmed);
     }
-    let r = expect("F3.4", Verdict::Error);
+    // a typo: U₀/V₀, hence N, (3.5) and Ω₀, are right
+    let r = expect("F3.4", Verdict::Typo);
     // V₀(θ = 1) = 1 + cos²1/(0.25 + sin²1) = 1.30470168…
     let d = &r.witness["V0_newton_euler"];
     assert!(
@@ -298,7 +340,6 @@ fn section_3_statements() {
         expect(id, Verdict::Confirmed);
     }
     expect("S3.c0changes", Verdict::Conditional);
-    expect("S3.sub2", Verdict::ConfirmedOn);
     let r = expect("S3.c0invariant", Verdict::Conditional);
     // g(A + m a² sin²θ*)/((A + m a²) a sin θ*) = 9.81·0.61/(1.25·0.6) = 7.9788
     let b = num(&r.witness["side_extra"]["boundary_theta_dot_squared"]);
@@ -371,7 +412,8 @@ fn u_and_v_are_read_one_way_in_every_check() {
         assert_eq!(q(rd["U"].as_str().unwrap()), ratio(1271, 400), "{id}");
     }
     // θ̈ of (2.5) substituted first gives U·A/(A + m a² cos²θ) = U/(mV) = 1271/976
-    let r = expect("F2.6route", Verdict::Error);
+    // a typo: the factor A/(A + m a² cos²θ) > 0 changes none of Ω, Ω₀, N
+    let r = expect("F2.6route", Verdict::Typo);
     let shown = &r.witness["route_2_5_vs_U"];
     assert_eq!(q(shown["derived"].as_str().unwrap()), ratio(1271, 400));
     assert_eq!(
@@ -381,10 +423,85 @@ fn u_and_v_are_read_one_way_in_every_check() {
 
     // §3, same point, v_x = 1: V₀ = 1/m + a²cos²θ/(A + m a² sin²θ)
     // = 1 + (9/25)/(1/4 + 16/25) = 1 + 36/89 = 125/89.
-    let r = expect("F3.4", Verdict::Error);
+    let r = expect("F3.4", Verdict::Typo);
     let rd = &r.witness["identity"]["reading"];
     assert_eq!(q(rd["V"].as_str().unwrap()), ratio(125, 89));
     assert_eq!(q(rd["printed_V"].as_str().unwrap()), 1);
+}
+
+/// The header defines every verdict and every strength, and reads U and V
+/// per section: U decides Ω₀, and is the paper's Ω only in §2; V is
+/// ∇Λ·M⁻¹∇Λ in §1 and §2, and the blade changes it in §3.
+#[test]
+fn report_defines_every_verdict_and_strength_and_u_v_per_section() {
+    let md = claims::report::markdown(&claims::run(&["F1.3".into()]).unwrap());
+    let head = &md[..md.find("| id |").unwrap()];
+    for v in claims::Verdict::ALL {
+        assert!(head.contains(&format!("| {v} | {} |", v.meaning())), "{v}");
+    }
+    for s in claims::Strength::ALL {
+        assert!(head.contains(&format!("| {s} | {} |", s.meaning())), "{s}");
+    }
+    for s in [
+        "the sign of U decides Ω₀",
+        "that is U only on the smooth plane of §2",
+        "V₀ = 1/m + a²cos²θ/(A + m a² sin²θ)",
+    ] {
+        assert!(head.contains(s), "{s} missing from the header");
+    }
+    assert!(
+        !head.contains("(the paper's Ω)"),
+        "U is not the paper's Ω in §1 and §3"
+    );
+}
+
+/// Ω̄ ∩ Ω₀ of Example 1 is not empty: a certified box. Independent check at
+/// its centre in f64 from the closed forms g_Ω = b θ̇² sin θ − g > 0 and
+/// g_Ω₀ = μh²bθ̇ cos θ + C g_Ω < 0 (defaults a = 1, b = 0.5, C = 0.3, μ = 0.8).
+#[test]
+fn example_1_has_a_certified_point_of_nonuniqueness() {
+    let r = expect("S1.nonunique", Verdict::Confirmed);
+    let b = &r.witness["witness"]["box"];
+    let t = 0.5 * (num(&b["theta"][0]) + num(&b["theta"][1]));
+    let w = 0.5 * (num(&b["theta_dot"][0]) + num(&b["theta_dot"][1]));
+    let h = 1.0 + 0.5 * t.sin();
+    let g_omega = 0.5 * w * w * t.sin() - 9.81;
+    let g_omega0 = 0.8 * h * h * 0.5 * w * t.cos() + 0.3 * g_omega;
+    assert!(g_omega > 0.0 && g_omega0 < 0.0, "{g_omega} {g_omega0}");
+}
+
+/// The abstract's "checking only N ≥ 0 leads to wrong conclusions" rests on
+/// certified points of Ω₀ outside Ω (S3.sub2's equilibrium, S1.nonunique).
+#[test]
+fn checking_only_n_is_shown_wrong_by_certified_points() {
+    let r = expect("A.onlyN", Verdict::Confirmed);
+    assert!(r.summary.contains("outside Ω"), "{}", r.summary);
+    assert_eq!(r.witness["in_omega0_identity"]["identity"], "proved");
+}
+
+/// "(reversing the OZ axis)": reversing OZ reverses v_x and breaks (3.3);
+/// the symmetry is a vertical mirror with the disc's axis reversed. The
+/// exact difference of (3.3) is recomputed here by hand at sin θ = 4/5,
+/// cos θ = 3/5, v_x = 1 and the defaults (m = a = 1, A = 1/4, p_φ = 5/2,
+/// p_ψ = 2, g = 981/100).
+#[test]
+fn reversing_oz_is_not_the_symmetry() {
+    let r = expect("S3.symOZ", Verdict::False);
+    assert_eq!(r.witness["reversing_OZ_image"]["identity"], "proved");
+    assert_eq!(
+        r.witness["mirror_and_axis_flip_image"]["identity"],
+        "proved"
+    );
+    let d = &r.witness["theta_ddot_3_3_under_reversing_OZ"];
+    assert_eq!(d["identity"], "differ");
+    // θ̈ = (−g·3/5 + τ − ττ'/4)·4/5 with τ = 5/2, τ' = 65/8; minus θ̈ at the
+    // image (τ → −5/2, τ' kept, cos → −cos, v_x → −1) is −(g·3/5 + 5/2 +
+    // (5/2)(65/8)/4)·4/5: they differ by 2·(5/2)·4/5 = 4 (the v_x τ term).
+    let tau_tau1: rug::Rational = ratio(5, 2) * ratio(65, 8) / 4;
+    let at = (ratio(-981, 100) * ratio(3, 5) + ratio(5, 2) - tau_tau1.clone()) * ratio(4, 5);
+    let image = -((ratio(981, 100) * ratio(3, 5) + ratio(5, 2) + tau_tau1) * ratio(4, 5));
+    assert_eq!(q(d["printed"].as_str().unwrap()), at);
+    assert_eq!(q(d["derived"].as_str().unwrap()), image);
 }
 
 #[test]
@@ -426,7 +543,13 @@ fn contact_without_detachment_lies_in_omega_and_omega0() {
 
 #[test]
 fn the_reduction_to_nonnegative_momenta_needs_time_reversal() {
-    let r = expect("S3.symreduce", Verdict::Typo);
+    // true with a step the paper leaves out (the time reversal): confirmed
+    let r = expect("S3.symreduce", Verdict::Confirmed);
+    assert!(
+        r.summary.contains("a step the paper leaves out"),
+        "{}",
+        r.summary
+    );
     assert_eq!(r.witness["time_reversal"]["identity"], "proved");
     // p_φ → −p_φ at sin θ = 4/5, cos θ = 3/5, v_x = 1 (defaults):
     // τ = 5/2 → (2 + 3/2)/(1/5) = 35/2, τ' = 65/8 → (−5/2 − 6/5)/(4/25) = −185/8;

@@ -133,3 +133,27 @@ fn committed_figures_are_pairwise_different() {
         "/paper-checks/figures"
     )));
 }
+
+/// Every committed SVG of the report keeps its spaces: text runs are split
+/// at accents and subscripts, and without `xml:space="preserve"` standard
+/// renderers drop the space that ends a run ("θ̈of (1.7)").
+#[test]
+fn committed_svgs_preserve_spaces() {
+    let dir = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/paper-checks/figures"));
+    let mut n = 0;
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_some_and(|x| x == "svg") {
+            let text = std::fs::read_to_string(&p).unwrap();
+            let root = &text[text.find("<svg").unwrap()..];
+            let root = &root[..root.find('>').unwrap()];
+            assert!(
+                root.contains(r#"xml:space="preserve""#),
+                "{}: {root}",
+                p.display()
+            );
+            n += 1;
+        }
+    }
+    assert!(n >= 15, "{n} SVGs");
+}

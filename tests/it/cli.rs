@@ -412,3 +412,132 @@ fn area_refuses_places_below_binary64_rounding() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// Every `attr="…"` number of an SVG outside its `<defs>` (the hatching
+/// texture keeps its fine spacing), sorted.
+fn svg_numbers(svg: &str, attr: &str) -> Vec<f64> {
+    let key = format!("{attr}=\"");
+    let body = match (svg.find("<defs>"), svg.find("</defs>")) {
+        (Some(a), Some(b)) => format!("{}{}", &svg[..a], &svg[b..]),
+        _ => svg.to_string(),
+    };
+    let mut v: Vec<f64> = body
+        .split(&key)
+        .skip(1)
+        .map(|s| s[..s.find('"').unwrap()].parse().unwrap())
+        .collect();
+    v.sort_by(f64::total_cmp);
+    v
+}
+
+/// `--size` twice the default in both directions doubles every font size
+/// and line width: the text and lines grow with the canvas (they stayed at
+/// the default's size before, unreadable on a poster).
+#[test]
+fn atlas_text_and_lines_grow_with_size() {
+    let dir = std::env::temp_dir().join(format!("detach-atlas-size-{}", std::process::id()));
+    let svg = |size: &str| {
+        let d = dir.join(size);
+        let out = detach(&[
+            "atlas",
+            "--out",
+            d.to_str().unwrap(),
+            "--scene",
+            "smooth-disc",
+            "--eps",
+            "0.1",
+            "--format",
+            "svg",
+            "--size",
+            size,
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        std::fs::read_to_string(d.join("smooth-disc.svg")).unwrap()
+    };
+    let (small, large) = (svg("1200x800"), svg("2400x1600"));
+    for attr in ["font-size", "stroke-width"] {
+        let (a, b) = (svg_numbers(&small, attr), svg_numbers(&large, attr));
+        assert!(!a.is_empty(), "{attr}");
+        assert_eq!(a.len(), b.len(), "{attr}");
+        for (x, y) in a.iter().zip(&b) {
+            assert!(
+                (y - 2.0 * x).abs() <= 0.02,
+                "{attr}: {x} at 1200x800, {y} at 2400x1600"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `summary.json` describes every scene pictured in its folder: a second
+/// scene is added, a repeated one replaced, one whose pictures are gone
+/// dropped; a file that is not a summary stops the run before any work.
+#[test]
+fn atlas_summary_merges_per_scene() {
+    let dir = std::env::temp_dir().join(format!("detach-atlas-merge-{}", std::process::id()));
+    let out = dir.to_str().unwrap();
+    let run = |scene: &str, eps: &str| {
+        let o = detach(&[
+            "atlas", "--out", out, "--scene", scene, "--eps", eps, "--format", "svg",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    let listed = || -> Vec<(String, f64)> {
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
+                .unwrap();
+        v["scenes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| {
+                (
+                    s["scene"].as_str().unwrap().to_string(),
+                    s["eps"].as_f64().unwrap(),
+                )
+            })
+            .collect()
+    };
+    let e = |s: &str, eps: f64| (s.to_string(), eps);
+    run("smooth-disc", "0.1");
+    run("viscous-disc", "0.1");
+    assert_eq!(listed(), [e("smooth-disc", 0.1), e("viscous-disc", 0.1)]);
+    run("smooth-disc", "0.05");
+    assert_eq!(listed(), [e("smooth-disc", 0.05), e("viscous-disc", 0.1)]);
+    std::fs::remove_file(dir.join("viscous-disc.svg")).unwrap();
+    run("smooth-disc", "0.1");
+    assert_eq!(listed(), [e("smooth-disc", 0.1)]);
+    std::fs::write(dir.join("summary.json"), "not json").unwrap();
+    let o = detach(&["atlas", "--out", out, "--scene", "ice-disc", "--eps", "0.1"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("is not a summary"));
+    assert!(
+        !dir.join("ice-disc.svg").exists(),
+        "no work before the check"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The table's box columns carry the JSON's names: `outer boxes` is
+/// `boxes.outer` (it was headed `not out`).
+#[test]
+fn pave_table_names_its_box_counts_as_the_json_does() {
+    let args = ["pave", "--scene", "viscous-disc", "--eps", "0.05"];
+    let table = String::from_utf8(detach(&args).stdout).unwrap();
+    let head = table.lines().nth(1).unwrap();
+    assert!(
+        head.contains("inner boxes") && head.contains("outer boxes"),
+        "{head}"
+    );
+    let v = json(&[&args[..], &["--json"]].concat());
+    let row: Vec<&str> = table.lines().nth(2).unwrap().split_whitespace().collect();
+    let b = &v["regions"][0]["boxes"];
+    let n = row.len();
+    assert_eq!(row[n - 3], b["inner"].to_string());
+    assert_eq!(row[n - 2], b["outer"].to_string());
+    assert_eq!(row[n - 1], b["undecided"].to_string());
+}
