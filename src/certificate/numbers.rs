@@ -68,6 +68,30 @@ pub fn decimal(x: f64, digits: usize, dir: Round) -> String {
     unreachable!("outward decimal of {x} not found")
 }
 
+/// `x` with `places` digits after the point, rounded toward `dir` from the
+/// exact value of the double, so a printed lower bound stays below `x` and
+/// an upper bound above it (`format!("{:.6}")` rounds to nearest).
+pub fn fixed(x: f64, places: usize, dir: Round) -> String {
+    let Some(exact) = rug::Rational::from_f64(x) else {
+        return format!("{x}");
+    };
+    let scaled = exact * rug::Integer::from(10).pow(places as u32);
+    let n = match dir {
+        Round::Down => scaled.floor(),
+        Round::Up => scaled.ceil(),
+    };
+    let n = n.numer().clone();
+    let sign = if n < 0 { "-" } else { "" };
+    let digits = n.abs().to_string();
+    let digits = format!("{digits:0>width$}", width = places + 1);
+    let (whole, frac) = digits.split_at(digits.len() - places);
+    if places == 0 {
+        format!("{sign}{whole}")
+    } else {
+        format!("{sign}{whole}.{frac}")
+    }
+}
+
 /// `123e-2` → `1.23`; keeps exponent form only for very large or small numbers.
 fn tidy(t: &str) -> String {
     let (m, e) = t.split_once('e').expect("exponent form");
@@ -132,5 +156,22 @@ mod tests {
             assert!(enclose_decimal("u", &u).unwrap().inf() >= x, "{u}");
         }
         assert_eq!(decimal(0.0, 3, Round::Up), "0");
+    }
+
+    #[test]
+    fn fixed_places_round_outward_from_the_exact_double() {
+        // 41.33452342101865 rounds to nearest as ...019 at 12 places; its
+        // exact value lies between ...018 and ...019.
+        let x = 41.33452342101865;
+        assert_eq!(format!("{x:.12}"), "41.334523421019");
+        assert_eq!(fixed(x, 12, Round::Down), "41.334523421018");
+        assert_eq!(fixed(x, 12, Round::Up), "41.334523421019");
+        // 0.1 is above 1/10 as a double: down keeps 0.100000, up gives 0.100001.
+        assert_eq!(fixed(0.1, 6, Round::Down), "0.100000");
+        assert_eq!(fixed(0.1, 6, Round::Up), "0.100001");
+        assert_eq!(fixed(-0.1, 6, Round::Down), "-0.100001");
+        assert_eq!(fixed(0.5, 6, Round::Up), "0.500000");
+        assert_eq!(fixed(0.0, 3, Round::Down), "0.000");
+        assert_eq!(fixed(2.5e-7, 6, Round::Up), "0.000001");
     }
 }

@@ -1,6 +1,7 @@
 //! `detach area`: certified areas of regions and cells by quadrature over θ.
 
 use super::{CliError, CliResult};
+use detach::certificate::numbers::{fixed, Round};
 use detach::number::param::parse_assignment;
 use detach::pave::{pave_scene_method, standard_cells, Method, MethodOptions, PaveOptions, Paving};
 use detach::quadrature::{cell_area, check_target, AreaEnclosure, AreaError, AreaOptions, CELLS};
@@ -254,9 +255,9 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
             continue;
         }
         outln!(
-            "  {label} [{:.p$}, {:.p$}]  width {:.1e}{}  {} pieces  {:.3} s",
-            r.lower,
-            r.upper,
+            "  {label} [{}, {}]  width {:.1e}{}  {} pieces  {:.3} s",
+            fixed(r.lower, places, Round::Down),
+            fixed(r.upper, places, Round::Up),
             r.width,
             if r.target_met {
                 ""
@@ -267,7 +268,6 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
             },
             r.pieces,
             r.elapsed_s,
-            p = places
         );
     }
     if let Some(why) = &report.note {

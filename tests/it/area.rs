@@ -219,3 +219,39 @@ fn targets_below_binary64_rounding_are_refused() {
         }
     }
 }
+
+/// The table prints each bound rounded outward from the double it stands for
+/// (a lower bound down, an upper bound up), so the printed interval contains
+/// the JSON's. Rounding to nearest prints about half of the bounds inward.
+#[test]
+fn printed_bounds_contain_the_json_bounds() {
+    let mut checked = 0;
+    for scene in ["smooth-disc", "viscous-disc", "ice-disc", "painleve-rod"] {
+        let args = ["area", "--scene", scene, "--digits", "12"];
+        let out = crate::common::detach(&args);
+        assert!(out.status.success());
+        let text = String::from_utf8(out.stdout).unwrap();
+        let mut json_args = args.to_vec();
+        json_args.push("--json");
+        let report = crate::common::json(&json_args);
+        let regions = report["regions"].as_array().unwrap();
+        let printed: Vec<(f64, f64)> = text
+            .lines()
+            .filter_map(|l| {
+                let inner = l.split_once('[')?.1.split_once(']')?.0;
+                let (lo, hi) = inner.split_once(", ")?;
+                Some((lo.parse().ok()?, hi.parse().ok()?))
+            })
+            .collect();
+        assert_eq!(printed.len(), regions.len(), "{text}");
+        for ((lo, hi), r) in printed.iter().zip(regions) {
+            let (jlo, jhi) = (r["lower"].as_f64().unwrap(), r["upper"].as_f64().unwrap());
+            assert!(
+                *lo <= jlo && jhi <= *hi,
+                "{scene}: [{lo}, {hi}] ⊉ [{jlo}, {jhi}]"
+            );
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 24);
+}
