@@ -75,7 +75,7 @@ pub fn fixed(x: f64, places: usize, dir: Round) -> String {
     let Some(exact) = rug::Rational::from_f64(x) else {
         return format!("{x}");
     };
-    let scaled = exact * rug::Integer::from(10).pow(places as u32);
+    let scaled = exact * rug::Integer::from(rug::Integer::u_pow_u(10, places as u32));
     let n = match dir {
         Round::Down => scaled.floor(),
         Round::Up => scaled.ceil(),
