@@ -301,3 +301,75 @@ fn crossing_touching_and_vanishing_shapes_meet_the_target() {
         }
     }
 }
+
+/// `area` takes `--theta`/`--theta-dot` windows as `pave` does: on
+/// `(θ̇ − sin θ)(θ̇ − cos θ) < 0`, θ ∈ [0, π/2] holds
+/// `∫₀^{π/2} |sin θ − cos θ| dθ = 2(√2 − 1)` (both halves around π/4 give
+/// `√2 − 1`), and the θ̇-window [−1, 1] holds both roots there, so the same;
+/// θ̇ ∈ [0, 1/2] cuts it. Bad windows get `pave`'s messages.
+#[test]
+fn area_takes_windows_like_pave() {
+    use crate::common::{assert_bad_input, json};
+    let dir = std::env::temp_dir().join(format!("detach-area-window-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("cross.toml");
+    let region = "(theta_dot - sin(theta))*(theta_dot - cos(theta)) < 0";
+    std::fs::write(
+        &file,
+        format!(
+            "name = \"cross\"\n[domain]\ntheta = [\"-pi\", \"pi\"]\ntheta_dot = [\"-2\", \"2\"]\n\
+             [regions]\nomega = \"{region}\"\nomega0 = \"{region}\"\n"
+        ),
+    )
+    .unwrap();
+    let f = file.to_str().unwrap();
+    let exact = 2.0 * (std::f64::consts::SQRT_2 - 1.0);
+    for thd in [None, Some("-1:1")] {
+        let mut args = vec![
+            "area",
+            "--scene-file",
+            f,
+            "--region",
+            "omega",
+            "--theta",
+            "0:pi/2",
+        ];
+        args.extend(thd.iter().flat_map(|w| ["--theta-dot", *w]));
+        args.push("--json");
+        let v = json(&args);
+        let r = &v["regions"][0];
+        let (lo, hi) = (r["lower"].as_f64().unwrap(), r["upper"].as_f64().unwrap());
+        assert!(
+            lo <= exact * (1.0 + 1e-15) && exact * (1.0 - 1e-15) <= hi,
+            "{thd:?}: {r}"
+        );
+        assert_eq!(r["target_met"], true, "{thd:?}: {r}");
+        assert_eq!(r["method"], "quadrature");
+    }
+    let v = json(&[
+        "area",
+        "--scene-file",
+        f,
+        "--region",
+        "omega",
+        "--theta",
+        "0:pi/2",
+        "--theta-dot",
+        "0:0.5",
+        "--json",
+    ]);
+    assert!(v["regions"][0]["upper"].as_f64().unwrap() < 0.5 * exact);
+    for (w, needle) in [
+        (["--theta", "0-1"], "--theta must be LO:HI"),
+        (["--theta", "0:7"], "--theta: the window must lie inside"),
+        (["--theta-dot", "1:0"], "--theta-dot"),
+    ] {
+        let mut args = vec!["area", "--scene-file", f];
+        args.extend(w);
+        assert_bad_input(&args, needle);
+        let mut args = vec!["pave", "--scene-file", f];
+        args.extend(w);
+        assert_bad_input(&args, needle);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
