@@ -26,6 +26,13 @@ pub struct AreaArgs {
     /// Override a parameter, as decimal text: `--param p_psi=0.6` (repeatable).
     #[arg(long = "param", value_name = "NAME=VALUE")]
     pub params: Vec<String>,
+    /// Restrict θ to a window `LO:HI` (decimal text, `pi`, `-pi`, `pi/N`)
+    /// inside the scene's domain: the areas are of the window's part.
+    #[arg(long, value_name = "LO:HI", allow_hyphen_values = true)]
+    pub theta: Option<String>,
+    /// Restrict θ̇ to a window `LO:HI` (decimal text) inside the scene's domain.
+    #[arg(long = "theta-dot", value_name = "LO:HI", allow_hyphen_values = true)]
+    pub theta_dot: Option<String>,
     /// Most θ-pieces per region (an integer, `1e6` form accepted).
     #[arg(long, default_value_t = 1 << 20, value_parser = detach::number::param::parse_count)]
     pub max_pieces: usize,
@@ -44,12 +51,17 @@ struct RegionArea {
     width: f64,
     /// Whether the width target was met.
     target_met: bool,
+    /// `quadrature`, or `paving` where the bounds are a paving's alone.
+    method: &'static str,
     /// Missed because binary64 rounding limits this area to about its width.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     at_rounding_floor: bool,
+    /// θ-pieces of the quadrature, or the paving's leaves.
     pieces: usize,
-    /// Pieces whose slice shape stayed undecided, bounded by `[0, hi − lo]`.
-    undecided_pieces: usize,
+    /// Pieces whose slice shape stayed undecided, bounded by `[0, hi − lo]`
+    /// (quadrature only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    undecided_pieces: Option<usize>,
     /// Set when the cell is empty by construction.
     #[serde(skip_serializing_if = "Option::is_none")]
     empty: Option<&'static str>,
@@ -64,6 +76,9 @@ struct AreaReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     variant: Option<Variant>,
     params: serde_json::Map<String, serde_json::Value>,
+    /// The `--theta`/`--theta-dot` windows, as given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    window: Option<String>,
     /// Target width of each enclosure.
     tol: f64,
     regions: Vec<RegionArea>,
@@ -83,6 +98,11 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
         .map(|t| parse_assignment(t).map_err(CliError::usage))
         .collect::<Result<Vec<_>, _>>()?;
     let (scene, params) = args.source.build(&overrides, args.variant)?;
+    let (th, thd) = (
+        super::atlas::split_window("theta", &args.theta)?,
+        super::atlas::split_window("theta-dot", &args.theta_dot)?,
+    );
+    let domain = super::atlas::windowed_domain(&scene, &th, &thd)?;
     if !(1..=15).contains(&args.digits) {
         return Err(CliError::usage(format!(
             "--digits must be between 1 and 15, got {}",
@@ -113,31 +133,33 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
         tol,
         max_pieces: args.max_pieces,
     };
-    let domain = scene.domain();
     // A paving's bounds stand in where the quadrature does not apply (a
     // scene file's region of another form than degree ≤ 2 in θ̇), and narrow
     // its enclosure where it missed the target (a cell whose two boundaries
     // coincide along a curve): both enclose the area.
-    let pave_once = || {
+    let pave_once = || -> Result<(Paving, f64), CliError> {
+        let start = Instant::now();
         let opts = PaveOptions {
             eps: FALLBACK_EPS,
             ..PaveOptions::default()
         };
         // The default method: for a region not quadratic in θ̇ it bisects.
         let mo = MethodOptions::new(Method::default());
-        pave_scene_method(&scene, args.variant, &domain, opts, &mo, |_, _, _| {})
-            .map_err(|e| CliError::runtime(format!("paving failed: {e:?}")))
+        let p = pave_scene_method(&scene, args.variant, &domain, opts, &mo, |_, _, _| {})
+            .map_err(|e| CliError::runtime(format!("paving failed: {e:?}")))?;
+        Ok((p, start.elapsed().as_secs_f64()))
     };
     let not_quadratic = match &scene {
         Scene::File(f) => f.not_quadratic(),
         _ => None,
     };
-    let mut paving = None;
+    let mut paving: Option<(Paving, f64)> = None;
     let mut notes = Vec::new();
     if let Some(region) = not_quadratic {
         paving = Some(pave_once()?);
         notes.push(format!(
-            "region `{region}` is not of degree at most 2 in theta_dot: bounds from a paving at eps = 1/1024"
+            "region `{region}` is not of degree at most 2 in theta_dot: every row is a paving's \
+             inner and outer bounds at eps = 1/1024, with its leaves and time"
         ));
     }
     let refusal = |i: usize, e: AreaError| {
@@ -175,8 +197,14 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
             let b = p.area_bounds(&standard_cells()[i], domain.uncovered_area_sup());
             AreaEnclosure::bounds(b.inner_area, b.outer_area, p.leaves.len())
         };
-        let e = match (&paving, not_quadratic) {
-            (Some(p), Some(_)) => bounds(p),
+        let by_paving = not_quadratic.is_some();
+        let mut elapsed = None;
+        let e = match (&paving, by_paving) {
+            (Some((p, t)), true) => {
+                // One paving for every row: its own time.
+                elapsed = Some(*t);
+                bounds(p)
+            }
             _ => {
                 let e = cell_area(&scene, args.variant, &domain, CELLS[i], opts)
                     .map_err(|e| refusal(i, e))?;
@@ -191,7 +219,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
                             "where the quadrature missed its target (e.g. a cell whose two boundaries coincide along a curve), its enclosure is intersected with a paving's bounds at eps = 1/1024".into(),
                         );
                     }
-                    e.intersect(&bounds(paving.as_ref().expect("just paved")))
+                    e.intersect(&bounds(&paving.as_ref().expect("just paved").0))
                 }
             }
         };
@@ -202,11 +230,12 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
             upper: e.area.sup() + 0.0,
             width: e.width(),
             target_met: e.width() <= tol,
+            method: if by_paving { "paving" } else { "quadrature" },
             at_rounding_floor: e.at_rounding_floor,
             pieces: e.pieces,
-            undecided_pieces: e.undecided_pieces,
+            undecided_pieces: (!by_paving).then_some(e.undecided_pieces),
             empty: e.proved_empty.then_some("omega0 = omega"),
-            elapsed_s: start.elapsed().as_secs_f64(),
+            elapsed_s: elapsed.unwrap_or_else(|| start.elapsed().as_secs_f64()),
         });
     }
     let report = AreaReport {
@@ -218,6 +247,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
             .into_iter()
             .map(|(n, t)| (n.to_string(), serde_json::Value::String(t)))
             .collect(),
+        window: super::atlas::window_text(&th, &thd),
         tol,
         regions,
         note: (!notes.is_empty()).then(|| notes.join("; ")),
@@ -235,10 +265,14 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
         .map(|(k, v)| format!("{k}={}", v.as_str().unwrap_or("")))
         .collect();
     outln!(
-        "{}{}  {}  certified areas, target width {:.0e}",
+        "{}{}  {}{}  certified areas, target width {:.0e}",
         report.scene,
         super::reading(report.variant),
         params.join(" "),
+        report
+            .window
+            .as_ref()
+            .map_or(String::new(), |w| format!("  {w}")),
         tol
     );
     let places = args.digits as usize + 2;
@@ -255,7 +289,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
             continue;
         }
         outln!(
-            "  {label} [{}, {}]  width {:.1e}{}  {} pieces  {:.3} s",
+            "  {label} [{}, {}]  width {:.1e}{}  {} {}  {:.3} s",
             fixed(r.lower, places, Round::Down),
             fixed(r.upper, places, Round::Up),
             r.width,
@@ -267,6 +301,11 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
                 " (target not met)"
             },
             r.pieces,
+            if r.method == "paving" {
+                "leaves (one paving)"
+            } else {
+                "pieces"
+            },
             r.elapsed_s,
         );
     }

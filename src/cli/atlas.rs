@@ -117,7 +117,10 @@ pub struct PaveArgs {
     pub leaves: Option<PathBuf>,
 }
 
-fn split_window(flag: &str, text: &Option<String>) -> Result<Option<[String; 2]>, CliError> {
+pub(super) fn split_window(
+    flag: &str,
+    text: &Option<String>,
+) -> Result<Option<[String; 2]>, CliError> {
     match text {
         None => Ok(None),
         Some(t) => match t.split_once(':') {
@@ -129,8 +132,32 @@ fn split_window(flag: &str, text: &Option<String>) -> Result<Option<[String; 2]>
     }
 }
 
+/// The scene's domain restricted to the windows `--theta`, `--theta-dot`
+/// (`LO:HI` text, `None` keeps the side), with a note for an end clipped to
+/// the domain.
+pub(super) fn windowed_domain(
+    scene: &Scene,
+    th: &Option<[String; 2]>,
+    thd: &Option<[String; 2]>,
+) -> Result<Domain, CliError> {
+    fn as_refs(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
+        w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()])
+    }
+    let (domain, clipped) = scene
+        .domain()
+        .window_clipped(as_refs(th), as_refs(thd))
+        .map_err(CliError::usage)?;
+    for c in clipped {
+        eprintln!(
+            "detach: note: window end {c} is within rounding of the domain's end; \
+             clipped to the domain"
+        );
+    }
+    Ok(domain)
+}
+
 /// `θ ∈ [LO, HI], θ̇ ∈ [LO, HI]` for the window ends given, as given.
-fn window_text(th: &Option<[String; 2]>, thd: &Option<[String; 2]>) -> Option<String> {
+pub(super) fn window_text(th: &Option<[String; 2]>, thd: &Option<[String; 2]>) -> Option<String> {
     let parts: Vec<String> = [("θ", th), ("θ̇", thd)]
         .into_iter()
         .filter_map(|(v, w)| w.as_ref().map(|[a, b]| format!("{v} ∈ [{a}, {b}]")))
@@ -525,19 +552,7 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
         split_window("theta", &args.theta)?,
         split_window("theta-dot", &args.theta_dot)?,
     );
-    fn as_refs(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
-        w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()])
-    }
-    let (domain, clipped) = scene
-        .domain()
-        .window_clipped(as_refs(&th), as_refs(&thd))
-        .map_err(CliError::usage)?;
-    for c in clipped {
-        eprintln!(
-            "detach: note: window end {c} is within rounding of the domain's end; \
-             clipped to the domain"
-        );
-    }
+    let domain = windowed_domain(&scene, &th, &thd)?;
     let (paving, report) = pave_and_report(
         &scene,
         &domain,

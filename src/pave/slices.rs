@@ -3,6 +3,14 @@
 //! split while the band its quadratics' end-point roots predict is above
 //! ε² of the domain's area), then one contraction per final slab whose cuts
 //! are placed at those roots and verified by the monotone test.
+//!
+//! A slab at the width floor that the contraction removes nothing from (a
+//! vertical line where a quadratic's θ̇² coefficient is 0, as θ = π/2 for
+//! `cos(θ)·(θ̇² + g·cos(θ))`, or where its two roots meet) would stay one
+//! undecided column of the full height; it is bisected in θ̇ instead, each
+//! part labelled by the natural, then the monotone and convex tests, down
+//! to ε of the domain's height, as `natural` refines. So is what the
+//! contraction leaves undecided on a slab where a θ̇² coefficient may be 0.
 
 use super::contract::{contract_fresh, roots};
 use super::engine::{Local, Open, Refine, Work};
@@ -18,6 +26,8 @@ pub(super) struct Slices<'a, S: ConstraintSet> {
     pub min_width: f64,
     /// The undecided area per slab it refines down to.
     pub slab_area: f64,
+    /// The height floor of θ̇-bisection in a column (ε of the domain's).
+    pub min_height: f64,
 }
 
 impl<'a, S: ConstraintSet> Slices<'a, S> {
@@ -28,7 +38,26 @@ impl<'a, S: ConstraintSet> Slices<'a, S> {
             slab_area: eps.powi(2)
                 * (root.theta[1] - root.theta[0])
                 * (root.theta_dot[1] - root.theta_dot[0]),
+            min_height: eps * (root.theta_dot[1] - root.theta_dot[0]),
         }
+    }
+
+    /// A box that θ-refinement has left (its slab at the width floor) and
+    /// that is still above the height floor: bisected in θ̇ if undecided.
+    fn in_column(&self, b: &PhaseBox) -> bool {
+        self.choose_axis(b).is_none()
+            && b.theta_dot[1] - b.theta_dot[0] > self.min_height
+            && b.can_split(1)
+    }
+
+    /// A relevant quadratic's θ̇² coefficient may be 0 on the slab.
+    fn leading_may_vanish(&self, slab: &S::Slab) -> bool {
+        self.scope.relevant_own().any(|i| {
+            self.scope
+                .set
+                .quadratic(slab, i)
+                .is_some_and(|q| q.c2.interval().is_none_or(|c| c.contains(0.0)))
+        })
     }
 
     /// Slabs are refined while their undecided area is above the threshold
@@ -108,13 +137,33 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
         work: &mut Work,
     ) -> Option<Vec<Local>> {
         // (A slab still too coarse was split before this.)
-        contract_fresh(
+        let t = contract_fresh(
             &self.scope,
-            |b| self.choose_axis(b).is_some(),
+            |b| {
+                self.choose_axis(b).is_some()
+                    || (self.in_column(b) && self.leading_may_vanish(slab))
+            },
             o,
             slab,
             ends,
             work,
-        )
+        );
+        if t.is_some() || !self.in_column(&o.bx) {
+            return t;
+        }
+        // A column the contraction removes nothing from: the part as one
+        // leaf if the slab's tests decide it, else its two halves in θ̇
+        // (they share the slab).
+        let ends = ends.or_else(|| {
+            work.slabs += 3;
+            self.scope.set.slab_ends(o.bx.theta_interval())
+        });
+        let labels = self.scope.label(slab, ends.as_deref(), &o.bx, work, true);
+        let all = self.scope.relevant;
+        Some(if self.scope.decided_mask(&labels) & all == all {
+            vec![Local::Leaf(labels)]
+        } else {
+            vec![Local::Mid(1), Local::Open, Local::Open]
+        })
     }
 }

@@ -25,7 +25,7 @@
 
 pub mod taylor;
 
-use crate::number::scalar::is_defined;
+use crate::number::scalar::{is_defined, Scalar};
 use crate::scene::slab::{centred_factors_on, factored_constraints_on};
 use crate::scene::{Domain, Quadratic, Scene, Variant};
 use inari::{const_interval, DecInterval, Interval};
@@ -150,8 +150,15 @@ struct Bound {
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Shape {
     /// Quadratic with two roots; `s` is the sign used in the stable root
-    /// formula `Q = −(a1 + s√D)/2`, roots `Q/a2` (which = 0) and `a0/Q` (1).
-    Quad { s: i8 },
+    /// formula `Q = −(a1 + s√D)/2`, roots `Q/a2` (which = 0) and `a0/Q` (1);
+    /// `d` encloses the discriminant over the piece.
+    Quad { s: i8, d: Interval },
+    /// Quadratic whose discriminant may vanish on the piece (two root
+    /// branches crossing or touching): ends `c ∓ √D⁺/(2|a2|)`, `c = −a1/(2a2)`,
+    /// continuous through `D = 0`, where they meet. No Taylor series: the
+    /// piece is enclosed by its width times the range of the length, which
+    /// is of the order of the piece's width next to a crossing.
+    Touch,
     /// Linear (`a2 ≡ 0`): root `−a0/a1`.
     Linear,
     /// No root needed (the set is empty or the whole window).
@@ -301,6 +308,7 @@ fn is_zero(x: Interval) -> bool {
 fn literal_slice(
     li: u8,
     (a2, a1, a0): (Interval, Interval, Interval),
+    d: Interval,
     strict: bool,
     window: &[Bound; 2],
 ) -> Option<(Shape, Slice)> {
@@ -343,26 +351,38 @@ fn literal_slice(
     } else {
         return None;
     };
-    let d = a1.sqr() - Interval::try_from((4.0, 4.0)).unwrap() * a2 * a0;
     // No sign change in θ̇ (at most a double root: no area).
     if d.sup() <= 0.0 {
         return Some((Shape::Flat, if up { vec![] } else { full() }));
     }
+    let bound = |which, enc: Interval| Bound {
+        end: End::Root { lit: li, which },
+        enc,
+    };
+    let split = |lo: Bound, hi: Bound| {
+        if up {
+            vec![(lo, hi)]
+        } else {
+            vec![(window[0], lo), (hi, window[1])]
+        }
+    };
     if d.inf() <= 0.0 {
-        return None;
+        // Where D ≤ 0 the set is empty (up) or the whole window (down) up to
+        // a point, which is what the ends `c ∓ √D⁺/(2|a2|)` give: the
+        // intersection with the window leaves a possibly empty interval of
+        // length at most sup √D⁺/|a2|, small next to a crossing.
+        let two = pt(2.0);
+        let c = -a1 / (two * a2);
+        let half = d.intersection(const_interval!(0.0, f64::INFINITY)).sqrt() / (two * a2.abs());
+        let (lo, hi) = (bound(0, c - half), bound(1, c + half));
+        if !(lo.enc.is_common_interval() && hi.enc.is_common_interval()) {
+            return None;
+        }
+        return Some((Shape::Touch, split(lo, hi)));
     }
     let s: i8 = if a1.mid() >= 0.0 { 1 } else { -1 };
-    let [ra, rb] = root_forms(a2, a1, a0, s);
-    let (ba, bb) = (
-        Bound {
-            end: End::Root { lit: li, which: 0 },
-            enc: ra,
-        },
-        Bound {
-            end: End::Root { lit: li, which: 1 },
-            enc: rb,
-        },
-    );
+    let [ra, rb] = root_forms(a2, a1, d, a0, s);
+    let (ba, bb) = (bound(0, ra), bound(1, rb));
     if !(ra.is_common_interval() && rb.is_common_interval()) {
         return None;
     }
@@ -373,18 +393,17 @@ fn literal_slice(
     };
     // Between the roots, or below the lower and above the upper one (±∞
     // become window ends).
-    let set = if up {
-        vec![(lo, hi)]
-    } else {
-        vec![(window[0], lo), (hi, window[1])]
-    };
-    Some((Shape::Quad { s }, set))
+    Some((Shape::Quad { s, d }, split(lo, hi)))
+}
+
+/// The discriminant `a1² − 4·a2·a0`.
+fn discriminant<T: crate::number::scalar::Scalar>(a2: T, a1: T, a0: T) -> T {
+    a1.sqr() - T::int(4) * a2 * a0
 }
 
 /// The two roots by the cancellation-free pair `Q/a2`, `a0/Q`,
-/// `Q = −(a1 + s√D)/2`.
-fn root_forms<T: crate::number::scalar::Scalar>(a2: T, a1: T, a0: T, s: i8) -> [T; 2] {
-    let d = a1.sqr() - T::int(4) * a2 * a0;
+/// `Q = −(a1 + s√D)/2`, `d` the discriminant.
+fn root_forms<T: crate::number::scalar::Scalar>(a2: T, a1: T, d: T, a0: T, s: i8) -> [T; 2] {
     let sq = d.sqrt();
     let q = -(if s > 0 { a1 + sq } else { a1 - sq }) / T::int(2);
     [q / a2, a0 / q]
@@ -477,21 +496,28 @@ impl Job<'_> {
         };
         // The sign of a factor from its natural enclosure, else from its
         // mean-value form (computed once, when first needed).
-        let mut centred = None;
-        let mut negative = |q: usize, k: usize| -> Option<bool> {
+        let centred = std::cell::OnceCell::new();
+        let centred = |q: usize, k: usize| {
+            iv(centred.get_or_init(|| centred_factors_on(self.scene, self.variant, theta))[q][k])
+        };
+        let negative = |q: usize, k: usize| -> Option<bool> {
             let sign = |x: Interval| (x.inf() > 0.0 || x.sup() < 0.0).then(|| x.sup() < 0.0);
-            if let Some(s) = iv(factor[q][k]).and_then(sign) {
-                return Some(s);
-            }
-            let c =
-                centred.get_or_insert_with(|| centred_factors_on(self.scene, self.variant, theta));
-            iv(c[q][k]).and_then(sign)
+            iv(factor[q][k])
+                .and_then(sign)
+                .or_else(|| centred(q, k).and_then(sign))
         };
         for (i, l) in self.lits.iter().enumerate() {
             // Inside is `{g < 0}`; outside, the complement, is `{g ≥ 0}`
             // (they differ where g ≡ 0 on a set of positive area).
             let strict = l.inside;
-            if iv(factor[l.q][0]) == Some(ZERO) {
+            // g ≡ 0 on the piece: its enclosure is [0, 0], or its mean-value
+            // form is (0 at the centre and a slope of exactly 0 over the
+            // piece, as `abs(θ) − θ` for θ > 0, whose natural enclosure is
+            // not [0, 0]).
+            let numerator = iv(factor[l.q][0]);
+            if numerator == Some(ZERO)
+                || (numerator.is_some_and(|x| x.contains(0.0)) && centred(l.q, 0) == Some(ZERO))
+            {
                 // g ≡ 0 on the piece.
                 let set = if strict {
                     vec![]
@@ -508,7 +534,18 @@ impl Job<'_> {
                 inside: l.inside != flip,
             };
             let (a2, a1, a0) = lit_coeffs(&quads[l.q], l.inside);
-            let (shape, s) = literal_slice(i as u8, (iv(a2)?, iv(a1)?, iv(a0)?), strict, &window)?;
+            let a = (iv(a2)?, iv(a1)?, iv(a0)?);
+            let mut d = discriminant(a.0, a.1, a.2);
+            if d.inf() <= 0.0 && d.sup() > 0.0 {
+                // The natural enclosure's dependency leaves a width of the
+                // order of the piece's; the Taylor form's is of a high
+                // order, which decides D's sign next to a double root.
+                let t = self.discriminant_over(theta, l.q).intersection(d);
+                if !t.is_empty() {
+                    d = t;
+                }
+            }
+            let (shape, s) = literal_slice(i as u8, a, d, strict, &window)?;
             shapes.push((l, shape));
             slice = intersect(&slice, &s, Some(&mut gaps))?;
         }
@@ -533,7 +570,21 @@ impl Job<'_> {
         for (l, shape) in shapes {
             let (a2, a1, a0) = lit_coeffs(&quads[l.q], l.inside);
             roots.push(match *shape {
-                Shape::Quad { s } => root_forms(a2, a1, a0, s),
+                Shape::Quad { s, d } => {
+                    // D over `x ⊆` the piece lies in its enclosure there,
+                    // which may be the tighter.
+                    let mut dt = discriminant(a2, a1, a0);
+                    let c0 = dt.c[0].intersection(d);
+                    if !c0.is_empty() {
+                        dt.c[0] = c0;
+                    }
+                    root_forms(a2, a1, dt, a0, s)
+                }
+                Shape::Touch => {
+                    [Taylor {
+                        c: [Interval::ENTIRE; N],
+                    }; 2]
+                }
                 Shape::Linear => {
                     let r = -a0 / a1;
                     [r, r]
@@ -555,6 +606,31 @@ impl Job<'_> {
             .map(|g| end(g.to) - end(g.from))
             .collect();
         (total.is_finite() && gaps.iter().all(Taylor::is_finite)).then_some((total, gaps))
+    }
+
+    /// An enclosure of the discriminant of constraint `q` over `theta` by
+    /// its Taylor form at the centre with a Lagrange remainder (ENTIRE where
+    /// the series is not finite).
+    fn discriminant_over(&self, theta: Interval, q: usize) -> Interval {
+        let series = |x: Interval| {
+            let (_, c) = self
+                .scene
+                .factored_constraints(self.variant, &crate::scene::Angle::new(Taylor::variable(x)));
+            let c = [c.omega, c.omega0][q];
+            discriminant(c.c2, c.c1, c.c0)
+        };
+        let m = 0.5 * theta.inf() + 0.5 * theta.sup();
+        let (at_m, over) = (series(pt(m)), series(theta));
+        if !(at_m.is_finite() && over.is_finite()) {
+            return Interval::ENTIRE;
+        }
+        let x = (pt(theta.inf()) - pt(m)).convex_hull(pt(theta.sup()) - pt(m));
+        let n = N - 1;
+        let mut s = ZERO;
+        for (k, c) in at_m.c.iter().enumerate().take(n) {
+            s += *c * Scalar::pown(x, k as u32);
+        }
+        s + over.c[n] * Scalar::pown(x, n as u32)
     }
 
     fn piece(&self, t0: f64, t1: f64) -> Piece {

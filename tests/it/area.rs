@@ -255,3 +255,157 @@ fn printed_bounds_contain_the_json_bounds() {
     }
     assert_eq!(checked, 24);
 }
+
+/// A scene file with Ω = Ω₀ = `region` on `[-pi, pi] × [-2, 2]` (or the
+/// domain given).
+fn file_scene(region: &str, theta: &str, theta_dot: &str) -> Scene {
+    let text = format!(
+        "name = \"shape\"\ntitle = \"shape\"\n[domain]\ntheta = {theta}\ntheta_dot = {theta_dot}\n\
+         [regions]\nomega = \"{region}\"\nomega0 = \"{region}\"\n"
+    );
+    Scene::File(Box::new(
+        detach::scene::FileScene::parse(&text, &[]).unwrap(),
+    ))
+}
+
+/// Shapes users write, each to its target in a few hundred θ-pieces
+/// (a budget of 4096 is far above that; `max_pieces` stands in for time):
+/// - two root branches crossing: `(θ̇ − sin θ)(θ̇ − cos θ) < 0` on
+///   `[−π, π] × [−2, 2]` has the slice between the roots, of length
+///   `|sin θ − cos θ| = √2·|sin(θ − π/4)|`; `|sin|` integrates to 4 over a
+///   period, so the area is `4√2`. The discriminant `(sin θ − cos θ)²`
+///   vanishes at θ = π/4 and −3π/4: without the Taylor form of the
+///   discriminant and the ends `c ∓ √D⁺/(2|a2|)` there, the pieces next to
+///   them stay undecided and 2²⁰ pieces leave 3·10⁻⁴.
+/// - a double root: `θ̇² − sin²θ < 0`, length `2|sin θ|`, area `2·4 = 8`,
+///   at 10⁻¹².
+/// - a θ-factor exactly 0 on an interval: `(|θ| − θ)(θ̇² − 1/4) < 0` on
+///   `[−1, 1]²`: for θ > 0 the factor is 0 and the set empty; for θ < 0 it
+///   is `−2θ > 0` and the slice `|θ̇| < 1/2`, of length 1, over a θ-length
+///   of 1: area 1. `|θ| − θ` encloses to `[−h, h]`, not `[0, 0]`, on a piece
+///   of width h; without its mean-value form (exactly `[0, 0]`) every piece
+///   of θ > 0 stays undecided and the enclosure is 2 wide.
+#[test]
+fn crossing_touching_and_vanishing_shapes_meet_the_target() {
+    let sqrt2 = std::f64::consts::SQRT_2;
+    let (pi, two) = ("[\"-pi\", \"pi\"]", "[\"-2\", \"2\"]");
+    for (region, theta, theta_dot, exact, tol, most) in [
+        (
+            "(theta_dot - sin(theta))*(theta_dot - cos(theta)) < 0",
+            pi,
+            two,
+            4.0 * sqrt2,
+            1e-10,
+            1000,
+        ),
+        ("theta_dot^2 - sin(theta)^2 < 0", pi, two, 8.0, 1e-12, 1000),
+        (
+            "(abs(theta) - theta)*(theta_dot^2 - 0.25) < 0",
+            "[\"-1\", \"1\"]",
+            "[\"-1\", \"1\"]",
+            1.0,
+            1e-10,
+            500,
+        ),
+    ] {
+        let s = file_scene(region, theta, theta_dot);
+        let opts = AreaOptions {
+            tol,
+            max_pieces: 4096,
+        };
+        for cell in [CELLS[0], CELLS[3]] {
+            let e = cell_area(&s, Variant::Derived, &s.domain(), cell, opts).unwrap();
+            // Outside: the domain's area less the region's (`exact` is the
+            // double nearest it).
+            let exact = Interval::try_from((exact * (1.0 - 2e-16), exact * (1.0 + 2e-16))).unwrap();
+            let want = if cell == CELLS[0] {
+                exact
+            } else {
+                s.domain().area() - exact
+            };
+            assert!(
+                !e.area.intersection(want).is_empty(),
+                "{region} {cell:?}: {:?} misses {want:?}",
+                e.area
+            );
+            assert!(
+                e.area.wid() <= tol,
+                "{region} {cell:?}: width {}",
+                e.area.wid()
+            );
+            assert!(e.pieces <= most, "{region} {cell:?}: {} pieces", e.pieces);
+        }
+    }
+}
+
+/// `area` takes `--theta`/`--theta-dot` windows as `pave` does: on
+/// `(θ̇ − sin θ)(θ̇ − cos θ) < 0`, θ ∈ [0, π/2] holds
+/// `∫₀^{π/2} |sin θ − cos θ| dθ = 2(√2 − 1)` (both halves around π/4 give
+/// `√2 − 1`), and the θ̇-window [−1, 1] holds both roots there, so the same;
+/// θ̇ ∈ [0, 1/2] cuts it. Bad windows get `pave`'s messages.
+#[test]
+fn area_takes_windows_like_pave() {
+    use crate::common::{assert_bad_input, json};
+    let dir = std::env::temp_dir().join(format!("detach-area-window-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("cross.toml");
+    let region = "(theta_dot - sin(theta))*(theta_dot - cos(theta)) < 0";
+    std::fs::write(
+        &file,
+        format!(
+            "name = \"cross\"\n[domain]\ntheta = [\"-pi\", \"pi\"]\ntheta_dot = [\"-2\", \"2\"]\n\
+             [regions]\nomega = \"{region}\"\nomega0 = \"{region}\"\n"
+        ),
+    )
+    .unwrap();
+    let f = file.to_str().unwrap();
+    let exact = 2.0 * (std::f64::consts::SQRT_2 - 1.0);
+    for thd in [None, Some("-1:1")] {
+        let mut args = vec![
+            "area",
+            "--scene-file",
+            f,
+            "--region",
+            "omega",
+            "--theta",
+            "0:pi/2",
+        ];
+        args.extend(thd.iter().flat_map(|w| ["--theta-dot", *w]));
+        args.push("--json");
+        let v = json(&args);
+        let r = &v["regions"][0];
+        let (lo, hi) = (r["lower"].as_f64().unwrap(), r["upper"].as_f64().unwrap());
+        assert!(
+            lo <= exact * (1.0 + 1e-15) && exact * (1.0 - 1e-15) <= hi,
+            "{thd:?}: {r}"
+        );
+        assert_eq!(r["target_met"], true, "{thd:?}: {r}");
+        assert_eq!(r["method"], "quadrature");
+    }
+    let v = json(&[
+        "area",
+        "--scene-file",
+        f,
+        "--region",
+        "omega",
+        "--theta",
+        "0:pi/2",
+        "--theta-dot",
+        "0:0.5",
+        "--json",
+    ]);
+    assert!(v["regions"][0]["upper"].as_f64().unwrap() < 0.5 * exact);
+    for (w, needle) in [
+        (["--theta", "0-1"], "--theta must be LO:HI"),
+        (["--theta", "0:7"], "--theta: the window must lie inside"),
+        (["--theta-dot", "1:0"], "--theta-dot"),
+    ] {
+        let mut args = vec!["area", "--scene-file", f];
+        args.extend(w);
+        assert_bad_input(&args, needle);
+        let mut args = vec!["pave", "--scene-file", f];
+        args.extend(w);
+        assert_bad_input(&args, needle);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -479,6 +479,29 @@ fn regions_of_any_form_pave_and_prove() {
     let r = &v["regions"][0];
     assert!(r["lower"].as_f64().unwrap() <= exact[0] && exact[0] <= r["upper"].as_f64().unwrap());
     assert_eq!(r["target_met"], false);
+    // The row is the paving's own: its leaves (as `pave` counts them at the
+    // same ε), its time, no quadrature columns.
+    assert_eq!(r["method"], "paving");
+    assert!(r.get("undecided_pieces").is_none(), "{r}");
+    assert!(r["elapsed_s"].as_f64().unwrap() > 0.0, "{r}");
+    let p = json(&["pave", "--scene-file", f, "--eps", "0.0009765625", "--json"]);
+    assert_eq!(r["pieces"], p["leaves"]);
+    // A window: θ ∈ [0, 1/2] holds half of |θ̇| < √3's area, √3.
+    let v = json(&[
+        "area",
+        "--scene-file",
+        f,
+        "--region",
+        "omega",
+        "--theta",
+        "0:0.5",
+        "--json",
+    ]);
+    let r = &v["regions"][0];
+    let half = 3f64.sqrt();
+    assert!(r["lower"].as_f64().unwrap() <= half && half <= r["upper"].as_f64().unwrap());
+    assert!(r["upper"].as_f64().unwrap() < 0.6 * exact[0], "{r}");
+    assert_eq!(v["window"], "θ ∈ [0, 0.5]");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -635,4 +658,37 @@ fn a_name_inf_is_refused_as_in_proof_files() {
         .replace("g = \"9.81\"", "Inf = \"9.81\"")
         .replace("- g\"", "- Inf\"");
     assert!(FileScene::parse(&other, &[]).is_ok());
+}
+
+/// `tests/data/vertical-line.toml`: `cos θ·θ̇² + g·cos²θ < 0`, whose θ̇²
+/// coefficient vanishes at θ = ±π/2. `slices` once left a column of the
+/// full height (8) undecided there (drawn as a white line) while `natural`
+/// decided all but boxes along the line; now every undecided leaf of
+/// `slices` is at most an eighth of the height and its undecided area is
+/// below `natural`'s, with at most twice `slices`' leaves before the fix
+/// (10 554; counts are deterministic).
+#[test]
+fn slices_decide_a_column_where_the_leading_coefficient_vanishes() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/vertical-line.toml");
+    let scene = Scene::from_file(&path, &[]).unwrap().0;
+    let opts = PaveOptions::default();
+    let undecided = |p: &detach::pave::Paving| {
+        let b = p.area_bounds(&standard_cells()[0], 0.0);
+        b.outer_area - b.inner_area
+    };
+    let sl = pave_with(&scene, detach::pave::Method::Slices, opts);
+    let nat = pave_with(&scene, detach::pave::Method::Natural, opts);
+    for l in &sl.leaves {
+        if l.labels[0] == Label::Undecided {
+            let h = l.bx.theta_dot[1] - l.bx.theta_dot[0];
+            assert!(h <= 1.0, "undecided leaf {:?} of height {h}", l.bx);
+        }
+    }
+    assert!(
+        undecided(&sl) < undecided(&nat),
+        "{} vs {}",
+        undecided(&sl),
+        undecided(&nat)
+    );
+    assert!(sl.leaves.len() <= 21_000, "{} leaves", sl.leaves.len());
 }
