@@ -1283,49 +1283,55 @@ pub struct ConstantIssue {
 }
 
 impl Program {
-    /// The operations that depend on neither θ nor θ̇, evaluated once in
-    /// decorated intervals: those undefined while their operands are
-    /// defined (the first failure on each path). Parameters are the
-    /// constants whose text is a name other than `pi`.
-    pub fn constant_issues(&self) -> Vec<ConstantIssue> {
+    /// Every operation evaluated once over the whole domain `theta` ×
+    /// `theta_dot` in decorated intervals. An empty result from non-empty
+    /// operands (a division by exactly 0, `sqrt` of a value below 0 all over
+    /// the domain, ...) is proved undefined at every point. An operation on
+    /// parameters alone that is not defined while its operands are, or a
+    /// division by a parameter-only value that contains 0, only may be.
+    /// Parameters are the constants whose text is a name other than `pi`.
+    pub fn constant_issues(&self, theta: Interval, theta_dot: Interval) -> Vec<ConstantIssue> {
         let mut slots = vec![DecInterval::ENTIRE; self.tape.len()];
         let mut out = vec![DecInterval::ENTIRE; self.outputs.len()];
-        let e = DecInterval::ENTIRE;
-        self.eval_into(e, None, e, &mut slots, &mut out);
+        let (t, w) = (DecInterval::new(theta), DecInterval::new(theta_dot));
+        self.eval_into(t, None, w, &mut slots, &mut out);
+        let empty = |x: DecInterval| x.interval().is_none_or(|i| i.is_empty());
         let mut on_var = vec![false; self.tape.len()];
         let mut issues = Vec::new();
+        let mut issue = |j: usize, proved: bool, from: u32| {
+            let mut params = Vec::new();
+            self.const_names(from, &mut params);
+            issues.push(ConstantIssue {
+                proved,
+                text: self.infix(j as u32),
+                params,
+            });
+        };
         for (j, node) in self.tape.iter().enumerate() {
             let ops = node.operands();
             on_var[j] = matches!(node, Node::Theta | Node::ThetaDot)
                 || ops.iter().flatten().any(|&a| on_var[a as usize]);
-            // A division by a parameter-only divisor that is (or may be) 0
-            // fails whatever the variables are.
+            if matches!(node, Node::Const(_)) {
+                continue;
+            }
+            if empty(slots[j]) {
+                if ops.iter().flatten().all(|&a| !empty(slots[a as usize])) {
+                    issue(j, true, j as u32);
+                }
+                continue;
+            }
+            // A division by a parameter-only divisor that may be 0 may fail
+            // whatever the variables are.
             if let Node::Div(_, b) = *node {
                 let x = slots[b as usize];
                 let zero = x.interval().is_some_and(|x| x.contains(0.0));
                 if on_var[j] && !on_var[b as usize] && is_defined(x) && zero {
-                    let mut params = Vec::new();
-                    self.const_names(b, &mut params);
-                    issues.push(ConstantIssue {
-                        proved: x
-                            .interval()
-                            .is_some_and(|x| x.inf() == 0.0 && x.sup() == 0.0),
-                        text: self.infix(j as u32),
-                        params,
-                    });
+                    issue(j, false, b);
                 }
             }
-            if on_var[j] || matches!(node, Node::Const(_)) || is_defined(slots[j]) {
-                continue;
-            }
-            if ops.iter().flatten().all(|&a| is_defined(slots[a as usize])) {
-                let mut params = Vec::new();
-                self.const_names(j as u32, &mut params);
-                issues.push(ConstantIssue {
-                    proved: slots[j].interval().is_none_or(|x| x.is_empty()),
-                    text: self.infix(j as u32),
-                    params,
-                });
+            let defined_ops = ops.iter().flatten().all(|&a| is_defined(slots[a as usize]));
+            if !on_var[j] && !is_defined(slots[j]) && defined_ops {
+                issue(j, false, j as u32);
             }
         }
         issues

@@ -390,7 +390,8 @@ impl FileScene {
         };
         let mut warnings = Vec::new();
         for p in std::iter::once(&program).chain(&dynamics) {
-            for issue in p.constant_issues() {
+            let hull = |e: [Interval; 2]| e[0].convex_hull(e[1]);
+            for issue in p.constant_issues(hull(domain.theta), hull(domain.theta_dot)) {
                 let (message, proved) = constant_message(&issue, &params);
                 if proved {
                     return Err(message);
@@ -542,7 +543,8 @@ fn constant_message(issue: &super::expr::ConstantIssue, params: &ParamSet) -> (S
     let message = if issue.proved {
         format!(
             "{with}`{}` is undefined (division by zero, sqrt of a negative number, \
-             ln of a number <= 0, ...), so every formula using it is undefined everywhere",
+             ln of a number <= 0, ...) everywhere in the domain, and so is every formula \
+             using it",
             issue.text
         )
     } else {
@@ -865,7 +867,17 @@ omega0 = "theta_dot - theta > 0"
         let text = BASE.replace("theta_dot^2*m", "theta_dot^2/m");
         let e = FileScene::parse(&text, &zero).err().unwrap();
         assert!(e.contains("with m = 0, `theta_dot^2/m`"), "{e}");
-        assert!(e.contains("undefined everywhere"), "{e}");
+        assert!(e.contains("everywhere in the domain"), "{e}");
+        // The divisor m·θ depends on θ but is exactly 0 all over the domain.
+        let text = BASE.replace("theta_dot^2*m", "theta_dot^2/(m*theta)");
+        let e = FileScene::parse(&text, &zero).err().unwrap();
+        assert!(
+            e.contains("with m = 0, `theta_dot^2/(m*theta)` is undefined"),
+            "{e}"
+        );
+        // Undefined all over the domain θ ∈ [0, 1], no parameter involved.
+        let e = with("1 < 0", "sqrt(theta - 5) < 0").err().unwrap();
+        assert!(e.starts_with("`sqrt(theta - 5)` is undefined"), "{e}");
         assert!(FileScene::parse(&text, &[]).unwrap().warnings.is_empty());
         let e = with("theta_dot^2*m", "theta_dot^2*sqrt(m - 3)")
             .err()
