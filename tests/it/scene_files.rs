@@ -311,7 +311,7 @@ fn bad_scene_files_are_refused_clearly() {
         (
             "undefined-everywhere",
             GOOD.replace("omega0 = \"U/V < 0\"", "omega0 = \"U/(mu - 1.5) < 0\""),
-            "with mu = 1.5, `((sin(theta)*theta_dot^2) - g)/(mu - 1.5)` is undefined",
+            "with g = 9.81, mu = 1.5, `((sin(theta)*theta_dot^2) - g)/(mu - 1.5)` is undefined",
         ),
         (
             "domain-variable",
