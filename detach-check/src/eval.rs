@@ -13,7 +13,9 @@ use super::encoding::decimal_enclosure;
 use super::expr;
 
 /// Function names of the expression language.
-pub const FUNCTIONS: [&str; 6] = ["sqrt", "sin", "cos", "tan", "ln", "abs"];
+pub const FUNCTIONS: [&str; 11] = [
+    "sqrt", "sin", "cos", "tan", "ln", "abs", "atan", "exp", "sign", "min", "max",
+];
 
 /// One operation; operands are indices of earlier slots.
 #[derive(Clone, Copy, Debug)]
@@ -37,6 +39,12 @@ pub enum Op {
     Tan(u32),
     Ln(u32),
     Abs(u32),
+    Atan(u32),
+    Exp(u32),
+    /// The function `sign` (−1, 0 or 1).
+    Sign(u32),
+    Min(u32, u32),
+    Max(u32, u32),
 }
 
 /// Numbers an expression can be evaluated over.
@@ -59,6 +67,15 @@ pub trait Num: Copy {
     /// fixed; where `self` contains 0 the derivative does not exist, so the
     /// result is `[-1, 1]` decorated `trv`.
     fn sign(self) -> Self;
+    fn atan(self) -> Self;
+    fn exp(self) -> Self;
+    /// The function `sign`: −1, 0 or 1 by the sign of `self`.
+    fn signum(self) -> Self;
+    /// The derivative of `signum`: `[0, 0]` where the sign is fixed; where
+    /// `self` contains 0 there is none (a jump): the whole line, `trv`.
+    fn signum_slope(self) -> Self;
+    fn min(self, o: Self) -> Self;
+    fn max(self, o: Self) -> Self;
 }
 
 /// The exact point interval `[x, x]` (x a small integer), decorated `com`.
@@ -228,6 +245,36 @@ impl Num for DecInterval {
                 .unwrap_or(DecInterval::NAI),
         }
     }
+    fn atan(self) -> Self {
+        loosen(DecInterval::atan(self))
+    }
+    fn exp(self) -> Self {
+        loosen(DecInterval::exp(self))
+    }
+    fn signum(self) -> Self {
+        DecInterval::sign(self)
+    }
+    fn signum_slope(self) -> Self {
+        match self.interval() {
+            Some(x) if !x.is_empty() && (x.inf() > 0.0 || x.sup() < 0.0) => {
+                DecInterval::set_dec(inari::const_interval!(0.0, 0.0), self.decoration())
+            }
+            _ => DecInterval::set_dec(Interval::ENTIRE, Decoration::Trv),
+        }
+    }
+    fn min(self, o: Self) -> Self {
+        DecInterval::min(self, o)
+    }
+    fn max(self, o: Self) -> Self {
+        DecInterval::max(self, o)
+    }
+}
+
+/// The weight `h = (1 − s)/2` of `u` in the derivative of `min(u, w)`, with
+/// `s` the derivative of `abs` at `u − w`: 1 where `u < w`, 0 where `u > w`.
+fn min_weight<T: Num>(u: T, w: T) -> T {
+    let one = T::constant(exact(1.0));
+    one.sub(u.sub(w).sign()).div(T::constant(exact(2.0)))
 }
 
 /// A value and its derivative with respect to the one variable.
@@ -336,6 +383,40 @@ impl<T: Num> Num for Dual<T> {
             d: s.mul(T::constant(exact(0.0))),
         }
     }
+    fn atan(self) -> Self {
+        let one = T::constant(exact(1.0));
+        self.chain(self.v.atan(), one.div(one.add(self.v.sqr())))
+    }
+    fn exp(self) -> Self {
+        let e = self.v.exp();
+        self.chain(e, e)
+    }
+    fn signum(self) -> Self {
+        self.chain(self.v.signum(), self.v.signum_slope())
+    }
+    fn signum_slope(self) -> Self {
+        let s = self.v.signum_slope();
+        Dual {
+            v: s,
+            d: s.mul(T::constant(exact(0.0))),
+        }
+    }
+    fn min(self, o: Self) -> Self {
+        let h = min_weight(self.v, o.v);
+        let k = T::constant(exact(1.0)).sub(h);
+        Dual {
+            v: self.v.min(o.v),
+            d: self.d.mul(h).add(o.d.mul(k)),
+        }
+    }
+    fn max(self, o: Self) -> Self {
+        let h = min_weight(self.v, o.v);
+        let k = T::constant(exact(1.0)).sub(h);
+        Dual {
+            v: self.v.max(o.v),
+            d: self.d.mul(k).add(o.d.mul(h)),
+        }
+    }
 }
 
 /// Applies one operation to already computed slots.
@@ -367,13 +448,23 @@ pub fn apply<T: Num>(op: &Op, s: &[T], vars: &[T]) -> T {
         Op::Tan(a) => g(a).tan(),
         Op::Ln(a) => g(a).ln(),
         Op::Abs(a) => g(a).abs(),
+        Op::Atan(a) => g(a).atan(),
+        Op::Exp(a) => g(a).exp(),
+        Op::Sign(a) => g(a).signum(),
+        Op::Min(a, b) => g(a).min(g(b)),
+        Op::Max(a, b) => g(a).max(g(b)),
     }
 }
 
 fn operands(op: &Op) -> [Option<u32>; 2] {
     match *op {
         Op::Const(_) | Op::Var(_) => [None, None],
-        Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => [Some(a), Some(b)],
+        Op::Add(a, b)
+        | Op::Sub(a, b)
+        | Op::Mul(a, b)
+        | Op::Div(a, b)
+        | Op::Min(a, b)
+        | Op::Max(a, b) => [Some(a), Some(b)],
         Op::Neg(a)
         | Op::Sqr(a)
         | Op::Pown(a, _)
@@ -382,7 +473,10 @@ fn operands(op: &Op) -> [Option<u32>; 2] {
         | Op::Cos(a)
         | Op::Tan(a)
         | Op::Ln(a)
-        | Op::Abs(a) => [Some(a), None],
+        | Op::Abs(a)
+        | Op::Atan(a)
+        | Op::Exp(a)
+        | Op::Sign(a) => [Some(a), None],
     }
 }
 

@@ -8,7 +8,8 @@
 //! term    := unary (("*" | "/") unary)*
 //! unary   := "-" unary | power
 //! power   := atom ("^" integer)?
-//! atom    := number | name | name "(" expr ")" | "(" expr ")"
+//! atom    := number | name | name "(" expr ")" | name "(" expr "," expr ")"
+//!          | "(" expr ")"
 //! number  := (digits ["." [digits]] | "." digits) [("e"|"E") ["+"|"-"] digits]
 //! ```
 
@@ -33,6 +34,7 @@ enum Tok<'a> {
     Caret,
     LParen,
     RParen,
+    Comma,
 }
 
 fn lex(s: &str) -> Result<Vec<Tok<'_>>, String> {
@@ -59,6 +61,7 @@ fn lex(s: &str) -> Result<Vec<Tok<'_>>, String> {
             b'^' => Tok::Caret,
             b'(' => Tok::LParen,
             b')' => Tok::RParen,
+            b',' => Tok::Comma,
             // A number: digits with an optional point, at least one digit
             // before or after it (`1`, `1.5`, `1.`, `.5`), as decimal text.
             b'0'..=b'9' | b'.' => {
@@ -221,6 +224,15 @@ impl<'a> Parser<'_, 'a> {
                     }
                     self.enter()?;
                     let a = self.expr()?;
+                    // `min` and `max` take two arguments, the others one.
+                    let b = if n == "min" || n == "max" {
+                        if self.next() != Some(Tok::Comma) {
+                            return Err(format!("',' expected: {n} takes two arguments"));
+                        }
+                        self.expr()?
+                    } else {
+                        a
+                    };
                     self.depth -= 1;
                     if self.next() != Some(Tok::RParen) {
                         return Err(format!("')' expected to close {n}("));
@@ -231,6 +243,11 @@ impl<'a> Parser<'_, 'a> {
                         "cos" => Op::Cos(a),
                         "tan" => Op::Tan(a),
                         "ln" => Op::Ln(a),
+                        "atan" => Op::Atan(a),
+                        "exp" => Op::Exp(a),
+                        "sign" => Op::Sign(a),
+                        "min" => Op::Min(a, b),
+                        "max" => Op::Max(a, b),
                         _ => Op::Abs(a),
                     };
                     return self.prog.push(op);

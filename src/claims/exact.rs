@@ -237,6 +237,39 @@ impl Scalar for Q {
         assert!(!self.is_zero(), "abs has no derivative at 0");
         Q::int(if self.get() > 0 { 1 } else { -1 })
     }
+    fn atan(self) -> Self {
+        panic!("atan is not rational")
+    }
+    fn exp(self) -> Self {
+        panic!("exp is not rational")
+    }
+    fn sign(self) -> Self {
+        Q::int(if self.is_zero() {
+            0
+        } else if self.get() > 0 {
+            1
+        } else {
+            -1
+        })
+    }
+    fn sign_slope(self) -> Self {
+        assert!(!self.is_zero(), "sign has no derivative at 0");
+        Q::int(0)
+    }
+    fn min(self, other: Self) -> Self {
+        if self.get() <= other.get() {
+            self
+        } else {
+            other
+        }
+    }
+    fn max(self, other: Self) -> Self {
+        if self.get() >= other.get() {
+            self
+        } else {
+            other
+        }
+    }
 }
 
 /// `(sin θ, cos θ)` for `t = tan(θ/2)`.

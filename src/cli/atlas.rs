@@ -752,7 +752,7 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
         let info = PictureInfo {
             scene,
             variant: args.flags.variant,
-            params: params.texts(),
+            params: params.texts_with_units(),
             complete: paving.complete,
             window: window_text(&th, &thd),
         };
@@ -925,13 +925,12 @@ pub fn run_scenes(args: &ScenesArgs) -> CliResult {
             s.domain.theta_dot[1]
         );
         for p in s.params {
-            outln!(
-                "  {:<6} = {:<6} {:?}: {}",
-                p.name,
-                p.default,
-                p.sign,
-                p.meaning
-            );
+            let value = match p.unit {
+                "" => p.default.to_string(),
+                u => format!("{} {u}", p.default),
+            };
+            let meaning = if p.meaning.is_empty() { "-" } else { p.meaning };
+            outln!("  {:<6} = {:<6} {:?}: {meaning}", p.name, value, p.sign);
         }
     }
     Ok(())

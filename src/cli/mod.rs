@@ -219,6 +219,9 @@ impl SceneSource {
         if built.0.id().is_none() {
             one_reading(variant)?;
         }
+        for w in built.0.warnings() {
+            eprintln!("warning: {w}");
+        }
         Ok(built)
     }
 }

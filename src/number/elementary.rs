@@ -297,6 +297,24 @@ impl Scalar for CrDec {
     fn pown(self, n: u32) -> Self {
         CrDec(<DecInterval as Scalar>::pown(self.0, n))
     }
+    fn atan(self) -> Self {
+        CrDec(self.0.atan())
+    }
+    fn exp(self) -> Self {
+        CrDec(self.0.exp())
+    }
+    fn sign(self) -> Self {
+        CrDec(self.0.sign())
+    }
+    fn sign_slope(self) -> Self {
+        CrDec(<DecInterval as Scalar>::sign_slope(self.0))
+    }
+    fn min(self, other: Self) -> Self {
+        CrDec(self.0.min(other.0))
+    }
+    fn max(self, other: Self) -> Self {
+        CrDec(self.0.max(other.0))
+    }
     fn sin_cos(self) -> (Self, Self) {
         match self.0.interval() {
             Some(i) if !i.is_empty() => {

@@ -26,6 +26,8 @@ pub struct ParamSpec {
     pub default: &'static str,
     pub sign: Sign,
     pub meaning: &'static str,
+    /// The unit the value is in (`m`, `kg`, `m/s^2`), or empty.
+    pub unit: &'static str,
 }
 
 /// A parameter as entered (decimal text) and its enclosure.
@@ -55,6 +57,16 @@ pub enum ParamError {
         "parameter `{name}`: `{text}` is too large for double precision (magnitude above 1.8e308)"
     )]
     TooLarge { name: String, text: String },
+    #[error(
+        "parameter `{name}`: `{text}` is too small for double precision (nonzero, magnitude below 4.9e-324): write 0 if you mean 0"
+    )]
+    TooSmall { name: String, text: String },
+    #[error("parameter `{name}` is given twice (`{first}` and `{second}`): give it once")]
+    Repeated {
+        name: String,
+        first: String,
+        second: String,
+    },
     #[error("`{0}` is not of the form name=value")]
     NotAssignment(String),
     #[error("parameter `{name}`: {reason}")]
@@ -197,6 +209,14 @@ pub fn enclose_decimal(name: &str, text: &str) -> Result<Interval, ParamError> {
             }
         });
     }
+    if !d.zero() && x.contains(0.0) {
+        // Nonzero text whose enclosure reaches 0: a sign or a division by it
+        // would be lost without a word, as an overflow would.
+        return Err(ParamError::TooSmall {
+            name: name.to_string(),
+            text: text.trim().to_string(),
+        });
+    }
     Ok(x)
 }
 
@@ -312,7 +332,14 @@ impl ParamSet {
             .iter()
             .map(|s| (s.name, s.default.to_string()))
             .collect();
-        for (name, text) in overrides {
+        for (i, (name, text)) in overrides.iter().enumerate() {
+            if let Some((_, first)) = overrides[..i].iter().find(|(n, _)| n == name) {
+                return Err(ParamError::Repeated {
+                    name: name.clone(),
+                    first: first.clone(),
+                    second: text.clone(),
+                });
+            }
             match texts.get_mut(name.as_str()) {
                 Some(slot) => *slot = text.clone(),
                 None => {
@@ -340,6 +367,19 @@ impl ParamSet {
             .position(|s| s.name == name)
             .unwrap_or_else(|| panic!("scene asked for undeclared parameter {name}"));
         self.values[i].value
+    }
+
+    /// `(name, "text unit")` pairs (the unit when declared), in declaration
+    /// order: for labels a person reads.
+    pub fn texts_with_units(&self) -> Vec<(&'static str, String)> {
+        self.specs
+            .iter()
+            .zip(&self.values)
+            .map(|(s, p)| match s.unit {
+                "" => (s.name, p.text.clone()),
+                u => (s.name, format!("{} {u}", p.text)),
+            })
+            .collect()
     }
 
     /// `(name, decimal text)` pairs, in declaration order.
@@ -381,6 +421,7 @@ mod tests {
         default: "9.81",
         sign: Sign::Positive,
         meaning: "gravity",
+        unit: "",
     };
 
     #[test]
@@ -464,7 +505,12 @@ mod tests {
             Param::parse(&G, "-1"),
             Err(ParamError::NotPositive { .. })
         ));
-        assert!(Param::parse(&G, "1e-400").is_ok());
+        // Positive text, but its enclosure reaches 0: refused as overflow is.
+        assert!(matches!(
+            Param::parse(&G, "1e-400"),
+            Err(ParamError::TooSmall { .. })
+        ));
+        assert!(Param::parse(&G, "5e-324").is_ok());
         let mu = ParamSpec {
             sign: Sign::NonNegative,
             ..G

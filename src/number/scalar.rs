@@ -39,6 +39,16 @@ pub trait Scalar:
     /// gradient stays an enclosure of the Clarke gradient) and decorated ones
     /// mark it `trv`, so a check for `≥ dac` on a derivative fails.
     fn abs_slope(self) -> Self;
+    fn atan(self) -> Self;
+    fn exp(self) -> Self;
+    /// −1, 0 or 1 by the sign of `self` (0 at 0).
+    fn sign(self) -> Self;
+    /// The derivative of `sign`: `0` where `self` has a fixed sign; where it
+    /// may be 0 there is none (a jump), so interval types return the whole
+    /// line (decorated `trv`): nothing is concluded from it.
+    fn sign_slope(self) -> Self;
+    fn min(self, other: Self) -> Self;
+    fn max(self, other: Self) -> Self;
     /// `self^n`, the language's `x^n`. The default multiplies left to right,
     /// `((x·x)·x)·…`, `n − 1` products (`x^0 = 1`, `x^1 = x`); interval types
     /// override it with the tightest enclosure (`inari`'s `pown`).
@@ -94,6 +104,18 @@ fn interval_abs_slope(x: Interval) -> Interval {
     }
 }
 
+/// [`Scalar::sign_slope`] of an interval: `[0, 0]` for a fixed sign, the
+/// whole line where it may be 0 (empty stays empty).
+fn interval_sign_slope(x: Interval) -> Interval {
+    if x.is_empty() {
+        x
+    } else if x.inf() > 0.0 || x.sup() < 0.0 {
+        const_interval!(0.0, 0.0)
+    } else {
+        Interval::ENTIRE
+    }
+}
+
 impl Scalar for f64 {
     fn lift(x: Interval) -> Self {
         x.mid()
@@ -136,6 +158,28 @@ impl Scalar for f64 {
             Err(_) => self.powf(f64::from(n)),
         }
     }
+    fn atan(self) -> Self {
+        f64::atan(self)
+    }
+    fn exp(self) -> Self {
+        f64::exp(self)
+    }
+    fn sign(self) -> Self {
+        if self == 0.0 {
+            0.0
+        } else {
+            self.signum()
+        }
+    }
+    fn sign_slope(self) -> Self {
+        0.0
+    }
+    fn min(self, other: Self) -> Self {
+        f64::min(self, other)
+    }
+    fn max(self, other: Self) -> Self {
+        f64::max(self, other)
+    }
     fn sin_cos(self) -> (Self, Self) {
         f64::sin_cos(self)
     }
@@ -175,6 +219,24 @@ impl Scalar for Interval {
     fn pown(self, n: u32) -> Self {
         pown_interval(self, n)
     }
+    fn atan(self) -> Self {
+        Interval::atan(self)
+    }
+    fn exp(self) -> Self {
+        Interval::exp(self)
+    }
+    fn sign(self) -> Self {
+        Interval::sign(self)
+    }
+    fn sign_slope(self) -> Self {
+        interval_sign_slope(self)
+    }
+    fn min(self, other: Self) -> Self {
+        Interval::min(self, other)
+    }
+    fn max(self, other: Self) -> Self {
+        Interval::max(self, other)
+    }
 }
 
 impl Scalar for DecInterval {
@@ -211,6 +273,35 @@ impl Scalar for DecInterval {
     fn pown(self, n: u32) -> Self {
         pown_dec(self, n)
     }
+    fn atan(self) -> Self {
+        DecInterval::atan(self)
+    }
+    fn exp(self) -> Self {
+        DecInterval::exp(self)
+    }
+    fn sign(self) -> Self {
+        DecInterval::sign(self)
+    }
+    fn sign_slope(self) -> Self {
+        match self.interval() {
+            None => self,
+            Some(i) => {
+                let s = interval_sign_slope(i);
+                let d = if s == Interval::ENTIRE || i.is_empty() {
+                    Decoration::Trv
+                } else {
+                    self.decoration()
+                };
+                DecInterval::set_dec(s, d)
+            }
+        }
+    }
+    fn min(self, other: Self) -> Self {
+        DecInterval::min(self, other)
+    }
+    fn max(self, other: Self) -> Self {
+        DecInterval::max(self, other)
+    }
 }
 
 /// [`Scalar::abs_slope`] decorated: a fixed sign keeps the argument's
@@ -240,6 +331,12 @@ pub fn is_defined(x: DecInterval) -> bool {
 /// derivative or a mean-value argument needs.
 pub fn is_continuous(x: DecInterval) -> bool {
     x.decoration() >= Decoration::Dac && is_defined(x)
+}
+
+/// The weight `h = (1 − s)/2` of `u` in the derivative of `min(u, w)`, `s`
+/// the slope of `abs(u − w)`: 1 where `u < w`, 0 where `u > w`.
+fn min_weight<T: Scalar>(u: T, w: T) -> T {
+    (T::int(1) - (u - w).abs_slope()) / T::int(2)
 }
 
 /// Forward-mode dual number: a value and its gradient with respect to the
@@ -380,6 +477,48 @@ impl<T: Scalar, const N: usize> Scalar for DualN<T, N> {
         DualN {
             value: s,
             grad: [s * T::int(0); N],
+        }
+    }
+    fn atan(self) -> Self {
+        self.chain(
+            self.value.atan(),
+            T::int(1) / (T::int(1) + self.value.sqr()),
+        )
+    }
+    fn exp(self) -> Self {
+        let e = self.value.exp();
+        self.chain(e, e)
+    }
+    /// Chain rule with [`Scalar::sign_slope`]: 0 where the sign is fixed,
+    /// the whole line (`trv`) where it may jump.
+    fn sign(self) -> Self {
+        self.chain(self.value.sign(), self.value.sign_slope())
+    }
+    fn sign_slope(self) -> Self {
+        let s = self.value.sign_slope();
+        DualN {
+            value: s,
+            grad: [s * T::int(0); N],
+        }
+    }
+    /// `u'·h + w'·(1 − h)` with `h = (1 − s)/2`, `s` the slope of
+    /// `abs(u − w)`: `u'` where `u < w`, `w'` where `u > w` (exactly), and
+    /// where they may meet every combination of the two (`trv`).
+    fn min(self, other: Self) -> Self {
+        let h = min_weight(self.value, other.value);
+        let k = T::int(1) - h;
+        DualN {
+            value: self.value.min(other.value),
+            grad: self.zip(other, |a, b| a * h + b * k),
+        }
+    }
+    /// As `min`, the weights swapped.
+    fn max(self, other: Self) -> Self {
+        let h = min_weight(self.value, other.value);
+        let k = T::int(1) - h;
+        DualN {
+            value: self.value.max(other.value),
+            grad: self.zip(other, |a, b| a * k + b * h),
         }
     }
     /// Chain rule with slope `n·x^(n−1)` (`x^(n−1)` by `sqr` when n − 1 = 2,

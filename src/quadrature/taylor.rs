@@ -255,6 +255,66 @@ impl Scalar for Taylor {
     fn abs_slope(self) -> Self {
         Taylor::constant(<Interval as Scalar>::abs_slope(self.c[0]))
     }
+    fn exp(self) -> Self {
+        // e' = e·u': k e_k = Σ_{j=1..k} j u_j e_{k−j}
+        let mut e = [ZERO; N];
+        e[0] = self.c[0].exp();
+        let du = self.scaled_derivative();
+        for k in 1..N {
+            let mut a = ZERO;
+            for j in 1..=k {
+                a += du[j] * e[k - j];
+            }
+            e[k] = a / int(k);
+        }
+        Taylor { c: e }
+    }
+    fn atan(self) -> Self {
+        // w·a' = u', w = 1 + u²: k a_k w_0 = k u_k − Σ_{j=1}^{k−1} j a_j w_{k−j}
+        let w = Taylor::int(1) + self.sqr();
+        let mut a = [ZERO; N];
+        a[0] = self.c[0].atan();
+        for k in 1..N {
+            let mut acc = self.c[k] * int(k);
+            for (j, aj) in a.iter().enumerate().take(k).skip(1) {
+                acc -= *aj * int(j) * w.c[k - j];
+            }
+            a[k] = acc / (w.c[0] * int(k));
+        }
+        Taylor { c: a }
+    }
+    /// A constant where the sign of `u_0` is fixed; otherwise `sign` jumps
+    /// on the argument and every higher coefficient is unbounded.
+    fn sign(self) -> Self {
+        let x = self.c[0];
+        if x.inf() > 0.0 || x.sup() < 0.0 {
+            Taylor::constant(x.sign())
+        } else {
+            let mut c = [Interval::ENTIRE; N];
+            c[0] = x.sign();
+            Taylor { c }
+        }
+    }
+    fn sign_slope(self) -> Self {
+        Taylor::constant(<Interval as Scalar>::sign_slope(self.c[0]))
+    }
+    /// The smaller series where the two are apart on the argument; otherwise
+    /// `min` may have a kink there and every higher coefficient is unbounded.
+    fn min(self, other: Self) -> Self {
+        let (a, b) = (self.c[0], other.c[0]);
+        if a.sup() < b.inf() {
+            self
+        } else if b.sup() < a.inf() {
+            other
+        } else {
+            let mut c = [Interval::ENTIRE; N];
+            c[0] = a.min(b);
+            Taylor { c }
+        }
+    }
+    fn max(self, other: Self) -> Self {
+        -((-self).min(-other))
+    }
 }
 
 #[cfg(test)]
@@ -292,6 +352,21 @@ mod tests {
             let e = (-1f64).powi(k as i32 + 1) * 2f64.powi(k as i32) / k as f64;
             assert!(close(l.c[k], e), "ln {k}");
         }
+        // exp(0.5 + t): e^0.5/k!; atan(0.5 + t): atan(0.5), then 1/(1 + x²) =
+        // 0.8 and −x/(1 + x²)² = −0.32 (by hand, x = 0.5).
+        let e = x.exp();
+        let mut fact = 1.0;
+        for k in 0..N {
+            if k > 0 {
+                fact *= k as f64;
+            }
+            assert!(close(e.c[k], 0.5f64.exp() / fact), "exp {k}");
+        }
+        let a = x.atan();
+        assert!(close(a.c[0], 0.5f64.atan()) && close(a.c[1], 0.8) && close(a.c[2], -0.32));
+        // tan(atan(u)) = u.
+        let r = x.atan().tan() - x;
+        assert!(r.c.iter().all(|c| c.mag() < 1e-9));
         // sqrt and sqr are inverse; tan = sin/cos.
         let r = x.sqrt().sqr() - x;
         assert!(r.c.iter().all(|c| c.mag() < 1e-13));

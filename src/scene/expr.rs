@@ -13,8 +13,8 @@
 //! tape gives the enclosure the checker computes for the same text.
 
 use crate::number::param::{enclose_decimal, ParamError};
-use crate::number::scalar::Scalar;
-use inari::Interval;
+use crate::number::scalar::{is_defined, Scalar};
+use inari::{DecInterval, Interval};
 use std::collections::{HashMap, HashSet};
 use std::fmt;
 
@@ -23,7 +23,9 @@ pub const MAX_EXPR_LEN: usize = 10_000;
 /// Deepest nesting of parentheses, calls and unary minus accepted.
 pub const MAX_DEPTH: usize = 100;
 
-const FUNCTIONS: [&str; 6] = ["sqrt", "sin", "cos", "tan", "ln", "abs"];
+const FUNCTIONS: [&str; 11] = [
+    "sqrt", "sin", "cos", "tan", "ln", "abs", "atan", "exp", "sign", "min", "max",
+];
 const THETA: &str = "theta";
 const THETA_DOT: &str = "theta_dot";
 /// Names a parameter or definition may not take besides the functions: the
@@ -76,6 +78,7 @@ enum Tok<'a> {
     Caret,
     LParen,
     RParen,
+    Comma,
 }
 
 fn describe(t: Tok) -> String {
@@ -89,6 +92,7 @@ fn describe(t: Tok) -> String {
         Tok::Caret => "'^'".into(),
         Tok::LParen => "'('".into(),
         Tok::RParen => "')'".into(),
+        Tok::Comma => "','".into(),
     }
 }
 
@@ -118,6 +122,7 @@ fn lex(text: &str) -> Result<Vec<(Tok<'_>, usize)>, Fail> {
             b'^' => Tok::Caret,
             b'(' => Tok::LParen,
             b')' => Tok::RParen,
+            b',' => Tok::Comma,
             // Digits with an optional point, at least one digit before or
             // after it (`1`, `1.5`, `1.`, `.5`), as FORMAT.md's `number`.
             b'0'..=b'9' | b'.' => {
@@ -168,6 +173,12 @@ enum Func {
     Tan,
     Ln,
     Abs,
+    Atan,
+    Exp,
+    Sign,
+    /// `min(a, b)` and `max(a, b)`: the two functions of two arguments.
+    Min,
+    Max,
 }
 
 impl Func {
@@ -179,6 +190,11 @@ impl Func {
             Func::Tan => "tan",
             Func::Ln => "ln",
             Func::Abs => "abs",
+            Func::Atan => "atan",
+            Func::Exp => "exp",
+            Func::Sign => "sign",
+            Func::Min => "min",
+            Func::Max => "max",
         }
     }
 
@@ -190,6 +206,11 @@ impl Func {
             "tan" => Func::Tan,
             "ln" => Func::Ln,
             "abs" => Func::Abs,
+            "atan" => Func::Atan,
+            "exp" => Func::Exp,
+            "sign" => Func::Sign,
+            "min" => Func::Min,
+            "max" => Func::Max,
             _ => return None,
         })
     }
@@ -331,6 +352,9 @@ impl<'a> Parser<'a> {
                 let x = enclose_decimal("", t).map_err(|e| {
                     let why = match e {
                         ParamError::TooLarge { .. } => "is too large for double precision",
+                        ParamError::TooSmall { .. } => {
+                            "is too small for double precision (nonzero, below 4.9e-324)"
+                        }
                         _ => "is not a finite decimal number",
                     };
                     (Some(at), format!("{t} {why}"))
@@ -352,6 +376,14 @@ impl<'a> Parser<'a> {
                     self.pos += 1;
                     self.enter(open)?;
                     self.expr()?;
+                    if matches!(f, Func::Min | Func::Max) {
+                        if self.peek() != Some(Tok::Comma) {
+                            let msg = format!("',' expected: {n} takes two arguments");
+                            return Err((Some(self.at()), msg));
+                        }
+                        self.pos += 1;
+                        self.expr()?;
+                    }
                     self.depth -= 1;
                     self.expect_close(&format!("to close {n}("))?;
                     self.steps.push(Step::Call(f));
@@ -439,15 +471,19 @@ enum Node {
     /// `x^n`, n ≠ 2.
     Pown(u32, u32),
     Call(Func, u32),
+    /// `min(a, b)`, `max(a, b)`.
+    Call2(Func, u32, u32),
 }
 
 impl Node {
     fn operands(self) -> [Option<u32>; 2] {
         match self {
             Node::Const(_) | Node::Theta | Node::ThetaDot => [None, None],
-            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
-                [Some(a), Some(b)]
-            }
+            Node::Add(a, b)
+            | Node::Sub(a, b)
+            | Node::Mul(a, b)
+            | Node::Div(a, b)
+            | Node::Call2(_, a, b) => [Some(a), Some(b)],
             Node::Neg(a) | Node::Sqr(a) | Node::Pown(a, _) | Node::Call(_, a) => [Some(a), None],
         }
     }
@@ -464,6 +500,7 @@ impl Node {
             Node::Sqr(a) => Node::Sqr(f(a)),
             Node::Pown(a, n) => Node::Pown(f(a), n),
             Node::Call(g, a) => Node::Call(g, f(a)),
+            Node::Call2(g, a, b) => Node::Call2(g, f(a), f(b)),
         }
     }
 }
@@ -518,6 +555,15 @@ impl Dag {
         self.push(Node::Const(k))
     }
 
+    /// A parameter: a constant of its own, never shared with a literal or
+    /// another parameter of the same value, so that it keeps its name.
+    fn parameter(&mut self, x: Interval, name: &str) -> u32 {
+        let k = self.consts.len() as u32;
+        self.consts.push(x);
+        self.const_text.push(name.to_string());
+        self.push(Node::Const(k))
+    }
+
     /// Lowers postfix steps; every name must be in `scope`.
     fn lower(&mut self, steps: &[Step], scope: &HashMap<&str, u32>) -> Result<u32, Fail> {
         let mut stack: Vec<u32> = Vec::new();
@@ -536,6 +582,11 @@ impl Dag {
                         .ok_or_else(|| (Some(at), format!("unknown name `{n}`")))?;
                     stack.push(*id);
                     continue;
+                }
+                Step::Call(f @ (Func::Min | Func::Max)) => {
+                    let b = stack.pop().ok_or_else(internal)?;
+                    let a = stack.pop().ok_or_else(internal)?;
+                    Node::Call2(f, a, b)
                 }
                 Step::Neg | Step::Pow(_) | Step::Call(_) => {
                     let a = stack.pop().ok_or_else(internal)?;
@@ -807,6 +858,7 @@ impl Program {
                 Node::Sqr(a) => deg(a).and_then(|x| x.checked_mul(2)),
                 Node::Pown(a, n) => deg(a).and_then(|x| x.checked_mul(n)),
                 Node::Call(_, a) => (!dot(a)).then_some(0),
+                Node::Call2(_, a, b) => (!dot(a) && !dot(b)).then_some(0),
             };
             let o = match node {
                 Node::ThetaDot => true,
@@ -843,7 +895,7 @@ impl Program {
         for (name, x) in params {
             check_name(name, &declared)?;
             declared.insert(name);
-            scope.insert(name, dag.constant(*x, name));
+            scope.insert(name, dag.parameter(*x, name));
         }
         let mut def_index: HashMap<&str, usize> = HashMap::new();
         for (i, (name, _)) in definitions.iter().enumerate() {
@@ -987,8 +1039,16 @@ impl Program {
                         Func::Tan => x.tan(),
                         Func::Ln => x.ln(),
                         Func::Abs => x.abs(),
+                        Func::Atan => x.atan(),
+                        Func::Exp => x.exp(),
+                        Func::Sign => x.sign(),
+                        Func::Min | Func::Max => unreachable!("two arguments: Call2"),
                     }
                 }
+                Node::Call2(f, a, b) => match f {
+                    Func::Min => s(a).min(s(b)),
+                    _ => s(a).max(s(b)),
+                },
             };
             slots[j] = v;
         }
@@ -1037,6 +1097,7 @@ impl Program {
                 Node::Sqr(a) => format!("{}^2", t(a)),
                 Node::Pown(a, n) => format!("{}^{n}", t(a)),
                 Node::Call(f, a) => format!("{}({})", f.name(), t(a)),
+                Node::Call2(f, a, b) => format!("{}({}, {})", f.name(), t(a), t(b)),
             };
             let name = format!("{prefix}{j}");
             defs.push((name.clone(), body));
@@ -1177,11 +1238,212 @@ impl Program {
     }
 }
 
+/// A constant expression enclosed: numbers, `pi`, parameters and functions,
+/// nothing that depends on θ or θ̇ (a domain end such as `3*pi/2`). An error
+/// names `key` when the text does not parse, uses a variable, or is not a
+/// defined, finite real number.
+pub fn enclose_constant(
+    params: &[(String, Interval)],
+    key: &str,
+    text: &str,
+) -> Result<Interval, ExprError> {
+    let p = Program::compile(params, &[], &[(key.to_string(), text.to_string())])?;
+    let fail = |message: &str| ExprError {
+        key: key.to_string(),
+        offset: None,
+        message: format!("`{}` {message}", text.trim()),
+    };
+    if p.tape
+        .iter()
+        .any(|n| matches!(n, Node::Theta | Node::ThetaDot))
+    {
+        return Err(fail("must not depend on theta or theta_dot"));
+    }
+    let mut out = [DecInterval::ENTIRE];
+    p.eval(DecInterval::ENTIRE, DecInterval::ENTIRE, &mut out);
+    match out[0].interval() {
+        Some(x) if is_defined(out[0]) && x.is_common_interval() => Ok(x),
+        _ => Err(fail("is not a defined, finite number")),
+    }
+}
+
+/// A parameter-only operation that is undefined for the parameters given.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConstantIssue {
+    /// Proved undefined (its enclosure is empty: `1/0`, `sqrt` of a negative
+    /// number, `ln` of one ≤ 0), so every formula using it is undefined
+    /// everywhere; otherwise it only may be (an operand's enclosure reaches a
+    /// point where the operation is undefined, e.g. it contains 0 but is not
+    /// exactly 0).
+    pub proved: bool,
+    /// The operation as text, parameters by name.
+    pub text: String,
+    /// The parameters it depends on, in tape order.
+    pub params: Vec<String>,
+}
+
+impl Program {
+    /// Every operation evaluated once over the whole domain `theta` ×
+    /// `theta_dot` in decorated intervals. An empty result from non-empty
+    /// operands (a division by exactly 0, `sqrt` of a value below 0 all over
+    /// the domain, ...) is proved undefined at every point. An operation on
+    /// parameters alone that is not defined while its operands are, or a
+    /// division by a parameter-only value that contains 0, only may be.
+    /// Parameters are the constants whose text is a name other than `pi`.
+    pub fn constant_issues(&self, theta: Interval, theta_dot: Interval) -> Vec<ConstantIssue> {
+        let mut slots = vec![DecInterval::ENTIRE; self.tape.len()];
+        let mut out = vec![DecInterval::ENTIRE; self.outputs.len()];
+        let (t, w) = (DecInterval::new(theta), DecInterval::new(theta_dot));
+        self.eval_into(t, None, w, &mut slots, &mut out);
+        let empty = |x: DecInterval| x.interval().is_none_or(|i| i.is_empty());
+        let mut on_var = vec![false; self.tape.len()];
+        let mut issues = Vec::new();
+        let mut issue = |j: usize, proved: bool, from: u32| {
+            let mut params = Vec::new();
+            self.const_names(from, &mut params);
+            issues.push(ConstantIssue {
+                proved,
+                text: self.infix(j as u32),
+                params,
+            });
+        };
+        for (j, node) in self.tape.iter().enumerate() {
+            let ops = node.operands();
+            on_var[j] = matches!(node, Node::Theta | Node::ThetaDot)
+                || ops.iter().flatten().any(|&a| on_var[a as usize]);
+            if matches!(node, Node::Const(_)) {
+                continue;
+            }
+            if empty(slots[j]) {
+                if ops.iter().flatten().all(|&a| !empty(slots[a as usize])) {
+                    issue(j, true, j as u32);
+                }
+                continue;
+            }
+            // A division by a parameter-only divisor that may be 0 may fail
+            // whatever the variables are.
+            if let Node::Div(_, b) = *node {
+                let x = slots[b as usize];
+                let zero = x.interval().is_some_and(|x| x.contains(0.0));
+                if on_var[j] && !on_var[b as usize] && is_defined(x) && zero {
+                    issue(j, false, b);
+                }
+            }
+            let defined_ops = ops.iter().flatten().all(|&a| is_defined(slots[a as usize]));
+            if !on_var[j] && !is_defined(slots[j]) && defined_ops {
+                issue(j, false, j as u32);
+            }
+        }
+        issues
+    }
+
+    /// Entry `j` as infix text (compound operands in parentheses), cut
+    /// after about 120 characters: shared definitions can make the full text
+    /// exponentially long.
+    fn infix(&self, j: u32) -> String {
+        let mut out = String::new();
+        self.write_infix(j, &mut out);
+        if out.len() > 120 {
+            let mut cut = 120;
+            while !out.is_char_boundary(cut) {
+                cut -= 1;
+            }
+            out.truncate(cut);
+            out.push('…');
+        }
+        out
+    }
+
+    /// Every call appends at least one character or returns at once past
+    /// the budget, so the work is bounded however deep the sharing.
+    fn write_infix(&self, j: u32, out: &mut String) {
+        if out.len() > 120 {
+            return;
+        }
+        let operand = |a: u32, out: &mut String| match self.tape[a as usize] {
+            Node::Const(_)
+            | Node::Theta
+            | Node::ThetaDot
+            | Node::Call(..)
+            | Node::Call2(..)
+            | Node::Sqr(_)
+            | Node::Pown(..) => self.write_infix(a, out),
+            _ => {
+                out.push('(');
+                self.write_infix(a, out);
+                out.push(')');
+            }
+        };
+        match self.tape[j as usize] {
+            Node::Const(k) => out.push_str(&self.const_text[k as usize]),
+            Node::Theta => out.push_str(THETA),
+            Node::ThetaDot => out.push_str(THETA_DOT),
+            Node::Neg(a) => {
+                out.push('-');
+                operand(a, out);
+            }
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
+                operand(a, out);
+                out.push_str(match self.tape[j as usize] {
+                    Node::Add(..) => " + ",
+                    Node::Sub(..) => " - ",
+                    Node::Mul(..) => "*",
+                    _ => "/",
+                });
+                operand(b, out);
+            }
+            Node::Sqr(a) => {
+                operand(a, out);
+                out.push_str("^2");
+            }
+            Node::Pown(a, n) => {
+                operand(a, out);
+                out.push_str(&format!("^{n}"));
+            }
+            Node::Call(f, a) => {
+                out.push_str(f.name());
+                out.push('(');
+                self.write_infix(a, out);
+                out.push(')');
+            }
+            Node::Call2(f, a, b) => {
+                out.push_str(f.name());
+                out.push('(');
+                self.write_infix(a, out);
+                out.push_str(", ");
+                self.write_infix(b, out);
+                out.push(')');
+            }
+        }
+    }
+
+    /// The parameter names entry `j` depends on, each once, in tape order.
+    fn const_names(&self, j: u32, names: &mut Vec<String>) {
+        let mut needed = vec![false; j as usize + 1];
+        needed[j as usize] = true;
+        for i in (0..=j as usize).rev() {
+            if needed[i] {
+                for a in self.tape[i].operands().into_iter().flatten() {
+                    needed[a as usize] = true;
+                }
+            }
+        }
+        for (i, node) in self.tape[..=j as usize].iter().enumerate() {
+            if let (true, Node::Const(k)) = (needed[i], node) {
+                let t = &self.const_text[*k as usize];
+                if t.starts_with(|c: char| c.is_ascii_alphabetic()) && t != "pi" {
+                    names.push(t.clone());
+                }
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::number::scalar::{Dual, DualN};
-    use inari::{DecInterval, Decoration};
+    use inari::Decoration;
 
     fn iv(a: f64, b: f64) -> Interval {
         Interval::try_from((a, b)).unwrap()
@@ -1303,14 +1565,20 @@ mod tests {
                 }
                 return;
             }
+            let mut two = false;
             if self.r.below(2) == 0 {
                 self.same("(");
             } else {
                 let f = FUNCTIONS[self.r.below(FUNCTIONS.len())];
+                two = f == "min" || f == "max";
                 self.same(f);
                 self.same("(");
             }
             self.expr(d - 1);
+            if two {
+                self.same(",");
+                self.expr(d - 1);
+            }
             self.same(")");
         }
     }
@@ -1796,5 +2064,89 @@ mod tests {
         let f = at(-2.0, -1.0);
         assert_eq!(f.grad[0].interval(), Some(iv(-3.0, -3.0)));
         assert_eq!(f.grad[0].decoration(), Decoration::Com);
+    }
+
+    /// atan, exp, sign, min, max over intervals against closed forms (the
+    /// doubles nearest π/4 = atan(1) and e = exp(1), mpmath to 20 digits:
+    /// 0.78539816339744830962, 2.7182818284590452354), and their parse errors.
+    #[test]
+    fn new_functions_enclose_their_values() {
+        let at = |text: &str, t: Interval, w: Interval| eval1(&one(&[], text), t, w);
+        let p = |x: f64| iv(x, x);
+        let a = at("atan(theta)", p(1.0), p(0.0));
+        assert!(a.contains(std::f64::consts::FRAC_PI_4) && a.wid() <= 2.0 * f64::EPSILON);
+        let e = at("exp(theta_dot)", p(0.0), p(1.0));
+        assert!(e.contains(std::f64::consts::E) && e.wid() <= 4.0 * f64::EPSILON);
+        assert_eq!(at("exp(theta)", iv(0.0, 0.0), p(0.0)), p(1.0));
+        assert_eq!(at("sign(theta)", iv(-1.0, 2.0), p(0.0)), iv(-1.0, 1.0));
+        assert_eq!(at("sign(theta)", iv(0.5, 2.0), p(0.0)), p(1.0));
+        assert_eq!(at("sign(theta)", p(0.0), p(0.0)), p(0.0));
+        let (t, w) = (iv(0.0, 1.0), iv(0.5, 2.0));
+        assert_eq!(at("min(theta, theta_dot)", t, w), iv(0.0, 1.0));
+        assert_eq!(at("max(theta, theta_dot)", t, w), iv(0.5, 2.0));
+        assert_eq!(at("max(theta, 2*theta_dot) - 1", p(3.0), p(1.0)), p(2.0));
+        assert!(err(&[], "min(theta)").message.contains("',' expected"));
+        assert!(err(&[], "sign(theta, 1)").message.contains("')' expected"));
+        assert!(err(&[], "max(1, 2, 3)").message.contains("')' expected"));
+        assert_eq!(err(&[("exp", "1")], "1").key, "exp");
+        // Two-argument calls render and re-parse to the same value.
+        let q = one(&[], "min(theta, theta_dot*2) + max(1, sign(theta))");
+        let (defs, outs) = q.render("q");
+        assert!(
+            defs.iter().any(|(_, b)| b.starts_with("min(t, q")),
+            "{defs:?}"
+        );
+        assert_eq!(outs.len(), 1);
+    }
+
+    /// Derivatives by hand: at (0.7, 1.3), d/dθ and d/dθ̇ of
+    /// atan(θ)·exp(θ̇) + min(θ, θ̇) − max(θ², θ̇) are exp(1.3)/1.49 + 1 and
+    /// atan(0.7)·exp(1.3) − 1 (min picks θ, max picks θ̇). Where min's
+    /// arguments may meet, and where sign may jump, no derivative is claimed.
+    #[test]
+    fn new_functions_have_derivatives_where_they_exist() {
+        let p = one(
+            &[],
+            "atan(theta)*exp(theta_dot) + min(theta, theta_dot) - max(theta^2, theta_dot) + sign(theta)",
+        );
+        let (t, w) = (0.7f64, 1.3f64);
+        let f = eval1(&p, Dual::variable(t, 0), Dual::variable(w, 1));
+        let dt = w.exp() / (1.0 + t * t) + 1.0;
+        let dw = t.atan() * w.exp() - 1.0;
+        assert!((f.grad[0] - dt).abs() < 1e-12, "{} vs {dt}", f.grad[0]);
+        assert!((f.grad[1] - dw).abs() < 1e-12, "{} vs {dw}", f.grad[1]);
+        let pt = |x: f64| iv(x, x);
+        let fi = eval1(&p, Dual::variable(pt(t), 0), Dual::variable(pt(w), 1));
+        assert!(fi.grad[0].contains(dt) && fi.grad[1].contains(dw));
+        // Over boxes where the kinks and the jump may lie.
+        let dec = |a: f64, b: f64| DecInterval::new(iv(a, b));
+        let m = one(&[], "min(theta, theta_dot)");
+        let g = eval1(
+            &m,
+            Dual::variable(dec(0.0, 1.0), 0),
+            Dual::variable(dec(0.5, 1.5), 1),
+        );
+        assert_eq!(g.grad[0].decoration(), Decoration::Trv);
+        assert!(g.grad[0].interval().unwrap().contains(0.0));
+        assert!(g.grad[0].interval().unwrap().contains(1.0));
+        let s = one(&[], "sign(theta)");
+        let g = eval1(
+            &s,
+            Dual::variable(dec(-1.0, 1.0), 0),
+            Dual::variable(dec(0.0, 0.0), 1),
+        );
+        assert_eq!(g.grad[0].decoration(), Decoration::Trv);
+        let g = eval1(
+            &s,
+            Dual::variable(iv(-1.0, 1.0), 0),
+            Dual::variable(iv(0.0, 0.0), 1),
+        );
+        assert_eq!(g.grad[0], Interval::ENTIRE);
+        let g = eval1(
+            &s,
+            Dual::variable(iv(1.0, 2.0), 0),
+            Dual::variable(iv(0.0, 0.0), 1),
+        );
+        assert_eq!(g.grad[0], iv(0.0, 0.0));
     }
 }

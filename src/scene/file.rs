@@ -7,12 +7,15 @@
 //! an expression) the character, when it is not TOML, lacks a key, has an
 //! unknown one, or holds a bad name, number, domain, region or expression.
 
-use super::expr::{ExprError, Program};
+use super::expr::{enclose_constant, ExprError, Program};
 use super::{Angle, Domain, Quadratic};
-use crate::number::param::{enclose_decimal, enclose_window_end, ParamSet, ParamSpec, Sign};
+use crate::number::param::{
+    enclose_decimal, enclose_window_end, ParamError, ParamSet, ParamSpec, Sign,
+};
 use inari::Interval;
 use serde::Deserialize;
 use std::path::Path;
+use toml::Spanned;
 
 /// Scene files built into the binary (`scenes/`), by name: `--scene NAME`
 /// reads them like the paper's scenes.
@@ -31,7 +34,7 @@ pub struct SceneFileError {
 
 /// Names a file may not give a parameter or definition: the variables of
 /// the file and of proof files, the constant and the functions.
-const RESERVED: [&str; 11] = [
+const RESERVED: [&str; 16] = [
     "theta",
     "theta_dot",
     "t",
@@ -43,6 +46,11 @@ const RESERVED: [&str; 11] = [
     "tan",
     "ln",
     "abs",
+    "atan",
+    "exp",
+    "sign",
+    "min",
+    "max",
 ];
 
 #[derive(Deserialize)]
@@ -52,7 +60,7 @@ struct Raw {
     title: Option<String>,
     domain: RawDomain,
     #[serde(default)]
-    parameters: toml::Table,
+    parameters: ParamTable,
     #[serde(default)]
     definitions: toml::Table,
     regions: RawRegions,
@@ -62,21 +70,163 @@ struct Raw {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawDomain {
-    theta: [String; 2],
-    theta_dot: [String; 2],
+    theta: [Spanned<Literal>; 2],
+    theta_dot: [Spanned<Literal>; 2],
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawRegions {
     omega: String,
-    omega0: String,
+    omega0: Option<String>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawDynamics {
     theta_ddot: String,
+}
+
+/// A number or expression written in quotes, or a bare TOML number. A bare
+/// number is taken from its text in the file (its span), never from the
+/// float `toml` parsed it to, so `1.1` denotes 11/10 exactly as `"1.1"` does.
+enum Literal {
+    Quoted(String),
+    Bare,
+}
+
+struct LiteralVisitor;
+
+impl<'de> serde::de::Visitor<'de> for LiteralVisitor {
+    type Value = Literal;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a string in quotes or a number")
+    }
+    fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Literal, E> {
+        Ok(Literal::Quoted(v.to_string()))
+    }
+    fn visit_i64<E: serde::de::Error>(self, _: i64) -> Result<Literal, E> {
+        Ok(Literal::Bare)
+    }
+    fn visit_u64<E: serde::de::Error>(self, _: u64) -> Result<Literal, E> {
+        Ok(Literal::Bare)
+    }
+    fn visit_f64<E: serde::de::Error>(self, _: f64) -> Result<Literal, E> {
+        Ok(Literal::Bare)
+    }
+}
+
+impl<'de> Deserialize<'de> for Literal {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Literal, D::Error> {
+        d.deserialize_any(LiteralVisitor)
+    }
+}
+
+/// The text of a literal: the quoted string, or the bare number's source.
+fn literal_text(source: &str, lit: &Spanned<Literal>) -> String {
+    match lit.get_ref() {
+        Literal::Quoted(s) => s.clone(),
+        Literal::Bare => source.get(lit.span()).unwrap_or_default().to_string(),
+    }
+}
+
+/// A parameter: its value alone (`mu = "1.5"`, `mu = 1.5`) or a table
+/// `{ value = "1.5", description = "…", unit = "…" }`.
+struct RawParam {
+    /// The value, with its own span when written inside a table.
+    value: Literal,
+    span: Option<std::ops::Range<usize>>,
+    description: Option<String>,
+    unit: Option<String>,
+}
+
+struct ParamVisitor;
+
+impl<'de> serde::de::Visitor<'de> for ParamVisitor {
+    type Value = RawParam;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a string in quotes, a number, or a table with `value`")
+    }
+    fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<RawParam, E> {
+        LiteralVisitor.visit_str(v).map(RawParam::plain)
+    }
+    fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<RawParam, E> {
+        LiteralVisitor.visit_i64(v).map(RawParam::plain)
+    }
+    fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<RawParam, E> {
+        LiteralVisitor.visit_u64(v).map(RawParam::plain)
+    }
+    fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<RawParam, E> {
+        LiteralVisitor.visit_f64(v).map(RawParam::plain)
+    }
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<RawParam, A::Error> {
+        use serde::de::Error;
+        let (mut value, mut description, mut unit) = (None, None, None);
+        while let Some(key) = map.next_key::<String>()? {
+            match key.as_str() {
+                "value" => value = Some(map.next_value::<Spanned<Literal>>()?),
+                "description" => description = Some(map.next_value::<String>()?),
+                "unit" => unit = Some(map.next_value::<String>()?),
+                k => {
+                    return Err(A::Error::unknown_field(
+                        k,
+                        &["value", "description", "unit"],
+                    ))
+                }
+            }
+        }
+        let value = value.ok_or_else(|| A::Error::missing_field("value"))?;
+        let span = Some(value.span());
+        Ok(RawParam {
+            value: value.into_inner(),
+            span,
+            description,
+            unit,
+        })
+    }
+}
+
+impl RawParam {
+    fn plain(value: Literal) -> RawParam {
+        RawParam {
+            value,
+            span: None,
+            description: None,
+            unit: None,
+        }
+    }
+}
+
+/// `[parameters]` in the order written.
+#[derive(Default)]
+struct ParamTable(Vec<(String, Spanned<RawParam>)>);
+
+struct ParamTableVisitor;
+
+impl<'de> serde::de::Visitor<'de> for ParamTableVisitor {
+    type Value = ParamTable;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a table of parameters")
+    }
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<ParamTable, A::Error> {
+        let mut out = Vec::new();
+        while let Some((k, v)) = map.next_entry()? {
+            out.push((k, v));
+        }
+        Ok(ParamTable(out))
+    }
+}
+
+impl<'de> Deserialize<'de> for ParamTable {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<ParamTable, D::Error> {
+        d.deserialize_map(ParamTableVisitor)
+    }
+}
+
+impl<'de> Deserialize<'de> for RawParam {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<RawParam, D::Error> {
+        d.deserialize_any(ParamVisitor)
+    }
 }
 
 /// A region `{expr < 0}`: the file's inequality and its normal form.
@@ -111,6 +261,8 @@ pub struct FileScene {
     factored: Option<Program>,
     /// θ̈ for the phase portrait, if given.
     dynamics: Option<Program>,
+    /// Parameter-only subexpressions that may be undefined (one line each).
+    pub warnings: Vec<String>,
 }
 
 /// A scene file's text with the name its errors give: read once, compiled
@@ -171,13 +323,7 @@ impl FileScene {
     /// Compiles the text of a scene file (errors without the file name).
     pub fn parse(text: &str, overrides: &[(String, String)]) -> Result<FileScene, String> {
         let table: toml::Table = toml::from_str(text).map_err(|e| toml_message(text, &e))?;
-        for path in [
-            "name",
-            "domain.theta",
-            "domain.theta_dot",
-            "regions.omega",
-            "regions.omega0",
-        ] {
+        for path in ["name", "domain.theta", "domain.theta_dot", "regions.omega"] {
             let mut at = Some(&table);
             let mut found = None;
             for part in path.split('.') {
@@ -200,22 +346,25 @@ impl FileScene {
                 raw.name
             ));
         }
-        let domain_text = [raw.domain.theta, raw.domain.theta_dot];
-        let domain = Domain {
-            theta: domain_ends("domain.theta", &domain_text[0])?,
-            theta_dot: domain_ends("domain.theta_dot", &domain_text[1])?,
-        };
-        let params = parameters(&raw.name, &raw.parameters, overrides)?;
+        let params = parameters(&raw.name, &raw.parameters, text, overrides)?;
         let enclosed: Vec<(String, Interval)> = params
             .specs
             .iter()
             .zip(&params.values)
             .map(|(s, p)| (s.name.to_string(), p.value))
             .collect();
+        let domain_text = [&raw.domain.theta, &raw.domain.theta_dot]
+            .map(|ends| ends.each_ref().map(|e| literal_text(text, e)));
+        let domain = Domain {
+            theta: domain_ends("domain.theta", &domain_text[0], &enclosed)?,
+            theta_dot: domain_ends("domain.theta_dot", &domain_text[1], &enclosed)?,
+        };
         let definitions = definitions(&raw.definitions, &params)?;
+        // One inequality: Ω₀ = Ω, stated as the same text.
+        let omega0 = raw.regions.omega0.as_ref().unwrap_or(&raw.regions.omega);
         let regions = [
             region("omega", &raw.regions.omega)?,
-            region("omega0", &raw.regions.omega0)?,
+            region("omega0", omega0)?,
         ];
         let compile_at = |outputs: &[(String, String)], shift: usize| {
             Program::compile(&enclosed, &definitions, outputs).map_err(|e| expr_message(e, shift))
@@ -239,6 +388,17 @@ impl FileScene {
             Some(d) => Some(compile(&[("dynamics.theta_ddot".into(), d.theta_ddot)])?),
             None => None,
         };
+        let mut warnings = Vec::new();
+        for p in std::iter::once(&program).chain(&dynamics) {
+            let hull = |e: [Interval; 2]| e[0].convex_hull(e[1]);
+            for issue in p.constant_issues(hull(domain.theta), hull(domain.theta_dot)) {
+                let (message, proved) = constant_message(&issue, &params);
+                if proved {
+                    return Err(message);
+                }
+                warnings.push(message);
+            }
+        }
         let title = raw.title.unwrap_or_else(|| raw.name.clone());
         Ok(FileScene {
             name: raw.name,
@@ -252,6 +412,7 @@ impl FileScene {
             coefficients,
             factored,
             dynamics,
+            warnings,
         })
     }
 
@@ -361,6 +522,41 @@ impl FileScene {
     }
 }
 
+/// The message for a parameter-only subexpression that is (or may be)
+/// undefined, naming the parameters with their values; and whether it is
+/// proved undefined.
+fn constant_message(issue: &super::expr::ConstantIssue, params: &ParamSet) -> (String, bool) {
+    let values: Vec<String> = issue
+        .params
+        .iter()
+        .map(|n| {
+            let i = params.specs.iter().position(|s| s.name == n);
+            let text = i.map_or("?", |i| params.values[i].text.as_str());
+            format!("{n} = {text}")
+        })
+        .collect();
+    let with = if values.is_empty() {
+        String::new()
+    } else {
+        format!("with {}, ", values.join(", "))
+    };
+    let message = if issue.proved {
+        format!(
+            "{with}`{}` is undefined (division by zero, sqrt of a negative number, \
+             ln of a number <= 0, ...) everywhere in the domain, and so is every formula \
+             using it",
+            issue.text
+        )
+    } else {
+        format!(
+            "{with}`{}` may be undefined: its operands' enclosures reach a point where \
+             it is not defined (e.g. they contain 0); boxes where it is undefined stay undecided",
+            issue.text
+        )
+    };
+    (message, issue.proved)
+}
+
 /// `line L, column C: message` from a TOML error.
 fn toml_message(text: &str, e: &toml::de::Error) -> String {
     let msg = e.message().trim_end().replace('\n', "; ");
@@ -385,13 +581,20 @@ fn expr_message(mut e: ExprError, shift: usize) -> String {
     e.to_string()
 }
 
-fn domain_ends(key: &str, text: &[String; 2]) -> Result<[Interval; 2], String> {
+/// The domain's ends: decimal text, `pi`, `pi/N`, or any expression of
+/// numbers, `pi` and parameters (`2*pi`, `3*pi/2`), each enclosed.
+fn domain_ends(
+    key: &str,
+    text: &[String; 2],
+    params: &[(String, Interval)],
+) -> Result<[Interval; 2], String> {
     let end = |t: &String| {
         if t.trim_start().starts_with('+') {
             return Err(format!("`{key}`: `{t}`: no leading `+`"));
         }
-        // The message names the key itself, not a "parameter".
-        enclose_window_end(key, t).map_err(|e| format!("`{key}`: {}", e.reason(key)))
+        enclose_window_end(key, t)
+            .or_else(|_| enclose_constant(params, key, t))
+            .map_err(|e| expr_message(e, 0))
     };
     let ends = [end(&text[0])?, end(&text[1])?];
     if ends[0].sup() < ends[1].inf() {
@@ -425,26 +628,44 @@ fn string_value<'a>(key: &str, v: &'a toml::Value) -> Result<&'a str, String> {
         .ok_or_else(|| format!("`{key}`: expected a string in quotes, got {}", v.type_str()))
 }
 
-/// The file's parameters (decimal text), overridden by `name=value` pairs.
+/// The file's parameters (decimal text, quoted or bare), overridden by
+/// `name=value` pairs.
 fn parameters(
     scene: &str,
-    table: &toml::Table,
+    table: &ParamTable,
+    source: &str,
     overrides: &[(String, String)],
 ) -> Result<ParamSet, String> {
-    let mut specs = Vec::with_capacity(table.len());
-    for (name, v) in table {
+    let mut specs = Vec::with_capacity(table.0.len());
+    for (name, entry) in &table.0 {
         let key = format!("parameters.{name}");
         check_name(&key, name)?;
-        let text = string_value(&key, v)?;
-        enclose_decimal(name, text).map_err(|e| format!("`{key}`: {e}"))?;
+        let raw = entry.get_ref();
+        let text = match (&raw.value, &raw.span) {
+            (Literal::Quoted(s), _) => s.clone(),
+            (Literal::Bare, span) => {
+                let span = span.clone().unwrap_or_else(|| entry.span());
+                let t = source.get(span).unwrap_or_default();
+                if let Err(ParamError::NotDecimal { .. }) = enclose_decimal(name, t) {
+                    return Err(format!(
+                        "`{key}`: `{t}` is not decimal text; write the number in quotes \
+                         as decimal digits (e.g. \"1000\", \"2.5e-3\")"
+                    ));
+                }
+                t.to_string()
+            }
+        };
+        enclose_decimal(name, &text).map_err(|e| format!("`{key}`: {e}"))?;
+        let leak = |s: &str| -> &'static str { Box::leak(s.to_string().into_boxed_str()) };
         specs.push(ParamSpec {
             // A file's declarations live as long as the process: a few
             // bytes per file loaded, so that they share `ParamSet` with the
             // built-in scenes.
-            name: Box::leak(name.clone().into_boxed_str()),
-            default: Box::leak(text.to_string().into_boxed_str()),
+            name: leak(name),
+            default: leak(&text),
             sign: Sign::Any,
-            meaning: "",
+            meaning: leak(raw.description.as_deref().unwrap_or_default()),
+            unit: leak(raw.unit.as_deref().unwrap_or_default()),
         });
     }
     ParamSet::build(scene, Box::leak(specs.into_boxed_slice()), overrides)
@@ -487,6 +708,18 @@ fn is_zero(s: &str) -> bool {
 /// The normal form `{expr < 0}`: a zero side is dropped, so `g < 0` keeps
 /// the text of `g` (and its exact enclosures); negation is exact.
 fn region(key: &str, text: &str) -> Result<Region, String> {
+    if let Some(op) = ["<=", ">=", "≤", "≥"].iter().find(|op| text.contains(*op)) {
+        let strict = if op.contains('<') || op.contains('≤') {
+            "<"
+        } else {
+            ">"
+        };
+        return Err(format!(
+            "`regions.{key}`: `{op}` is not accepted: detach certifies strict regions; \
+             write `{strict}` (the same set up to the boundary lhs = rhs, which has zero area \
+             unless lhs - rhs vanishes on a set of positive area)"
+        ));
+    }
     let (lhs, rhs, op) = split_inequality(text).ok_or_else(|| {
         format!("`regions.{key}`: `{text}` is not one inequality `lhs < rhs` or `lhs > rhs`")
     })?;
@@ -517,5 +750,161 @@ mod tests {
         for bad in ["U", "U < 0 < 1", "< 0", "U >", "U = 0"] {
             assert!(e(bad).is_err(), "{bad}");
         }
+    }
+
+    const BASE: &str = r#"
+name = "t"
+[domain]
+theta = ["0", "1"]
+theta_dot = ["-1", "1"]
+[parameters]
+m = "2"
+[regions]
+omega = "theta_dot^2*m - 1 < 0"
+omega0 = "theta_dot - theta > 0"
+"#;
+
+    fn with(from: &str, to: &str) -> Result<FileScene, String> {
+        assert!(BASE.contains(from), "{from}");
+        FileScene::parse(&BASE.replace(from, to), &[])
+    }
+
+    /// A bare TOML number is enclosed from its text, as the quoted text is:
+    /// `1.1` is 11/10 (an interval of two doubles), not the double 1.1.
+    #[test]
+    fn bare_numbers_are_enclosed_from_their_text() {
+        let quoted = with("m = \"2\"", "m = \"1.1\"").unwrap();
+        for bare in ["m = 1.1", "m = { value = 1.1 }", "m = { value = \"1.1\" }"] {
+            let f = with("m = \"2\"", bare).unwrap();
+            assert_eq!(f.params.values[0].value, quoted.params.values[0].value);
+            assert_eq!(f.params.values[0].text, "1.1");
+        }
+        assert!(!quoted.params.values[0].value.is_singleton());
+        let f = with("theta = [\"0\", \"1\"]", "theta = [0, 1.5e0]").unwrap();
+        assert_eq!(f.domain_text[0], ["0", "1.5e0"]);
+        for bad in ["m = 1_000", "m = inf", "m = 0x10", "m = nan"] {
+            let e = with("m = \"2\"", bad).err().unwrap();
+            assert!(
+                e.contains("parameters.m") && e.contains("in quotes"),
+                "{bad}: {e}"
+            );
+        }
+        // toml itself refuses it, with the line and column.
+        let e = with("m = \"2\"", "m = 1e400").err().unwrap();
+        assert!(e.contains("line 7") && e.contains("overflow"), "{e}");
+        let e = with("m = \"2\"", "m = true").err().unwrap();
+        assert!(e.contains("a string in quotes, a number"), "{e}");
+        let e = with("m = \"2\"", "m = { value = 1, colour = \"red\" }")
+            .err()
+            .unwrap();
+        assert!(e.contains("colour"), "{e}");
+    }
+
+    #[test]
+    fn parameters_carry_a_description_and_a_unit() {
+        let f = with(
+            "m = \"2\"",
+            "m = { value = \"2\", description = \"mass\", unit = \"kg\" }",
+        )
+        .unwrap();
+        assert_eq!(
+            (f.params.specs[0].meaning, f.params.specs[0].unit),
+            ("mass", "kg")
+        );
+        let f = with("m = \"2\"", "[parameters.m]\nvalue = 2\nunit = \"kg\"").unwrap();
+        assert_eq!(
+            (f.params.specs[0].meaning, f.params.specs[0].unit),
+            ("", "kg")
+        );
+    }
+
+    /// Domain ends as expressions, enclosed: they contain 2π, 3π/2 and −π/2
+    /// (f64 values of π multiples, ±1e-15 apart from either end at most).
+    #[test]
+    fn domain_ends_may_be_expressions() {
+        let f = with("[\"0\", \"1\"]", "[\"-pi/2\", \"3*pi/2\"]").unwrap();
+        let [lo, hi] = f.domain.theta;
+        let pi = std::f64::consts::PI;
+        assert!(lo.inf() <= -pi / 2.0 && -pi / 2.0 <= lo.sup() && lo.wid() < 1e-15);
+        assert!(hi.inf() <= 1.5 * pi && 1.5 * pi <= hi.sup() && hi.wid() < 1e-15);
+        let f = with("[\"0\", \"1\"]", "[\"0\", \"2*pi\"]").unwrap();
+        assert!(f.domain.theta[1].contains(2.0 * pi));
+        let f = with("[\"0\", \"1\"]", "[\"0\", \"m/4\"]").unwrap();
+        assert_eq!(f.domain.theta[1].inf(), 0.5);
+        for (bad, needle) in [
+            ("[\"0\", \"theta\"]", "must not depend"),
+            ("[\"0\", \"ln(0)\"]", "not a defined"),
+            ("[\"0\", \"2*foo\"]", "unknown name `foo`"),
+        ] {
+            let e = with("[\"0\", \"1\"]", bad).err().unwrap();
+            assert!(
+                e.contains("domain.theta") && e.contains(needle),
+                "{bad}: {e}"
+            );
+        }
+    }
+
+    #[test]
+    fn one_inequality_states_omega0_as_omega() {
+        let f = with("omega0 = \"theta_dot - theta > 0\"\n", "").unwrap();
+        assert!(f.omega0_is_omega());
+        assert_eq!(f.regions[1].inequality, f.regions[0].inequality);
+    }
+
+    #[test]
+    fn non_strict_comparisons_are_refused_with_a_hint() {
+        for (op, strict) in [("<=", "`<`"), (">=", "`>`")] {
+            let e = with("1 < 0", &format!("1 {op} 0")).err().unwrap();
+            assert!(e.contains("regions.omega") && e.contains(strict), "{e}");
+        }
+    }
+
+    /// `1/m` with m = 0 is undefined everywhere: refused before any work,
+    /// naming m and the subexpression; `sqrt(m - 0.1)` with m = 0.1 is
+    /// defined (√0) though its enclosure reaches below 0: a warning only.
+    #[test]
+    fn parameters_that_make_a_formula_undefined_are_found_first() {
+        let zero = [("m".to_string(), "0".to_string())];
+        let text = BASE.replace("theta_dot^2*m", "theta_dot^2/m");
+        let e = FileScene::parse(&text, &zero).err().unwrap();
+        assert!(e.contains("with m = 0, `theta_dot^2/m`"), "{e}");
+        assert!(e.contains("everywhere in the domain"), "{e}");
+        // The divisor m·θ depends on θ but is exactly 0 all over the domain.
+        let text = BASE.replace("theta_dot^2*m", "theta_dot^2/(m*theta)");
+        let e = FileScene::parse(&text, &zero).err().unwrap();
+        assert!(
+            e.contains("with m = 0, `theta_dot^2/(m*theta)` is undefined"),
+            "{e}"
+        );
+        // Undefined all over the domain θ ∈ [0, 1], no parameter involved.
+        let e = with("1 < 0", "sqrt(theta - 5) < 0").err().unwrap();
+        assert!(e.starts_with("`sqrt(theta - 5)` is undefined"), "{e}");
+        assert!(FileScene::parse(&text, &[]).unwrap().warnings.is_empty());
+        let e = with("theta_dot^2*m", "theta_dot^2*sqrt(m - 3)")
+            .err()
+            .unwrap();
+        assert!(e.contains("`sqrt(m - 3)`") && e.contains("m = 2"), "{e}");
+        let e = with("1 < 0", "ln(1 - 1) < 0").err().unwrap();
+        assert!(e.starts_with("`ln(1 - 1)` is undefined"), "{e}");
+        let point_one = [("m".to_string(), "0.1".to_string())];
+        let text = BASE.replace("theta_dot^2*m", "theta_dot^2*sqrt(m - 0.1)");
+        let f = FileScene::parse(&text, &point_one).unwrap();
+        assert_eq!(f.warnings.len(), 1, "{:?}", f.warnings);
+        assert!(
+            f.warnings[0].contains("may be undefined"),
+            "{:?}",
+            f.warnings
+        );
+        // θ-dependent subexpressions are the pavers' business, not this check's.
+        assert!(with("1 < 0", "1/theta < 0").unwrap().warnings.is_empty());
+    }
+
+    #[test]
+    fn underflowing_and_repeated_parameters_are_refused() {
+        let e = with("m = \"2\"", "m = \"1e-400\"").err().unwrap();
+        assert!(e.contains("too small"), "{e}");
+        let twice = [("m", "1"), ("m", "3")].map(|(a, b)| (a.to_string(), b.to_string()));
+        let e = FileScene::parse(BASE, &twice).err().unwrap();
+        assert!(e.contains("`m` is given twice"), "{e}");
     }
 }

@@ -33,6 +33,7 @@ const ICE_PARAMS: [ParamSpec; 8] = {
             default: "0",
             sign: Sign::Any,
             meaning: "constant c₀ of the integral (3.1)",
+            unit: "",
         },
     ]
 };

@@ -464,6 +464,15 @@ impl Scene {
         }
     }
 
+    /// Warnings about the scene's formulas (a scene file's parameter-only
+    /// subexpressions that may be undefined); none for the paper's scenes.
+    pub fn warnings(&self) -> &[String] {
+        match self {
+            Scene::File(f) => &f.warnings,
+            _ => &[],
+        }
+    }
+
     pub fn title(&self) -> &str {
         match self {
             Scene::File(f) => &f.title,

@@ -38,36 +38,42 @@ impl Model for ViscousDisc {
             default: "1",
             sign: Sign::Positive,
             meaning: "disc radius",
+            unit: "",
         },
         ParamSpec {
             name: "b",
             default: "0.5",
             sign: Sign::NonNegative,
             meaning: "offset |GC| of the centre of mass (b < a)",
+            unit: "",
         },
         ParamSpec {
             name: "m",
             default: "1",
             sign: Sign::Positive,
             meaning: "mass",
+            unit: "",
         },
         ParamSpec {
             name: "C",
             default: "0.3",
             sign: Sign::Positive,
             meaning: "moment of inertia about G",
+            unit: "",
         },
         ParamSpec {
             name: "mu",
             default: "0.8",
             sign: Sign::NonNegative,
             meaning: "viscous friction coefficient",
+            unit: "",
         },
         ParamSpec {
             name: "g",
             default: "9.81",
             sign: Sign::Positive,
             meaning: "gravity",
+            unit: "",
         },
     ];
 

@@ -19,6 +19,30 @@ fn bad(expr: &str) -> bool {
     eval_on_box(&[], &[], expr, iv(0.0, 1.0), iv(0.0, 1.0)).is_err()
 }
 
+/// The functions added with the scene files' `atan exp sign min max`:
+/// the doubles nearest π/4 = atan(1) and e = exp(1) (mpmath, 20 digits:
+/// 0.78539816339744830962, 2.7182818284590452354) lie in tight enclosures;
+/// `min`/`max` take exactly two arguments.
+#[test]
+fn atan_exp_sign_min_max() {
+    let a = at("atan(t)", 1.0, 0.0);
+    assert!(a.contains(std::f64::consts::FRAC_PI_4) && a.wid() <= 2.0 * f64::EPSILON);
+    let e = at("exp(w)", 0.0, 1.0);
+    assert!(e.contains(std::f64::consts::E) && e.wid() <= 4.0 * f64::EPSILON);
+    assert_eq!(at("sign(t - w)", 1.0, 4.0), iv(-1.0, -1.0));
+    assert_eq!(at("sign(t - w)", 4.0, 4.0), iv(0.0, 0.0));
+    assert_eq!(at("min(t, w) + max(t, 2*w)", 1.0, 4.0), iv(9.0, 9.0));
+    let s = eval_on_box(&[], &[], "sign(t)", iv(-1.0, 1.0), iv(0.0, 0.0)).unwrap();
+    assert_eq!(s.interval(), Some(iv(-1.0, 1.0)));
+    assert!(
+        s.decoration() < Decoration::Dac,
+        "sign is not continuous at 0"
+    );
+    for text in ["min(t)", "max(t, w, 1)", "abs(t, w)", "min t, w", "t, w"] {
+        assert!(bad(text), "{text}");
+    }
+}
+
 #[test]
 fn precedence_and_associativity() {
     assert_eq!(at("2 - 3 - 4", 0.0, 0.0), iv(-5.0, -5.0));
@@ -59,7 +83,7 @@ fn parse_errors() {
         "T",
         "t w",
         "t ** 2",
-        "exp(t)",
+        "cosh(t)",
         "t^99999999999",
         "pi(1)",
         "t # w",

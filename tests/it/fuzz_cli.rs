@@ -593,7 +593,8 @@ proptest! {
 
     /// `enclose_decimal` never panics, and when it accepts a literal its
     /// enclosure contains the exact rational and is tight (one double, or two
-    /// adjacent ones); a refused plain literal is one beyond the double range.
+    /// adjacent ones); a refused plain literal is one beyond the double range
+    /// (too large, or nonzero and too small).
     #[test]
     fn decimal_enclosures_contain_the_exact_value(
         text in prop_oneof![
@@ -620,6 +621,11 @@ proptest! {
             (Err(detach::number::param::ParamError::TooLarge { .. }), Some(q)) => {
                 let max = rug::Rational::from_f64(f64::MAX).unwrap();
                 prop_assert!(q.clone().abs() > max, "{text} refused as too large");
+            }
+            (Err(detach::number::param::ParamError::TooSmall { .. }), Some(q)) => {
+                // Nonzero and below the smallest positive double.
+                let min = rug::Rational::from_f64(f64::from_bits(1)).unwrap();
+                prop_assert!(q != 0 && q.clone().abs() < min, "{text} refused as too small");
             }
             (Err(_), Some(_)) => {
                 // plain literals with exponents beyond ±999999 digits are the

@@ -292,11 +292,31 @@ fn bad_scene_files_are_refused_clearly() {
     assert!(FileScene::parse(GOOD, &[]).is_ok());
     let dir = std::env::temp_dir().join(format!("detach-bad-scenes-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let cases: [(&str, String, &str); 16] = [
+    let cases: [(&str, String, &str); 20] = [
         (
             "position",
+            GOOD.replace("U < 0", "U + $ < 0"),
+            "`regions.omega` at character 5",
+        ),
+        (
+            "non-strict",
             GOOD.replace("U < 0", "U <= 0"),
-            "`regions.omega` at character 4",
+            "`regions.omega`: `<=` is not accepted",
+        ),
+        (
+            "underflow",
+            GOOD.replace("\"9.81\"", "\"1e-400\""),
+            "`parameters.g`: parameter `g`: `1e-400` is too small",
+        ),
+        (
+            "undefined-everywhere",
+            GOOD.replace("omega0 = \"U/V < 0\"", "omega0 = \"U/(mu - 1.5) < 0\""),
+            "with g = 9.81, mu = 1.5, `((sin(theta)*theta_dot^2) - g)/(mu - 1.5)` is undefined",
+        ),
+        (
+            "domain-variable",
+            GOOD.replace("\"pi/2\"", "\"theta/2\""),
+            "`domain.theta`: `theta/2` must not depend on theta",
         ),
         ("empty", String::new(), "`name`: missing"),
         ("not-toml", "name = ".into(), "line 1"),
@@ -322,8 +342,8 @@ fn bad_scene_files_are_refused_clearly() {
         ),
         (
             "no-region",
-            GOOD.replace("omega0 = \"U/V < 0\"", ""),
-            "`regions.omega0`: missing",
+            GOOD.replace("omega = \"U < 0\"", ""),
+            "`regions.omega`: missing",
         ),
         (
             "no-domain",
@@ -338,8 +358,8 @@ fn bad_scene_files_are_refused_clearly() {
         ),
         (
             "float-number",
-            GOOD.replace("\"9.81\"", "9.81"),
-            "parameters.g",
+            GOOD.replace("\"9.81\"", "9.8_1"),
+            "`parameters.g`: `9.8_1` is not decimal text; write the number in quotes",
         ),
         (
             "inverted",
@@ -691,4 +711,154 @@ fn slices_decide_a_column_where_the_leading_coefficient_vanishes() {
         undecided(&nat)
     );
     assert!(sl.leaves.len() <= 21_000, "{} leaves", sl.leaves.len());
+}
+
+/// A repeated `--param` is refused (it used to keep the last value), for a
+/// scene file and a paper scene alike; a parameter-only subexpression that
+/// only may be undefined (`sqrt(g - 9.81)`: √0 is defined, but the
+/// enclosure of g − 9.81 reaches below 0) is a warning on stderr, not a
+/// refusal.
+#[test]
+fn repeated_params_are_refused_and_doubtful_ones_warned() {
+    for scene in ["painleve-rod", "viscous-disc"] {
+        let p = if scene == "viscous-disc" { "g" } else { "mu" };
+        let (a, b) = (format!("{p}=1"), format!("{p}=2"));
+        let args = ["pave", "--scene", scene, "--param", &a, "--param", &b];
+        assert_bad_input(&args, &format!("`{p}` is given twice (`1` and `2`)"));
+    }
+    let dir = std::env::temp_dir().join(format!("detach-doubt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("doubt.toml");
+    std::fs::write(
+        &file,
+        GOOD.replace("omega = \"U < 0\"", "omega = \"U*sqrt(g - 9.81) + U < 0\""),
+    )
+    .unwrap();
+    let out = detach(&[
+        "pave",
+        "--scene-file",
+        file.to_str().unwrap(),
+        "--eps",
+        "0.5",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("warning: with g = 9.81, `sqrt(g - 9.81)` may be undefined"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+const FUNCS: &str = r#"
+name = "funcs"
+[domain]
+theta = [0, 1]
+theta_dot = ["-2", "2"]
+[parameters]
+c = { value = 0.5, description = "cap", unit = "rad" }
+[regions]
+omega = "atan(theta_dot) < min(theta, c)"
+omega0 = "exp(theta)*sign(theta_dot - c) > 0"
+"#;
+
+/// The functions users asked for, in a file with bare numbers and a
+/// described parameter: Ω = {atan θ̇ < min(θ, 1/2)} has area
+/// 2 − ln cos(1/2) + tan(1/2)/2 (∫ tan(min(θ, 1/2)) + 2 dθ, closed form),
+/// Ω₀ = {θ̇ > 1/2} area 3/2. The paving's bounds contain both, and its
+/// proof (with `atan exp sign min`) verifies in the checker.
+#[test]
+fn new_functions_pave_and_prove() {
+    let scene = Scene::File(Box::new(FileScene::parse(FUNCS, &[]).unwrap()));
+    let exact = [2.0 - 0.5f64.cos().ln() + 0.5 * 0.5f64.tan(), 1.5];
+    let opts = PaveOptions {
+        eps: 1.0 / 256.0,
+        ..PaveOptions::default()
+    };
+    let p = pave_with(&scene, detach::pave::Method::Natural, opts);
+    for (i, want) in exact.iter().enumerate() {
+        let b = p.area_bounds(&standard_cells()[i], 0.0);
+        assert!(
+            b.inner_area <= *want && *want <= b.outer_area && b.outer_area - b.inner_area < 0.2,
+            "region {i}: {want} vs [{}, {}]",
+            b.inner_area,
+            b.outer_area
+        );
+    }
+    let dir = std::env::temp_dir().join(format!("detach-funcs-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("funcs.toml");
+    std::fs::write(&file, FUNCS).unwrap();
+    let proof = dir.join("funcs.json");
+    let f = file.to_str().unwrap();
+    let p = proof.to_str().unwrap();
+    json(&[
+        "pave",
+        "--scene-file",
+        f,
+        "--eps",
+        "0.02",
+        "--json",
+        "--proof",
+        p,
+    ]);
+    let out = detach(&["verify", p]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success() && text.contains("VALID"), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Quadratic regions whose θ-coefficient has a kink or a jump at θ = 1/2:
+/// `sign(θ − 1/2)·θ̇² − 1 < 0` (area 0.5·4 + 0.5·2 = 3) and
+/// `abs(θ − 1/2)·θ̇² − 1/4 < 0` (|θ̇| < min(2, 1/(2√|θ − 1/2|)): area
+/// 2√2 − 1/2, closed form). `area` encloses both soundly.
+#[test]
+fn kinked_coefficients_are_measured_soundly() {
+    let text = FUNCS
+        .replace(
+            "atan(theta_dot) < min(theta, c)",
+            "sign(theta - 0.5)*theta_dot^2 - 1 < 0",
+        )
+        .replace(
+            "exp(theta)*sign(theta_dot - c) > 0",
+            "abs(theta - 0.5)*theta_dot^2 - 0.25 < 0",
+        );
+    let dir = std::env::temp_dir().join(format!("detach-kinks-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("kinks.toml");
+    std::fs::write(&file, text).unwrap();
+    let v = json(&[
+        "area",
+        "--scene-file",
+        file.to_str().unwrap(),
+        "--digits",
+        "6",
+        "--json",
+    ]);
+    let exact = [3.0, 2.0 * 2f64.sqrt() - 0.5];
+    for (r, want) in v["regions"].as_array().unwrap().iter().zip(exact) {
+        let (lo, hi) = (r["lower"].as_f64().unwrap(), r["upper"].as_f64().unwrap());
+        assert!(lo <= want && want <= hi, "{want} vs [{lo}, {hi}]: {v}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Descriptions and units of a file's parameters are listed by `detach
+/// scenes` (the shipped rod declares them) and kept in its JSON.
+#[test]
+fn scenes_lists_parameter_descriptions_and_units() {
+    let out = detach(&["scenes"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success());
+    assert!(text.contains("g      = 9.81 m/s^2 Any: gravity"), "{text}");
+    assert!(text.contains("l      = 1 m"), "{text}");
+    let v = json(&["scenes", "--json"]);
+    let rod = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["name"] == "painleve-rod")
+        .unwrap();
+    assert_eq!(rod["params"][2]["unit"], "m/s^2", "{rod}");
+    assert_eq!(rod["params"][0]["meaning"], "mass", "{rod}");
 }
