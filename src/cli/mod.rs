@@ -108,11 +108,20 @@ pub fn write_checked(
             path.display()
         ))
     })?;
-    if let detach::check::Verdict::Invalid(why) = &report.verdict {
-        return Err(CliError::runtime(format!(
-            "{}: the checker rejects it: {why}",
-            path.display()
-        )));
+    match &report.verdict {
+        detach::check::Verdict::Valid => {}
+        detach::check::Verdict::Invalid(why) => {
+            return Err(CliError::runtime(format!(
+                "{}: the checker rejects it: {why}",
+                path.display()
+            )))
+        }
+        detach::check::Verdict::Unchecked(why) => {
+            return Err(CliError::runtime(format!(
+                "{}: the checker cannot check it: {why}",
+                path.display()
+            )))
+        }
     }
     // Written only once the checker accepts it.
     detach::files::write_atomic(path, &bytes)

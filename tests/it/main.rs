@@ -28,3 +28,4 @@ mod roots;
 mod scene_files;
 mod soundness;
 mod stability;
+mod verify_files;
