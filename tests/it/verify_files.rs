@@ -147,7 +147,7 @@ fn an_unreadable_manifest_fails() {
     let d = folder("mode");
     let m = d.join("MANIFEST.sha256");
     std::fs::write(&m, sha256sum_line(&d)).unwrap();
-    std::fs::set_permissions(&m, std::fs::Permissions::from_mode(0)).unwrap();
+    std::fs::set_permissions(&m, std::fs::Permissions::from_mode(0o000)).unwrap();
     if std::fs::read(&m).is_err() {
         let (code, out, _) = verify(&d);
         assert_eq!(code, Some(2), "{out}");
