@@ -80,7 +80,14 @@ fn main() -> std::process::ExitCode {
     match run(parse()).and_then(|()| cli::stdout_status()) {
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("detach: {}", e.message);
+            // A message may quote input (a scene file's text): each line is
+            // printed escaped and cut, never a whole file.
+            let lines: Vec<String> = e
+                .message
+                .lines()
+                .map(|l| detach::check::shown_cut(l, 1000))
+                .collect();
+            eprintln!("detach: {}", lines.join("\n"));
             std::process::ExitCode::from(u8::try_from(e.code).unwrap_or(1))
         }
     }

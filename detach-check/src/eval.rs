@@ -114,6 +114,43 @@ thread_local! {
     static LOOSENESS: Cell<Looseness> = const {
         Cell::new(Looseness { basic: 0, exact_too: false, functions: 0 })
     };
+    /// Operations applied, and how many may be ([`with_work_bound`]).
+    static WORK_DONE: Cell<u64> = const { Cell::new(0) };
+    static WORK_BOUND: Cell<u64> = const { Cell::new(u64::MAX) };
+    /// A statement asked for more than [`MAX_OPS`] operations.
+    static TOO_MANY_OPS: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Why a check was cut short by a limit rather than failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Cut {
+    /// More operations applied than the bound.
+    Work,
+    /// A statement of more than [`MAX_OPS`] operations.
+    Statement,
+}
+
+/// Runs `f` with at most `bound` operations applied; every one past it gives
+/// NaI at once (no label holds on NaI, so the check ends at the next one).
+/// Returns `f`'s result and the limit that cut it short, if any.
+pub(crate) fn with_work_bound<R>(bound: u64, f: impl FnOnce() -> R) -> (R, Option<Cut>) {
+    let old = (
+        WORK_DONE.replace(0),
+        WORK_BOUND.replace(bound),
+        TOO_MANY_OPS.replace(false),
+    );
+    let r = f();
+    let cut = if TOO_MANY_OPS.get() {
+        Some(Cut::Statement)
+    } else if WORK_DONE.get() > bound {
+        Some(Cut::Work)
+    } else {
+        None
+    };
+    WORK_DONE.set(old.0);
+    WORK_BOUND.set(old.1);
+    TOO_MANY_OPS.set(old.2);
+    (r, cut)
 }
 
 /// Runs `f` with the result of every interval operation of an expression
@@ -422,6 +459,11 @@ impl<T: Num> Num for Dual<T> {
 /// Applies one operation to already computed slots.
 #[inline]
 pub fn apply<T: Num>(op: &Op, s: &[T], vars: &[T]) -> T {
+    let done = WORK_DONE.get().saturating_add(1);
+    WORK_DONE.set(done);
+    if done > WORK_BOUND.get() {
+        return T::constant(DecInterval::NAI);
+    }
     // Operands always precede the slot being computed (see `Program::push`),
     // so indexing cannot fail; `get` keeps that an invariant, not a panic.
     let g = |i: u32| {
@@ -481,7 +523,7 @@ fn operands(op: &Op) -> [Option<u32>; 2] {
 }
 
 /// Largest number of operations in one statement.
-const MAX_OPS: usize = 1 << 20;
+pub const MAX_OPS: usize = 1 << 20;
 
 /// A compiled statement: variables, parameters, definitions and any number
 /// of expressions, all in one slot list.
@@ -538,6 +580,7 @@ impl Program {
     /// Appends an operation; its operands must be earlier slots.
     pub(crate) fn push(&mut self, op: Op) -> Result<u32, String> {
         if self.ops.len() >= MAX_OPS {
+            TOO_MANY_OPS.set(true);
             return Err("statement too large".into());
         }
         let me = self.ops.len() as u32;

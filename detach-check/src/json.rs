@@ -98,6 +98,31 @@ pub fn decls(st: &Obj) -> Result<Decls, Unreadable> {
 
 /// Rejects a JSON text (already known to be valid) in which some object has
 /// the same key twice: a reader would see one value, the checker another.
+/// An upper bound on the number of JSON values in `text`: one more than the
+/// `{`, `[` and `,` outside strings. Read before the text is parsed.
+pub fn count_values(text: &str) -> usize {
+    let mut n = 1;
+    let mut in_string = false;
+    let mut escaped = false;
+    for &b in text.as_bytes() {
+        if in_string {
+            match (escaped, b) {
+                (true, _) => escaped = false,
+                (false, b'\\') => escaped = true,
+                (false, b'"') => in_string = false,
+                _ => {}
+            }
+        } else {
+            match b {
+                b'"' => in_string = true,
+                b'{' | b'[' | b',' => n += 1,
+                _ => {}
+            }
+        }
+    }
+    n
+}
+
 pub fn reject_duplicate_keys(text: &str) -> Result<(), Unreadable> {
     // One frame per open object (`Some`) or array (`None`); the flag says the
     // next string in that object is a key.

@@ -9,7 +9,7 @@
 //! box and re-decides every leaf label, sums areas exactly, re-checks every
 //! root witness and exclusion piece, and compares claimed bounds
 //! conservatively. The verdict is VALID, INVALID with the first failed check,
-//! or unreadable.
+//! UNCHECKED past the limits for the file's size, or unreadable.
 //!
 //! # Trusted base
 //!
@@ -38,8 +38,10 @@
 //!
 //! A directory argument stands for the `.json` files in it. One line per
 //! file, as `detach verify` prints it: `VALID`, `INVALID` with the first
-//! failed check, or `UNREADABLE`; the exit status is 0 if all are VALID, 1 if
-//! any is INVALID, 2 if any cannot be read. The repository's
+//! failed check, `UNREADABLE` or `UNCHECKED`; the exit status is 0 if all are
+//! VALID, 1 if any is INVALID, else 2 if any cannot be read (or none was
+//! found), else 3 if any is UNCHECKED. Only regular files are read, within
+//! the limits of `proofs/FORMAT.md` ("Limits and files"). The repository's
 //! `.cargo/config.toml` builds for the machine's CPU, since inari needs
 //! AVX2/FMA on x86-64: elsewhere, set `RUSTFLAGS="-Ctarget-cpu=haswell"`.
 //!
@@ -56,6 +58,7 @@ mod band;
 mod encoding;
 mod eval;
 mod expr;
+mod files;
 mod json;
 mod kappa0;
 mod output;
@@ -65,7 +68,13 @@ mod roots;
 
 pub use self::encoding::{base64_decode, decimal_enclosure, parse_hex_f64};
 pub use self::eval::{with_loose_rounding, with_looseness, Looseness};
-pub use self::output::{check_and_print, json_files, Status, Tally};
+pub use self::files::{
+    json_files, manifest_entries, read_regular, ManifestEntry, MANIFEST, MAX_MANIFEST_BYTES,
+    MAX_PROOF_BYTES,
+};
+pub use self::output::{
+    check_and_print, check_paths, shown, shown_cut, FolderFailures, Status, Tally, MAX_SHOWN_CHARS,
+};
 
 use inari::{DecInterval, Interval};
 use std::fmt;
@@ -79,7 +88,29 @@ pub enum Verdict {
     /// The first check that failed: which leaf, piece or bound, with the
     /// claimed and the computed values.
     Invalid(String),
+    /// The check stopped at the work bound for the file's size
+    /// ([`work_bound`]): the claim is neither proved nor refuted.
+    Unchecked(String),
 }
+
+/// Operations the check of a file of `bytes` bytes may evaluate (one per
+/// interval or dual operation on a box): [`WORK_PER_BYTE`] per byte, and
+/// at least [`WORK_FLOOR`]. With the 2²⁰-operation limit of a statement and
+/// the leaves a file can hold, this bounds a check's time by its size.
+pub fn work_bound(bytes: usize) -> u64 {
+    (bytes as u64).saturating_mul(WORK_PER_BYTE).max(WORK_FLOOR)
+}
+
+/// See [`work_bound`].
+pub const WORK_PER_BYTE: u64 = 1 << 6;
+
+/// See [`work_bound`].
+pub const WORK_FLOOR: u64 = 1 << 26;
+
+/// Most JSON values (objects, arrays, strings, numbers, literals) a proof
+/// file may hold: bounds the memory of its parsed form. The largest
+/// committed proof has about 25 000.
+pub const MAX_JSON_VALUES: usize = 1 << 21;
 
 /// What was checked and how it went.
 #[derive(Clone, Debug)]
@@ -124,6 +155,18 @@ pub(crate) struct Outcome {
 }
 
 impl Outcome {
+    /// A check not done: past one of the limits of FORMAT.md, "Limits and files".
+    fn unchecked(why: String, claim: String) -> Outcome {
+        Outcome {
+            verdict: Verdict::Unchecked(format!(
+                "{why} (past the limits of proofs/FORMAT.md, \"Limits and files\")"
+            )),
+            claim,
+            checked: 0,
+            unit: "leaves",
+        }
+    }
+
     /// The outcome of a check whose `verify` returned `result` after `checked` units.
     fn of(result: Result<(), String>, claim: String, checked: u64, unit: &'static str) -> Outcome {
         let verdict = match result {
@@ -142,6 +185,44 @@ impl Outcome {
 /// Checks a proof given as text.
 pub fn check_str(text: &str) -> Result<Report, Unreadable> {
     let start = Instant::now();
+    let bound = work_bound(text.len());
+    let (out, cut) = eval::with_work_bound(bound, || check_value(text));
+    // Past a limit every operation gave NaI, or the statement was cut off:
+    // whatever the check concluded is no verdict.
+    let limit = match cut {
+        None => None,
+        Some(eval::Cut::Work) => Some(format!(
+            "stopped after {bound} operations, the bound for a file of {} bytes",
+            text.len()
+        )),
+        Some(eval::Cut::Statement) => Some(format!(
+            "a statement of more than {} operations",
+            eval::MAX_OPS
+        )),
+    };
+    let out = match (out, limit) {
+        (Ok(o), None) => o,
+        (Err(e), None) => return Err(e),
+        (o, Some(why)) => Outcome::unchecked(why, o.map(|o| o.claim).unwrap_or_default()),
+    };
+    Ok(Report {
+        verdict: out.verdict,
+        claim: out.claim,
+        checked: out.checked,
+        unit: out.unit,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// The claim check of a file's text, before the work bound is applied.
+fn check_value(text: &str) -> Result<Outcome, Unreadable> {
+    let values = json::count_values(text);
+    if values > MAX_JSON_VALUES {
+        return Ok(Outcome::unchecked(
+            format!("{values} JSON values, more than {MAX_JSON_VALUES}"),
+            String::new(),
+        ));
+    }
     let root: serde_json::Value =
         serde_json::from_str(text).map_err(|e| Unreadable(format!("not JSON: {e}")))?;
     json::reject_duplicate_keys(text)?;
@@ -157,13 +238,7 @@ pub fn check_str(text: &str) -> Result<Report, Unreadable> {
         "critical-band" => band::check(obj)?,
         other => return Err(Unreadable(format!("unknown claim {other:?}"))),
     };
-    Ok(Report {
-        verdict: out.verdict,
-        claim: out.claim,
-        checked: out.checked,
-        unit: out.unit,
-        seconds: start.elapsed().as_secs_f64(),
-    })
+    Ok(out)
 }
 
 /// Checks a proof given as bytes (must be UTF-8).
@@ -172,10 +247,11 @@ pub fn check_bytes(bytes: &[u8]) -> Result<Report, Unreadable> {
     check_str(text)
 }
 
-/// Checks the proof file at `path`.
+/// Checks the proof file at `path` (a regular file of at most
+/// [`MAX_PROOF_BYTES`]; see [`read_regular`]).
 pub fn check_file(path: &std::path::Path) -> Result<Report, Unreadable> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| Unreadable(format!("cannot read {}: {e}", path.display())))?;
+    let bytes = read_regular(path, MAX_PROOF_BYTES)
+        .map_err(|e| Unreadable(format!("{}: {e}", path.display())))?;
     check_bytes(&bytes)
 }
 

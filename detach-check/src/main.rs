@@ -1,6 +1,6 @@
 //! `detach-check FILE|DIR...`: checks proof files, one verdict line each.
 
-use detach_check::{check_and_print, json_files, Status, Tally};
+use detach_check::check_paths;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -9,9 +9,10 @@ const USAGE: &str = "\
 usage: detach-check FILE|DIR...
 
 Checks each detach-proof/1 file (for a directory, each *.json in it) and
-prints one line per file: VALID, INVALID with the first failed check, or
-UNREADABLE. Exit status: 0 if all are VALID, 1 if any is INVALID, 2 if any
-cannot be read. MANIFEST.sha256 is not checked here: `sha256sum -c
+prints one line per file: VALID, INVALID with the first failed check,
+UNREADABLE, or UNCHECKED (past the limits for the file's size). Exit status:
+0 if all are VALID, 1 if any is INVALID, else 2 if any cannot be read or no
+file was found, else 3 if any is UNCHECKED. MANIFEST.sha256 is not checked here: `sha256sum -c
 MANIFEST.sha256` in the folder, or `detach verify DIR`, checks it.";
 
 fn main() -> ExitCode {
@@ -47,24 +48,7 @@ fn main() -> ExitCode {
     }
 
     let mut out = std::io::stdout().lock();
-    let mut tally = Tally::default();
-    for p in &paths {
-        if p.is_dir() {
-            match json_files(p) {
-                Ok(files) => {
-                    for f in files {
-                        tally.add(check_and_print(&f, &mut out));
-                    }
-                }
-                Err(e) => {
-                    let _ = writeln!(out, "UNREADABLE {}: {e}", p.display());
-                    tally.add(Status::Unreadable);
-                }
-            }
-        } else {
-            tally.add(check_and_print(p, &mut out));
-        }
-    }
+    let tally = check_paths(&paths, &mut out, |_, _| Vec::new());
     let _ = writeln!(out, "{}", tally.summary());
     if let Err(e) = out.flush() {
         // As `detach`: a failed write is a run-time failure, not bad input.

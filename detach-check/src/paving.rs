@@ -11,9 +11,14 @@ use super::json::{arr_of, as_obj, decls, obj_of, opt_str, pair_of, str_of, u64_o
 use super::roots::constant;
 use super::{Outcome, Unreadable};
 
-/// Cached entries per axis before the cache is emptied (bounds memory; the
-/// preorder walk revisits recent intervals, so a small cache suffices).
+/// Cached intervals per axis before the cache is emptied (the preorder walk
+/// revisits recent intervals, so a small cache suffices).
 const CACHE_ENTRIES: usize = 1 << 15;
+
+/// Cached slot values per axis before the cache is emptied: bounds its
+/// memory (32 B a value, 16 MiB an axis) however many slots an interval
+/// fills. An interval with more slots than this is not cached.
+const CACHE_SLOTS: usize = 1 << 19;
 
 /// Leaf labels.
 const IN: u8 = 0b01;
@@ -111,7 +116,12 @@ impl LeafEval {
             let v = apply(&self.ops[s as usize], &self.vals, vars);
             self.vals[s as usize] = v;
         }
-        if self.cache[axis].len() >= CACHE_ENTRIES {
+        if slots.len() > CACHE_SLOTS {
+            return;
+        }
+        if self.cache[axis].len() >= CACHE_ENTRIES
+            || self.arena[axis].len() + slots.len() > CACHE_SLOTS
+        {
             self.cache[axis].clear();
             self.arena[axis].clear();
         }

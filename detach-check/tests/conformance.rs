@@ -31,6 +31,7 @@ fn verdict_raw(path: &Path) -> (&'static str, String) {
         Ok(r) => match r.verdict {
             Verdict::Valid => ("VALID", String::new()),
             Verdict::Invalid(why) => ("INVALID", why),
+            Verdict::Unchecked(why) => ("UNCHECKED", why),
         },
     }
 }

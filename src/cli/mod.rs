@@ -140,11 +140,20 @@ pub fn write_checked(
             detach::files::shown(path)
         ))
     })?;
-    if let detach::check::Verdict::Invalid(why) = &report.verdict {
-        return Err(CliError::runtime(format!(
-            "{}: the checker rejects it: {why}",
-            detach::files::shown(path)
-        )));
+    match &report.verdict {
+        detach::check::Verdict::Valid => {}
+        detach::check::Verdict::Invalid(why) => {
+            return Err(CliError::runtime(format!(
+                "{}: the checker rejects it: {why}",
+                detach::files::shown(path)
+            )))
+        }
+        detach::check::Verdict::Unchecked(why) => {
+            return Err(CliError::runtime(format!(
+                "{}: the checker cannot check it: {why}",
+                detach::files::shown(path)
+            )))
+        }
     }
     // Written only once the checker accepts it.
     detach::files::write_atomic(path, &bytes).map_err(|e| cannot_write(path, e))?;

@@ -3,7 +3,10 @@
 use super::{write_checked, CliError, CliResult};
 use detach::certificate::catalog::file_name;
 use detach::certificate::{paving_proof, prove_named, PavingStatement, HEADLINE};
-use detach::check::{check_and_print, json_files, Status, Tally};
+use detach::check::{
+    check_paths, manifest_entries, read_regular, shown, FolderFailures, ManifestEntry, Status,
+    MANIFEST, MAX_PROOF_BYTES,
+};
 use detach::number::param::ParamSet;
 use detach::pave::Paving;
 use detach::scene::{Domain, Scene, Variant};
@@ -104,34 +107,32 @@ pub fn run_prove(args: &ProveArgs) -> CliResult {
 }
 
 /// Checks `MANIFEST.sha256` of a folder: every listed file present with its
-/// hash. The checker crate has no hash function; this half of `verify` is
-/// detach's own. Returns each failure's status and, for a file, its path
-/// (a file failed here is reported once, not checked again).
-fn verify_manifest(dir: &Path, out: &mut impl Write) -> Vec<(Status, Option<PathBuf>)> {
-    let path = dir.join("MANIFEST.sha256");
-    let Ok(text) = std::fs::read_to_string(&path) else {
-        return vec![];
+/// hash; a manifest that cannot be read, or names a file outside the folder,
+/// fails (the checker crate reads and parses it; the hash is detach's own,
+/// since the checker has no hash function). Returns each failure's status
+/// and, for a file, its path (a file failed here is reported once, not
+/// checked again).
+fn verify_manifest(dir: &Path, out: &mut dyn Write) -> FolderFailures {
+    let entries = match manifest_entries(dir) {
+        Ok(None) => return vec![],
+        Ok(Some(e)) => e,
+        Err(e) => {
+            let _ = writeln!(out, "UNREADABLE {}", shown(&e));
+            return vec![(Status::Unreadable, None)];
+        }
     };
     let mut res = Vec::new();
-    for line in text.lines().filter(|l| !l.trim().is_empty()) {
-        let Some((hash, name)) = line.split_once("  ") else {
-            let _ = writeln!(out, "UNREADABLE {}: bad line `{line}`", path.display());
-            res.push((Status::Unreadable, None));
-            continue;
-        };
-        match std::fs::read(dir.join(name)) {
-            Ok(b) if hex_digest(&b) == hash.trim() => {}
+    for ManifestEntry { sha256, path } in entries {
+        let file = shown(&path.display().to_string());
+        match read_regular(&path, MAX_PROOF_BYTES) {
+            Ok(b) if hex_digest(&b) == sha256 => {}
             Ok(_) => {
-                let _ = writeln!(
-                    out,
-                    "INVALID    {}: SHA-256 differs from MANIFEST.sha256",
-                    dir.join(name).display()
-                );
-                res.push((Status::Invalid, Some(dir.join(name))));
+                let _ = writeln!(out, "INVALID    {file}: SHA-256 differs from {MANIFEST}");
+                res.push((Status::Invalid, Some(path)));
             }
             Err(e) => {
-                let _ = writeln!(out, "UNREADABLE {}: {e}", dir.join(name).display());
-                res.push((Status::Unreadable, Some(dir.join(name))));
+                let _ = writeln!(out, "UNREADABLE {file}: {}", shown(&e));
+                res.push((Status::Unreadable, Some(path)));
             }
         }
     }
@@ -142,30 +143,7 @@ fn verify_manifest(dir: &Path, out: &mut impl Write) -> Vec<(Status, Option<Path
 /// with `detach-check`'s lines and exit status.
 pub fn run_verify(args: &VerifyArgs) -> CliResult {
     let mut out = std::io::stdout().lock();
-    let mut tally = Tally::default();
-    for p in &args.paths {
-        if p.is_dir() {
-            let failed = verify_manifest(p, &mut out);
-            for (s, _) in &failed {
-                tally.add(*s);
-            }
-            match json_files(p) {
-                Ok(files) => {
-                    for f in files {
-                        if !failed.iter().any(|(_, g)| g.as_deref() == Some(&*f)) {
-                            tally.add(check_and_print(&f, &mut out));
-                        }
-                    }
-                }
-                Err(e) => {
-                    let _ = writeln!(out, "UNREADABLE {}: {e}", p.display());
-                    tally.add(Status::Unreadable);
-                }
-            }
-        } else {
-            tally.add(check_and_print(p, &mut out));
-        }
-    }
+    let tally = check_paths(&args.paths, &mut out, verify_manifest);
     let _ = writeln!(out, "{}", tally.summary());
     match tally.failure() {
         None => Ok(()),

@@ -23,13 +23,14 @@ pub(super) struct Scope<'a, S: ConstraintSet> {
 }
 
 impl<S: ConstraintSet> Scope<'_, S> {
-    /// Labels by the natural extension: one enclosure per constraint.
+    /// Labels by the natural extension: one enclosure per constraint, over
+    /// the θ̇-range with slack ([`with_slack`]).
     pub fn natural(&self, slab: &S::Slab, b: &PhaseBox, work: &mut Work) -> Labels {
         work.evals += 1;
         let mut labels = [Label::ProvedOut; MAX_CONSTRAINTS];
         for (l, g) in labels.iter_mut().zip(
             self.set
-                .enclose(slab, b.theta_dot_interval())
+                .enclose(slab, with_slack(b).theta_dot_interval())
                 .iter()
                 .copied(),
         ) {
@@ -120,6 +121,36 @@ impl<S: ConstraintSet> Scope<'_, S> {
     }
 }
 
+/// How many ulps a box's θ̇-range is widened at each end before a label is
+/// proved on it (as θ-slabs are, [`super::THETA_SLACK_ULPS`]): a label whose
+/// box ends on a boundary (a contraction point, a turning point of a
+/// quadratic) then has a margin there, and still holds for a checker whose
+/// rounding is correct but a few ulps looser than ours. An end at 0 stays
+/// (`θ̇ = 0` is exact in any rounding, and contraction cuts there on purpose).
+pub const THETA_DOT_SLACK_ULPS: u32 = 8;
+
+/// `lo ≤ hi` widened by [`THETA_DOT_SLACK_ULPS`] at each end, not across 0.
+fn widened(lo: f64, hi: f64) -> [f64; 2] {
+    let (mut a, mut z) = (lo, hi);
+    for _ in 0..THETA_DOT_SLACK_ULPS {
+        if a != 0.0 {
+            a = a.next_down();
+        }
+        if z != 0.0 {
+            z = z.next_up();
+        }
+    }
+    [a, z]
+}
+
+/// `b` with its θ̇-range widened ([`widened`]): the box labels are proved on.
+fn with_slack(b: &PhaseBox) -> PhaseBox {
+    PhaseBox {
+        theta: b.theta,
+        theta_dot: widened(b.theta_dot[0], b.theta_dot[1]),
+    }
+}
+
 /// `b` with its θ̇-range replaced by `[lo, hi]`.
 pub(super) fn with_w(b: &PhaseBox, lo: f64, hi: f64) -> PhaseBox {
     PhaseBox {
@@ -189,11 +220,19 @@ pub fn centred_label(q: &Quadratic<DecInterval>, w: Interval) -> Label {
 /// on the box, g is largest (smallest) at one end of that variable, so the
 /// label is decided on the box reduced to those ends. The value and both
 /// derivatives must be continuous (`≥ dac`), as the checker requires.
+/// Proved on `b` with slack ([`with_slack`]): a derivative that ends at 0
+/// on `b`, or an end value next to 0, decides nothing.
 pub fn monotone_label(e: &SlabEnds, b: &PhaseBox) -> Label {
     if !e.smooth {
         return Label::Undecided;
     }
-    let w = b.theta_dot_interval();
+    let wide = with_slack(b);
+    let w = wide.theta_dot_interval();
+    // End k of `b` as the checker sees it, with the slack beyond it.
+    let end = |k: usize| {
+        let [lo, hi] = [b.theta_dot[k], wide.theta_dot[k]];
+        Interval::try_from((lo.min(hi), lo.max(hi))).unwrap_or(Interval::ENTIRE)
+    };
     // ∂g/∂θ = c₂'θ̇² + c₁'θ̇ + c₀', ∂g/∂θ̇ = 2c₂θ̇ + c₁ over the box.
     let g_theta = e.d_theta.eval(w);
     let two = Interval::try_from((2.0, 2.0)).expect("2 is a double");
@@ -217,7 +256,7 @@ pub fn monotone_label(e: &SlabEnds, b: &PhaseBox) -> Label {
         // The end (0 lower, 1 upper) where g is largest for `in`, smallest for `out`.
         let pick = |sg: i32| (sg != 0).then_some(usize::from((sg > 0) == want_in));
         let q = pick(st).map_or(&e.value, |k| &e.ends[k]);
-        let wv = pick(sw).map_or(w, |k| point(b.theta_dot[k]));
+        let wv = pick(sw).map_or(w, end);
         let v = q.eval(wv);
         if v.is_empty() {
             continue;
@@ -251,7 +290,10 @@ pub fn convex_label(e: &SlabEnds, b: &PhaseBox) -> Label {
         return Label::Undecided;
     };
     let holds_at = |w: f64| {
-        let by_value = Label::from_enclosure(DecInterval::new(e.value.eval(point(w))));
+        // At `w` with slack, as every label ([`THETA_DOT_SLACK_ULPS`]).
+        let [lo, hi] = widened(w, w);
+        let around = Interval::try_from((lo, hi)).unwrap_or(Interval::ENTIRE);
+        let by_value = Label::from_enclosure(DecInterval::new(e.value.eval(around)));
         by_value == want || monotone_label(e, &with_w(b, w, w)) == want
     };
     if holds_at(b.theta_dot[0]) && holds_at(b.theta_dot[1]) {

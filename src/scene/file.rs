@@ -273,19 +273,24 @@ pub struct SceneText {
     pub text: std::borrow::Cow<'static, str>,
 }
 
+/// Largest scene file read (bytes); the shipped ones are a few kB.
+pub const MAX_SCENE_FILE_BYTES: u64 = 1 << 20;
+
 impl SceneText {
+    /// The scene file at `path`: a regular UTF-8 file of at most
+    /// [`MAX_SCENE_FILE_BYTES`] (a pipe or a device is refused unread).
     pub fn read(path: &Path) -> Result<SceneText, SceneFileError> {
         let file = path.display().to_string();
-        match std::fs::read_to_string(path) {
-            Ok(text) => Ok(SceneText {
-                file,
-                text: text.into(),
-            }),
-            Err(e) => Err(SceneFileError {
-                file,
-                message: format!("cannot read: {e}"),
-            }),
-        }
+        let fail = |message: String| SceneFileError {
+            file: file.clone(),
+            message,
+        };
+        let bytes = crate::check::read_regular(path, MAX_SCENE_FILE_BYTES).map_err(fail)?;
+        let text = String::from_utf8(bytes).map_err(|e| fail(format!("not UTF-8 text: {e}")))?;
+        Ok(SceneText {
+            file,
+            text: text.into(),
+        })
     }
 
     /// A shipped scene file by name, if there is one.

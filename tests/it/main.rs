@@ -29,3 +29,4 @@ mod roots;
 mod scene_files;
 mod soundness;
 mod stability;
+mod verify_files;
