@@ -23,7 +23,7 @@ pub struct AreaArgs {
     /// Decimal places to certify: the enclosure's width target is 10^-D.
     #[arg(long, default_value_t = 10, allow_negative_numbers = true)]
     pub digits: i32,
-    /// Override a parameter, as decimal text: `--param p_psi=0.6` (repeatable).
+    /// Override a parameter, as decimal text: `--param p_psi=0.6` (repeatable, once per name).
     #[arg(long = "param", value_name = "NAME=VALUE")]
     pub params: Vec<String>,
     /// Restrict θ to a window `LO:HI` (decimal text, `pi`, `-pi`, `pi/N`)

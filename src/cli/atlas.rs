@@ -23,7 +23,7 @@ pub struct PaveFlags {
     /// Which reading of the paper: `derived` (re-derived mechanics) or `printed`.
     #[arg(long, value_parser = super::variant_parser(), default_value_t = Variant::Derived)]
     pub variant: Variant,
-    /// Override a parameter, as decimal text: `--param mu=0.5` (repeatable).
+    /// Override a parameter, as decimal text: `--param mu=0.5` (repeatable, once per name).
     #[arg(long = "param", value_name = "NAME=VALUE")]
     pub params: Vec<String>,
     /// Resolution relative to the domain (a box stops splitting along an axis at
