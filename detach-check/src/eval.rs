@@ -106,7 +106,7 @@ pub struct Looseness {
     /// move too, as they do for a checker that is not tightest.
     pub exact_too: bool,
     /// Ulps added at each end of the functions' results (`sin`, `cos`,
-    /// `tan`, `ln`, `x^n` for n ≥ 3), exact or not.
+    /// `tan`, `ln`, `atan`, `exp`, `x^n` for n ≥ 3), exact or not.
     pub functions: u32,
 }
 
