@@ -140,20 +140,16 @@ pub fn write_checked(
             detach::files::shown(path)
         ))
     })?;
-    match &report.verdict {
-        detach::check::Verdict::Valid => {}
-        detach::check::Verdict::Invalid(why) => {
-            return Err(CliError::runtime(format!(
-                "{}: the checker rejects it: {why}",
-                detach::files::shown(path)
-            )))
-        }
-        detach::check::Verdict::Unchecked(why) => {
-            return Err(CliError::runtime(format!(
-                "{}: the checker cannot check it: {why}",
-                detach::files::shown(path)
-            )))
-        }
+    let refused = match &report.verdict {
+        detach::check::Verdict::Valid => None,
+        detach::check::Verdict::Invalid(why) => Some(("rejects", why)),
+        detach::check::Verdict::Unchecked(why) => Some(("cannot check", why)),
+    };
+    if let Some((what, why)) = refused {
+        return Err(CliError::runtime(format!(
+            "{}: the checker {what} it: {why}",
+            detach::files::shown(path)
+        )));
     }
     // Written only once the checker accepts it.
     detach::files::write_atomic(path, &bytes).map_err(|e| cannot_write(path, e))?;

@@ -460,15 +460,7 @@ fn regions_of_any_form_pave_and_prove() {
             ..PaveOptions::default()
         };
         let p = pave_with(&scene, m, opts);
-        for (i, want) in exact.iter().enumerate() {
-            let b = p.area_bounds(&standard_cells()[i], 0.0);
-            assert!(
-                b.inner_area <= *want && *want <= b.outer_area && b.outer_area - b.inner_area < 0.2,
-                "{m} region {i}: {want} vs [{}, {}]",
-                b.inner_area,
-                b.outer_area
-            );
-        }
+        assert_regions_enclose(&p, &exact, 0.2, &m.to_string());
     }
     let dir = std::env::temp_dir().join(format!("detach-ring-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -476,22 +468,7 @@ fn regions_of_any_form_pave_and_prove() {
     std::fs::write(&file, RING).unwrap();
     let proof = dir.join("ring.json");
     let f = file.to_str().unwrap();
-    json(&[
-        "pave",
-        "--scene-file",
-        f,
-        "--eps",
-        "0.02",
-        "--json",
-        "--proof",
-        proof.to_str().unwrap(),
-    ]);
-    let out = detach(&["verify", proof.to_str().unwrap()]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stdout)
-    );
+    prove_and_verify(f, &proof);
     let out = detach(&["area", "--scene-file", f, "--region", "omega", "--json"]);
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
@@ -776,35 +753,13 @@ fn new_functions_pave_and_prove() {
         ..PaveOptions::default()
     };
     let p = pave_with(&scene, detach::pave::Method::Natural, opts);
-    for (i, want) in exact.iter().enumerate() {
-        let b = p.area_bounds(&standard_cells()[i], 0.0);
-        assert!(
-            b.inner_area <= *want && *want <= b.outer_area && b.outer_area - b.inner_area < 0.2,
-            "region {i}: {want} vs [{}, {}]",
-            b.inner_area,
-            b.outer_area
-        );
-    }
+    assert_regions_enclose(&p, &exact, 0.2, "natural");
     let dir = std::env::temp_dir().join(format!("detach-funcs-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("funcs.toml");
     std::fs::write(&file, FUNCS).unwrap();
     let proof = dir.join("funcs.json");
-    let f = file.to_str().unwrap();
-    let p = proof.to_str().unwrap();
-    json(&[
-        "pave",
-        "--scene-file",
-        f,
-        "--eps",
-        "0.02",
-        "--json",
-        "--proof",
-        p,
-    ]);
-    let out = detach(&["verify", p]);
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success() && text.contains("VALID"), "{text}");
+    prove_and_verify(file.to_str().unwrap(), &proof);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -861,4 +816,36 @@ fn scenes_lists_parameter_descriptions_and_units() {
         .unwrap();
     assert_eq!(rod["params"][2]["unit"], "m/s^2", "{rod}");
     assert_eq!(rod["params"][0]["meaning"], "mass", "{rod}");
+}
+
+/// Ω and Ω₀ (the first two sets) of `p` enclose `exact` within `width`.
+fn assert_regions_enclose(p: &detach::pave::Paving, exact: &[f64], width: f64, what: &str) {
+    for (i, want) in exact.iter().enumerate() {
+        let b = p.area_bounds(&standard_cells()[i], 0.0);
+        assert!(
+            b.inner_area <= *want && *want <= b.outer_area && b.outer_area - b.inner_area < width,
+            "{what} region {i}: {want} vs [{}, {}]",
+            b.inner_area,
+            b.outer_area
+        );
+    }
+}
+
+/// `pave --scene-file f --eps 0.02 --proof proof`, then `detach verify`
+/// finds the proof VALID.
+fn prove_and_verify(f: &str, proof: &Path) {
+    let p = proof.to_str().unwrap();
+    json(&[
+        "pave",
+        "--scene-file",
+        f,
+        "--eps",
+        "0.02",
+        "--json",
+        "--proof",
+        p,
+    ]);
+    let out = detach(&["verify", p]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success() && text.contains("VALID"), "{text}");
 }
