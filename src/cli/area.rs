@@ -277,13 +277,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
     );
     let places = args.digits as usize + 2;
     for r in &report.regions {
-        // Combining marks (the bar of Ω̄) take no column.
-        let shown = r
-            .label
-            .chars()
-            .filter(|c| !('\u{0300}'..='\u{036f}').contains(c))
-            .count();
-        let label = format!("{}{}", r.label, " ".repeat(8usize.saturating_sub(shown)));
+        let label = super::atlas::pad(r.label, 8);
         if r.empty.is_some() {
             outln!("  {label} 0 (empty: Ω₀ = Ω)");
             continue;

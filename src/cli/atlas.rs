@@ -411,7 +411,7 @@ fn undefined_warnings(paving: &Paving) -> (f64, Vec<String>) {
 
 /// Pads `s` on the right to `width` columns, counting combining marks (the
 /// overbar of Ω̄) as zero-width.
-fn pad(s: &str, width: usize) -> String {
+pub(super) fn pad(s: &str, width: usize) -> String {
     let shown = s
         .chars()
         .filter(|c| !('\u{0300}'..='\u{036f}').contains(c))
