@@ -225,15 +225,6 @@ pub fn dec_ln(x: DecInterval) -> DecInterval {
     }
 }
 
-/// The sine and cosine of a θ-slab, decorated as `inari` would: the
-/// trigonometry the paver needs per slab, at a fraction of MPFR's cost.
-pub fn slab_sin_cos(theta: Interval) -> (DecInterval, DecInterval) {
-    let (s, c) = sin_cos(theta);
-    let x = DecInterval::new(theta);
-    let d = x.decoration();
-    (DecInterval::set_dec(s, d), DecInterval::set_dec(c, d))
-}
-
 /// A decorated interval whose elementary functions are the ones of this
 /// module; arithmetic is `inari`'s. Scene formulas evaluated with it give the
 /// same kind of enclosure as with [`DecInterval`], a few ulps wider at most.
