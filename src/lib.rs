@@ -13,8 +13,8 @@
 //! and the `slices` method, and print certified bounds on its area:
 //!
 //! ```
-//! use detach::pave::{pave_scene_method, Cell, Method, MethodOptions, PaveOptions};
-//! use detach::scene::{Scene, SceneId, Variant};
+//! use detach::pave::{pave_scene_method, Method, MethodOptions, PaveOptions};
+//! use detach::scene::{Cell, Scene, SceneId, Variant};
 //!
 //! // Parameters are decimal text, enclosed exactly (c₀ of (3.1), p_ψ of (2.3)).
 //! let overrides = [("c0".to_string(), "1".to_string()), ("p_psi".into(), "1.5".into())];

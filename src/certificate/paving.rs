@@ -4,8 +4,8 @@
 
 use super::numbers::{decimal, hex, Round};
 use crate::number::param::ParamSet;
-use crate::pave::{CellSpec, Label, Node, Paving};
-use crate::scene::{Domain, Scene, SceneId, Variant, REGION_NAMES};
+use crate::pave::{Label, Node, Paving};
+use crate::scene::{Cell, Domain, Scene, SceneId, Variant};
 use serde_json::{json, Map, Value};
 
 /// Significant digits of claimed area bounds.
@@ -101,21 +101,15 @@ pub fn base64(bytes: &[u8]) -> String {
     out
 }
 
-/// The literals of the six standard sets, in the order of [`REGION_NAMES`].
-fn literals(i: usize) -> Value {
-    let (t, f) = ("in", "out");
-    match i {
-        0 => json!({ "omega": t }),
-        1 => json!({ "omega0": t }),
-        2 => json!({ "omega": t, "omega0": t }),
-        3 => json!({ "omega": f, "omega0": f }),
-        4 => json!({ "omega": f, "omega0": t }),
-        _ => json!({ "omega": t, "omega0": f }),
+/// What `cell` asks of each region, by region name: `in` or `out`.
+fn literals(cell: Cell) -> Value {
+    let mut m = Map::new();
+    for (region, l) in ["omega", "omega0"].into_iter().zip(cell.literals()) {
+        if let Some(inside) = l {
+            m.insert(region.into(), (if inside { "in" } else { "out" }).into());
+        }
     }
-}
-
-fn cell(i: usize) -> CellSpec {
-    crate::pave::standard_cells()[i]
+    Value::Object(m)
 }
 
 /// The proof file of a paving of Ω and Ω₀ (and the four cells).
@@ -126,14 +120,13 @@ pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
         params.insert(name.to_string(), Value::String(text));
     }
     let uncovered = st.domain.uncovered_area_sup();
-    let areas: Vec<Value> = REGION_NAMES
-        .iter()
-        .enumerate()
-        .map(|(i, name)| {
-            let b = paving.area_bounds(&cell(i), uncovered);
+    let areas: Vec<Value> = Cell::ALL
+        .into_iter()
+        .map(|cell| {
+            let b = paving.area_bounds(&cell.spec(), uncovered);
             json!({
-                "set": name,
-                "literals": literals(i),
+                "set": cell.name(),
+                "literals": literals(cell),
                 "inner": decimal(b.inner_area, AREA_DIGITS, Round::Down),
                 "outer": decimal(b.outer_area, AREA_DIGITS, Round::Up),
             })

@@ -3,9 +3,9 @@
 use super::{CliError, CliResult};
 use detach::certificate::numbers::{fixed, Round};
 use detach::number::param::parse_assignment;
-use detach::pave::{pave_scene_method, standard_cells, Method, MethodOptions, PaveOptions, Paving};
-use detach::quadrature::{cell_area, check_target, AreaEnclosure, AreaError, AreaOptions, CELLS};
-use detach::scene::{Scene, Variant, REGION_LABELS, REGION_NAMES};
+use detach::pave::{pave_scene_method, Method, MethodOptions, PaveOptions, Paving};
+use detach::quadrature::{cell_area, check_target, AreaEnclosure, AreaError, AreaOptions};
+use detach::scene::{Cell, Scene, Variant};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -114,19 +114,16 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
     }
     let mut wanted = Vec::new();
     for r in &args.region {
-        match REGION_NAMES.iter().position(|n| n == r) {
-            Some(i) if !wanted.contains(&i) => wanted.push(i),
-            Some(_) => {}
-            None => {
-                return Err(CliError::usage(format!(
-                    "unknown region `{r}` (known: {})",
-                    REGION_NAMES.join(", ")
-                )))
-            }
+        let i = r
+            .parse::<Cell>()
+            .map_err(|e| CliError::usage(e.to_string()))?
+            .index();
+        if !wanted.contains(&i) {
+            wanted.push(i);
         }
     }
     if wanted.is_empty() {
-        wanted = (0..REGION_NAMES.len()).collect();
+        wanted = (0..Cell::ALL.len()).collect();
     }
     let tol = 10f64.powi(-args.digits);
     let opts = AreaOptions {
@@ -163,19 +160,27 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
         ));
     }
     let refusal = |i: usize, e: AreaError| {
-        CliError::usage(format!("{} ({}): {e}", REGION_LABELS[i], REGION_NAMES[i]))
+        CliError::usage(format!(
+            "{} ({}): {e}",
+            Cell::ALL[i].label(),
+            Cell::ALL[i].name()
+        ))
     };
     if not_quadratic.is_none() {
         // Every set's rounding first, so that one refusal names them all and
         // the digits that every one of them can reach.
         let (mut below, mut floor, mut least) = (Vec::new(), 0f64, 0f64);
         for &i in &wanted {
-            match check_target(&scene, args.variant, &domain, CELLS[i], tol) {
+            match check_target(&scene, args.variant, &domain, Cell::ALL[i], tol) {
                 Ok(()) => {}
                 Err(AreaError::BelowRounding {
                     floor: f, least: l, ..
                 }) => {
-                    below.push(format!("{} ({})", REGION_LABELS[i], REGION_NAMES[i]));
+                    below.push(format!(
+                        "{} ({})",
+                        Cell::ALL[i].label(),
+                        Cell::ALL[i].name()
+                    ));
                     (floor, least) = (floor.max(f), least.max(l));
                 }
                 Err(e) => return Err(refusal(i, e)),
@@ -194,7 +199,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
     for i in wanted {
         let start = Instant::now();
         let bounds = |p: &Paving| {
-            let b = p.area_bounds(&standard_cells()[i], domain.uncovered_area_sup());
+            let b = p.area_bounds(&Cell::ALL[i].spec(), domain.uncovered_area_sup());
             AreaEnclosure::bounds(b.inner_area, b.outer_area, p.leaves.len())
         };
         let by_paving = not_quadratic.is_some();
@@ -206,7 +211,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
                 bounds(p)
             }
             _ => {
-                let e = cell_area(&scene, args.variant, &domain, CELLS[i], opts)
+                let e = cell_area(&scene, args.variant, &domain, Cell::ALL[i], opts)
                     .map_err(|e| refusal(i, e))?;
                 // At its rounding floor the enclosure is already far
                 // narrower than a paving's.
@@ -224,8 +229,8 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
             }
         };
         regions.push(RegionArea {
-            name: REGION_NAMES[i],
-            label: REGION_LABELS[i],
+            name: Cell::ALL[i].name(),
+            label: Cell::ALL[i].label(),
             lower: e.area.inf() + 0.0,
             upper: e.area.sup() + 0.0,
             width: e.width(),

@@ -8,10 +8,9 @@ use detach::figures::{
 };
 use detach::number::param::{parse_assignment, ParamSet};
 use detach::pave::{
-    pave_scene_method, standard_cell_bounds, standard_cells, Emptiness, Method, MethodOptions,
-    PaveOptions, Paving,
+    pave_scene_method, standard_cell_bounds, Emptiness, Method, MethodOptions, PaveOptions, Paving,
 };
-use detach::scene::{Domain, Scene, SceneId, SceneText, Variant, REGION_LABELS, REGION_NAMES};
+use detach::scene::{Cell, Domain, Scene, SceneId, SceneText, UnknownCell, Variant};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -51,13 +50,10 @@ impl PaveFlags {
         let Some(name) = &self.region else {
             return Ok(MethodOptions::new(self.method));
         };
-        let i = REGION_NAMES.iter().position(|r| r == name).ok_or_else(|| {
-            CliError::usage(format!(
-                "unknown region `{name}` (known: {})",
-                REGION_NAMES.join(", ")
-            ))
-        })?;
-        Ok(MethodOptions::for_cell(self.method, &standard_cells()[i]))
+        let cell: Cell = name
+            .parse()
+            .map_err(|e: UnknownCell| CliError::usage(e.to_string()))?;
+        Ok(MethodOptions::for_cell(self.method, &cell.spec()))
     }
 }
 
@@ -310,8 +306,8 @@ fn summarise(
         .into_iter()
         .enumerate()
         .map(|(i, (b, empty))| RegionReport {
-            name: REGION_NAMES[i],
-            label: REGION_LABELS[i],
+            name: Cell::ALL[i].name(),
+            label: Cell::ALL[i].label(),
             inner_area: b.inner_area,
             outer_area: b.outer_area,
             undecided_area: b.undecided_area(),

@@ -7,8 +7,8 @@
 //! picture may exaggerate uncertainty, it never overclaims. Pixels are boxes
 //! with double edges, compared exactly with the leaves' double edges.
 
-use crate::pave::area::standard_cells;
 use crate::pave::{Label, Leaf, Paving, PhaseBox};
+use crate::scene::Cell;
 
 /// What one leaf (or pixel) is drawn as.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -29,8 +29,7 @@ pub enum Class {
 }
 
 impl Class {
-    /// All classes, the four cells first (in the order of
-    /// [`crate::scene::REGION_NAMES`] entries 2..6).
+    /// All classes, the four cells first (in [`Cell::ALL`] order).
     pub const ALL: [Class; 6] = [
         Class::Persists,
         Class::Released,
@@ -48,9 +47,20 @@ impl Class {
         Class::NonExistence,
     ];
 
+    /// The partition cell a class shows (the four cells).
+    pub fn cell(self) -> Option<Cell> {
+        match self {
+            Class::Persists => Some(Cell::OmegaAndOmega0),
+            Class::Released => Some(Cell::NeitherOmegaNorOmega0),
+            Class::NonUniqueness => Some(Cell::Omega0NotOmega),
+            Class::NonExistence => Some(Cell::OmegaNotOmega0),
+            Class::Undecided | Class::Undefined => None,
+        }
+    }
+
     /// True for the four certified cells.
     pub fn is_cell(self) -> bool {
-        !matches!(self, Class::Undecided | Class::Undefined)
+        self.cell().is_some()
     }
 
     fn index(self) -> usize {
@@ -63,23 +73,18 @@ impl Class {
         if leaf.labels[..2].contains(&Label::Undefined) {
             return Class::Undefined;
         }
-        let cells = standard_cells();
         Class::CELLS
             .into_iter()
-            .zip(&cells[2..])
-            .find(|(_, spec)| spec.proved_in(leaf))
-            .map_or(Class::Undecided, |(c, _)| c)
+            .find(|c| c.cell().is_some_and(|cell| cell.spec().proved_in(leaf)))
+            .unwrap_or(Class::Undecided)
     }
 
     /// Short symbolic name, e.g. `Ω∩Ω₀`.
     pub fn symbol(self) -> &'static str {
-        match self {
-            Class::Persists => "Ω∩Ω₀",
-            Class::Released => "Ω̄∩Ω̄₀",
-            Class::NonUniqueness => "Ω̄∩Ω₀",
-            Class::NonExistence => "Ω∩Ω̄₀",
-            Class::Undecided => "undecided",
-            Class::Undefined => "undefined",
+        match self.cell() {
+            Some(cell) => cell.label(),
+            None if self == Class::Undefined => "undefined",
+            None => "undecided",
         }
     }
 

@@ -1,6 +1,8 @@
 //! Rigorous area bounds of regions and partition cells from a paving.
 
 use super::{Label, Leaf, Paving};
+/// Re-exported: pavings name their sets by the scene's vocabulary.
+pub use crate::scene::Cell;
 use inari::{const_interval, Interval};
 use serde::Serialize;
 
@@ -49,63 +51,17 @@ impl CellSpec {
     }
 }
 
-/// The two regions and the four cells of the partition, by name; their
-/// index is their place in [`standard_cells`] and
-/// [`crate::scene::REGION_NAMES`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Cell {
-    /// Ω: no detachment.
-    Omega = 0,
-    /// Ω₀: the contact reaction keeps its sign.
-    Omega0 = 1,
-    /// Ω∩Ω₀.
-    OmegaAndOmega0 = 2,
-    /// Ω̄∩Ω̄₀.
-    NeitherOmegaNorOmega0 = 3,
-    /// Ω̄∩Ω₀.
-    Omega0NotOmega = 4,
-    /// Ω∩Ω̄₀.
-    OmegaNotOmega0 = 5,
-}
-
+/// Its literals on (Ω, Ω₀) as a paving reads them (defined here, beside
+/// [`CellSpec`]: the scene's vocabulary knows nothing of pavings).
 impl Cell {
-    pub const ALL: [Cell; 6] = [
-        Cell::Omega,
-        Cell::Omega0,
-        Cell::OmegaAndOmega0,
-        Cell::NeitherOmegaNorOmega0,
-        Cell::Omega0NotOmega,
-        Cell::OmegaNotOmega0,
-    ];
-    pub fn index(self) -> usize {
-        self as usize
-    }
-    /// Its literals on (Ω, Ω₀).
     pub fn spec(self) -> CellSpec {
-        standard_cells()[self.index()]
-    }
-    /// `omega`, `omega0`, … as in output files.
-    pub fn name(self) -> &'static str {
-        crate::scene::REGION_NAMES[self.index()]
-    }
-    /// `Ω`, `Ω₀`, `Ω∩Ω₀`, …
-    pub fn label(self) -> &'static str {
-        crate::scene::REGION_LABELS[self.index()]
+        CellSpec::of(&self.literals())
     }
 }
 
-/// Region and the four cells for two constraints (Ω, Ω₀), in the order of
-/// [`Cell`] and [`crate::scene::REGION_NAMES`].
+/// Ω, Ω₀ and the four cells for two constraints, in [`Cell::ALL`] order.
 pub fn standard_cells() -> [CellSpec; 6] {
-    let (t, f) = (Some(true), Some(false));
-    [
-        CellSpec::of(&[t, None]),
-        CellSpec::of(&[None, t]),
-        CellSpec::of(&[t, t]),
-        CellSpec::of(&[f, f]),
-        CellSpec::of(&[f, t]),
-        CellSpec::of(&[t, f]),
-    ]
+    Cell::ALL.map(Cell::spec)
 }
 
 /// `inner_area ≤ true area ≤ outer_area`, with box counts.

@@ -27,7 +27,7 @@ pub mod taylor;
 
 use crate::number::scalar::{is_defined, Scalar};
 use crate::scene::slab::{centred_factors_on, factored_constraints_on};
-use crate::scene::{Domain, Quadratic, Scene, Variant};
+use crate::scene::{Cell, Domain, Quadratic, Scene, Variant};
 use inari::{const_interval, DecInterval, Interval};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -112,8 +112,6 @@ pub enum AreaError {
     BadBudget,
     #[error("the domain is empty")]
     EmptyDomain,
-    #[error("a cell needs at least one of Ω, Ω₀ (in or out)")]
-    NoLiteral,
     /// The target is below what binary64 quadrature can certify here.
     #[error(
         "a width of {tol:e} is below what binary64 arithmetic certifies for this area \
@@ -749,23 +747,23 @@ pub fn check_target(
     scene: &Scene,
     variant: Variant,
     domain: &Domain,
-    literals: [Option<bool>; 2],
+    cell: Cell,
     tol: f64,
 ) -> Result<(), AreaError> {
     let opts = AreaOptions {
         tol,
         max_pieces: FIRST_GRID,
     };
-    cell_area(scene, variant, domain, literals, opts).map(|_| ())
+    cell_area(scene, variant, domain, cell, opts).map(|_| ())
 }
 
-/// Area of the set of points of `domain` where each constraint of `lits`
-/// (`Some(true)` = inside Ω / Ω₀, `Some(false)` = outside, `None` = free) holds.
+/// Area of the points of `domain` in `cell` (Ω, Ω₀ or one of the four
+/// cells).
 pub fn cell_area(
     scene: &Scene,
     variant: Variant,
     domain: &Domain,
-    literals: [Option<bool>; 2],
+    cell: Cell,
     opts: AreaOptions,
 ) -> Result<AreaEnclosure, AreaError> {
     if !(opts.tol.is_finite() && opts.tol > 0.0) {
@@ -777,14 +775,12 @@ pub fn cell_area(
     if domain.is_empty() {
         return Err(AreaError::EmptyDomain);
     }
-    let mut lits: Vec<Lit> = literals
+    let mut lits: Vec<Lit> = cell
+        .literals()
         .iter()
         .enumerate()
         .filter_map(|(q, l)| l.map(|inside| Lit { q, inside }))
         .collect();
-    if lits.is_empty() {
-        return Err(AreaError::NoLiteral);
-    }
     if scene.omega0_is_omega(variant) && lits.len() == 2 {
         if lits[0].inside != lits[1].inside {
             return Ok(AreaEnclosure {
@@ -926,16 +922,6 @@ pub fn cell_area(
         at_rounding_floor: at_rounding_floor && area.wid() > opts.tol,
     })
 }
-
-/// The six regions and cells of [`crate::scene::REGION_NAMES`], as literals.
-pub const CELLS: [[Option<bool>; 2]; 6] = [
-    [Some(true), None],
-    [None, Some(true)],
-    [Some(true), Some(true)],
-    [Some(false), Some(false)],
-    [Some(false), Some(true)],
-    [Some(true), Some(false)],
-];
 
 #[cfg(test)]
 mod tests {

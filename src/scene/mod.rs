@@ -7,6 +7,7 @@
 //! lets the paver share every trigonometric and logarithmic value across all
 //! boxes of one θ-slab.
 
+pub mod cell;
 pub mod expr;
 pub mod file;
 pub mod ice;
@@ -21,6 +22,7 @@ use serde::Serialize;
 use std::fmt;
 use std::str::FromStr;
 
+pub use cell::{Cell, UnknownCell};
 pub use file::{FileScene, SceneFileError, SceneText};
 pub use ice::IceDisc;
 pub use smooth::SmoothDisc;
@@ -553,19 +555,6 @@ impl Scene {
         with_model!(self, m => m.energy(a, theta_dot), _f => None)
     }
 }
-
-/// Region and partition-cell names, in the order used everywhere.
-pub const REGION_NAMES: [&str; 6] = [
-    "omega",
-    "omega0",
-    "omega_and_omega0",
-    "not_omega_and_not_omega0",
-    "not_omega_and_omega0",
-    "omega_and_not_omega0",
-];
-
-/// Human-readable form of [`REGION_NAMES`].
-pub const REGION_LABELS: [&str; 6] = ["Ω", "Ω₀", "Ω∩Ω₀", "Ω̄∩Ω̄₀", "Ω̄∩Ω₀", "Ω∩Ω̄₀"];
 
 pub(crate) fn positive_gap(lo: Interval, hi: Interval) -> bool {
     lo.sup() < hi.inf()

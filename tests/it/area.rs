@@ -2,8 +2,8 @@
 //! references, the paving's bounds, and the identities between cells.
 
 use detach::pave::{pave_scene, standard_cells, PaveOptions};
-use detach::quadrature::{cell_area, AreaError, AreaOptions, CELLS};
-use detach::scene::{Scene, SceneId, Variant};
+use detach::quadrature::{cell_area, AreaError, AreaOptions};
+use detach::scene::{Cell, Scene, SceneId, Variant};
 use inari::Interval;
 
 /// `tests/data/area_reference.py` (mpmath 1.3.0, 30 digits, tanh-sinh between
@@ -13,7 +13,7 @@ const VISCOUS_OMEGA: f64 = 101.430_743_457_751_43;
 const VISCOUS_OMEGA0: f64 = 100.075_398_243_812_93;
 const ICE_OMEGA0: f64 = 40.539_992_020_382_4;
 
-fn area(id: SceneId, v: Variant, cell: [Option<bool>; 2]) -> Interval {
+fn area(id: SceneId, v: Variant, cell: Cell) -> Interval {
     let s = Scene::default_of(id);
     cell_area(&s, v, &s.domain(), cell, AreaOptions::default())
         .unwrap()
@@ -27,24 +27,38 @@ fn contains(x: Interval, r: f64) -> bool {
 
 #[test]
 fn references_are_enclosed_to_1e_9() {
-    let (t, n) = (Some(true), None);
     for (id, v, cell, r) in [
-        (SceneId::SmoothDisc, Variant::Derived, [t, n], SMOOTH_OMEGA),
-        (SceneId::SmoothDisc, Variant::Printed, [t, n], SMOOTH_OMEGA),
-        (SceneId::IceDisc, Variant::Derived, [t, n], SMOOTH_OMEGA),
+        (
+            SceneId::SmoothDisc,
+            Variant::Derived,
+            Cell::Omega,
+            SMOOTH_OMEGA,
+        ),
+        (
+            SceneId::SmoothDisc,
+            Variant::Printed,
+            Cell::Omega,
+            SMOOTH_OMEGA,
+        ),
+        (
+            SceneId::IceDisc,
+            Variant::Derived,
+            Cell::Omega,
+            SMOOTH_OMEGA,
+        ),
         (
             SceneId::ViscousDisc,
             Variant::Derived,
-            [t, n],
+            Cell::Omega,
             VISCOUS_OMEGA,
         ),
         (
             SceneId::ViscousDisc,
             Variant::Derived,
-            [n, t],
+            Cell::Omega0,
             VISCOUS_OMEGA0,
         ),
-        (SceneId::IceDisc, Variant::Derived, [n, t], ICE_OMEGA0),
+        (SceneId::IceDisc, Variant::Derived, Cell::Omega0, ICE_OMEGA0),
     ] {
         let a = area(id, v, cell);
         assert!(contains(a, r), "{id} {v} {cell:?}: {a:?} misses {r}");
@@ -57,8 +71,8 @@ fn every_cell_of_every_scene_to_1e_9_and_the_cells_add_up() {
     for id in SceneId::ALL {
         let s = Scene::default_of(id);
         for v in [Variant::Derived, Variant::Printed] {
-            let a: Vec<Interval> = CELLS.iter().map(|c| area(id, v, *c)).collect();
-            for (c, x) in CELLS.iter().zip(&a) {
+            let a: Vec<Interval> = Cell::ALL.iter().map(|c| area(id, v, *c)).collect();
+            for (c, x) in Cell::ALL.iter().zip(&a) {
                 assert!(x.wid() <= 1e-9, "{id} {v} {c:?}: {x:?}");
                 assert!(x.inf() >= 0.0, "{id} {v} {c:?}: {x:?}");
             }
@@ -84,7 +98,7 @@ fn quadrature_and_paving_bounds_intersect() {
                 max_boxes: 1_000_000,
             };
             let p = pave_scene(&s, v, opts, |_, _, _| {}).unwrap();
-            for (spec, c) in standard_cells().iter().zip(CELLS) {
+            for (spec, c) in standard_cells().iter().zip(Cell::ALL) {
                 let b = p.area_bounds(spec, s.domain().uncovered_area_sup());
                 let q = area(id, v, c);
                 assert!(
@@ -106,8 +120,22 @@ fn windows_and_parameters() {
         .domain()
         .window(Some(["0.5", "2.5"]), Some(["-3", "4"]))
         .unwrap();
-    let a = cell_area(&s, Variant::Derived, &d, CELLS[0], AreaOptions::default()).unwrap();
-    let all = cell_area(&s, Variant::Derived, &d, CELLS[3], AreaOptions::default()).unwrap();
+    let a = cell_area(
+        &s,
+        Variant::Derived,
+        &d,
+        Cell::Omega,
+        AreaOptions::default(),
+    )
+    .unwrap();
+    let all = cell_area(
+        &s,
+        Variant::Derived,
+        &d,
+        Cell::NeitherOmegaNorOmega0,
+        AreaOptions::default(),
+    )
+    .unwrap();
     assert!(a.area.wid() <= 1e-9 && all.area.wid() <= 1e-9);
     assert!(!(a.area + all.area).intersection(d.area()).is_empty());
     // b = 0: the centre of mass at the centre, Ω is the whole domain.
@@ -116,7 +144,7 @@ fn windows_and_parameters() {
         &s0,
         Variant::Derived,
         &s0.domain(),
-        CELLS[0],
+        Cell::Omega,
         AreaOptions::default(),
     )
     .unwrap()
@@ -133,24 +161,13 @@ fn bad_options_are_errors() {
             &s,
             Variant::Derived,
             &d,
-            CELLS[0],
+            Cell::Omega,
             AreaOptions { tol, max_pieces },
         )
     };
     assert_eq!(bad(0.0, 10).unwrap_err(), AreaError::BadTol(0.0));
     assert!(matches!(bad(f64::NAN, 10), Err(AreaError::BadTol(_))));
     assert_eq!(bad(1e-3, 0).unwrap_err(), AreaError::BadBudget);
-    assert_eq!(
-        cell_area(
-            &s,
-            Variant::Derived,
-            &d,
-            [None, None],
-            AreaOptions::default()
-        )
-        .unwrap_err(),
-        AreaError::NoLiteral
-    );
     // A small budget still gives a valid, wider enclosure.
     let coarse = bad(1e-12, 70).unwrap();
     assert!(contains(coarse.area, SMOOTH_OMEGA) && coarse.pieces <= 70);
@@ -162,13 +179,12 @@ fn bad_options_are_errors() {
 /// itself leave a width near 10⁻⁸).
 #[test]
 fn twelve_places_in_a_few_thousand_pieces() {
-    let (t, n) = (Some(true), None);
     let tol = 1e-12;
     for (id, cell, r) in [
-        (SceneId::ViscousDisc, [t, n], VISCOUS_OMEGA),
-        (SceneId::ViscousDisc, [n, t], VISCOUS_OMEGA0),
-        (SceneId::SmoothDisc, [t, n], SMOOTH_OMEGA),
-        (SceneId::IceDisc, [n, t], ICE_OMEGA0),
+        (SceneId::ViscousDisc, Cell::Omega, VISCOUS_OMEGA),
+        (SceneId::ViscousDisc, Cell::Omega0, VISCOUS_OMEGA0),
+        (SceneId::SmoothDisc, Cell::Omega, SMOOTH_OMEGA),
+        (SceneId::IceDisc, Cell::Omega0, ICE_OMEGA0),
     ] {
         let s = Scene::default_of(id);
         let opts = AreaOptions {
@@ -187,7 +203,7 @@ fn twelve_places_in_a_few_thousand_pieces() {
     // The four cells of every paper scene too.
     for id in SceneId::ALL {
         let s = Scene::default_of(id);
-        for cell in &CELLS[2..] {
+        for cell in &Cell::ALL[2..] {
             let opts = AreaOptions {
                 tol,
                 ..AreaOptions::default()
@@ -209,7 +225,7 @@ fn targets_below_binary64_rounding_are_refused() {
             tol,
             max_pieces: 1 << 20,
         };
-        match cell_area(&s, Variant::Derived, &d, CELLS[0], opts) {
+        match cell_area(&s, Variant::Derived, &d, Cell::Omega, opts) {
             Err(AreaError::BelowRounding { floor, least, .. }) => {
                 // Ω ≈ 101.4: a few units of 2⁻⁵² × 101 × 2.
                 assert!(floor > 1e-14 && floor < 1e-12, "floor {floor}");
@@ -330,12 +346,12 @@ fn crossing_touching_and_vanishing_shapes_meet_the_target() {
             tol,
             max_pieces: 4096,
         };
-        for cell in [CELLS[0], CELLS[3]] {
+        for cell in [Cell::Omega, Cell::NeitherOmegaNorOmega0] {
             let e = cell_area(&s, Variant::Derived, &s.domain(), cell, opts).unwrap();
             // Outside: the domain's area less the region's (`exact` is the
             // double nearest it).
             let exact = Interval::try_from((exact * (1.0 - 2e-16), exact * (1.0 + 2e-16))).unwrap();
-            let want = if cell == CELLS[0] {
+            let want = if cell == Cell::Omega {
                 exact
             } else {
                 s.domain().area() - exact

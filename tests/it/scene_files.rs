@@ -4,8 +4,8 @@
 
 use crate::common::{assert_bad_input, detach, json, Rng};
 use detach::pave::{pave_scene, standard_cells, Label, PaveOptions};
-use detach::quadrature::{cell_area, AreaOptions, CELLS};
-use detach::scene::{FileScene, Scene, SceneId, Variant};
+use detach::quadrature::{cell_area, AreaOptions};
+use detach::scene::{Cell, FileScene, Scene, SceneId, Variant};
 use std::path::{Path, PathBuf};
 
 fn scene_path(name: &str) -> PathBuf {
@@ -72,7 +72,7 @@ fn painleve_rod_areas_contain_the_closed_form() {
                 &scene,
                 Variant::Derived,
                 &domain,
-                CELLS[i],
+                Cell::ALL[i],
                 AreaOptions {
                     tol,
                     max_pieces: 1 << 16,
@@ -547,7 +547,7 @@ fn areas_within_1e12(scene: &Scene, exact: &[f64; 6], what: &str) {
             tol: 1e-12,
             max_pieces: 1 << 10,
         };
-        let e = cell_area(scene, Variant::Derived, &scene.domain(), CELLS[i], opts).unwrap();
+        let e = cell_area(scene, Variant::Derived, &scene.domain(), Cell::ALL[i], opts).unwrap();
         assert!(
             e.area.contains(*want) && e.area.wid() <= 1e-12,
             "{what} set {i}: {:?}",

@@ -5,8 +5,8 @@
 //! `cargo run --release -- [METHOD]`, METHOD one of natural, centred,
 //! contract, slices (default slices).
 
-use detach::pave::{pave_scene_method, Cell, Method, MethodOptions, PaveOptions};
-use detach::scene::{Scene, SceneId, Variant};
+use detach::pave::{pave_scene_method, Method, MethodOptions, PaveOptions};
+use detach::scene::{Cell, Scene, SceneId, Variant};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let method: Method = match std::env::args().nth(1) {
