@@ -7,7 +7,7 @@ use super::certify::{certify, CERTIFY_LEAVES};
 use super::engine::{Local, Open, Refine, Work};
 use super::labels::{centred_label, Labels, Scope};
 use super::natural::Bisection;
-use super::{ConstraintSet, Label, PerConstraint, PhaseBox, SlabEnds};
+use super::{ConstraintSet, Label, PerConstraint, SlabEnds};
 use std::sync::Arc;
 
 /// Natural labels, certified where a centred form decides.
@@ -20,11 +20,8 @@ impl<S: ConstraintSet> Refine<S> for Centred<'_, S> {
     fn scope(&self) -> &Scope<'_, S> {
         &self.scope
     }
-    fn choose_axis(&self, b: &PhaseBox) -> Option<u8> {
-        self.grid.choose_axis(b)
-    }
-    fn at_ulp_limit(&self, b: &PhaseBox) -> bool {
-        self.grid.at_ulp_limit(b)
+    fn grid(&self) -> Option<&Bisection> {
+        Some(&self.grid)
     }
 
     /// When natural ∩ mean-value ∩ monotonicity decides every relevant

@@ -38,11 +38,8 @@ impl<S: ConstraintSet> Refine<S> for Contract<'_, S> {
     fn scope(&self) -> &Scope<'_, S> {
         &self.scope
     }
-    fn choose_axis(&self, b: &PhaseBox) -> Option<u8> {
-        self.grid.choose_axis(b)
-    }
-    fn at_ulp_limit(&self, b: &PhaseBox) -> bool {
-        self.grid.at_ulp_limit(b)
+    fn grid(&self) -> Option<&Bisection> {
+        Some(&self.grid)
     }
     fn subtree(
         &self,

@@ -8,7 +8,9 @@
 //! how it steers, which subtree it gives an undecided box — is behind
 //! [`Refine`].
 
-use super::labels::{Labels, Scope};
+use super::bisection::Bisection;
+use super::labels::Scope;
+use super::level::{par_each_mut, refill, Done, Labels, Outcome, Plan, PAR_MIN};
 use super::tree::Tree;
 use super::{
     BudgetStop, ConstraintSet, Label, PaveOptions, PaveStats, Paving, PerConstraint, PhaseBox,
@@ -19,6 +21,9 @@ use rayon::prelude::*;
 use std::mem::size_of;
 use std::sync::Arc;
 
+// The types a method's `subtree` speaks in, named here for the methods.
+pub(super) use super::level::{Local, Open, Work};
+
 /// A refinement method: where bisection stops, and what it does with a box
 /// left undecided by the natural labels beyond bisecting it.
 pub(super) trait Refine<S: ConstraintSet>: Sync {
@@ -28,10 +33,18 @@ pub(super) trait Refine<S: ConstraintSet>: Sync {
     const SHARED_SLABS: bool = true;
 
     fn scope(&self) -> &Scope<'_, S>;
+    /// Where bisection stops: `natural`'s grid, which [`Refine::choose_axis`]
+    /// and [`Refine::at_ulp_limit`] follow; `None` for a method with a rule
+    /// of its own, which then overrides both.
+    fn grid(&self) -> Option<&Bisection>;
     /// The axis to bisect an undecided box along, if any.
-    fn choose_axis(&self, b: &PhaseBox) -> Option<u8>;
+    fn choose_axis(&self, b: &PhaseBox) -> Option<u8> {
+        self.grid().and_then(|g| g.choose_axis(b))
+    }
     /// The box is above the resolution but one ulp wide along such an axis.
-    fn at_ulp_limit(&self, b: &PhaseBox) -> bool;
+    fn at_ulp_limit(&self, b: &PhaseBox) -> bool {
+        self.grid().is_some_and(|g| g.at_ulp_limit(b))
+    }
     /// A fresh box bisected in θ before any interval work.
     fn split_unevaluated(&self, _b: &PhaseBox) -> bool {
         false
@@ -46,100 +59,6 @@ pub(super) trait Refine<S: ConstraintSet>: Sync {
         labels: &Labels,
         work: &mut Work,
     ) -> Option<Vec<Local>>;
-}
-
-/// A small subtree in preorder, produced for one box.
-#[derive(Clone, Copy, Debug)]
-pub(super) enum Local {
-    Mid(u8),
-    At(u8, f64),
-    Leaf(Labels),
-    /// Stays open: refined at the next level.
-    Open,
-}
-
-/// What processing one open box decided.
-pub(super) enum Outcome {
-    Leaf,
-    Split(u8),
-    Tree(Vec<Local>),
-}
-
-/// A box to process at the current level.
-pub(super) struct Open<Sl> {
-    pub bx: PhaseBox,
-    pub slab: Option<Arc<Sl>>,
-    /// The slab was computed for this box's θ-interval at this level: the
-    /// contraction has not seen it yet.
-    pub fresh: bool,
-}
-
-/// One box processed: its natural labels, outcome, work, and the slab it
-/// computed for itself (which its θ̇-children share).
-pub(super) struct Done<Sl> {
-    pub labels: Labels,
-    pub outcome: Outcome,
-    pub work: Work,
-    pub slab: Option<Arc<Sl>>,
-    /// Split before any interval work: its labels are not computed.
-    pub unevaluated: bool,
-}
-
-/// Per-box work counters.
-#[derive(Default, Clone, Copy)]
-pub(super) struct Work {
-    pub evals: u64,
-    pub slabs: u64,
-}
-
-/// What one box adds to the tree.
-#[derive(Clone, Copy, Default)]
-pub(super) struct Plan {
-    pub nodes: u32,
-    pub leaves: u32,
-    pub opens: u32,
-    /// Refined (split or subtree) rather than kept as one leaf.
-    pub refine: bool,
-}
-
-impl Plan {
-    pub const LEAF: Plan = Plan {
-        nodes: 0,
-        leaves: 1,
-        opens: 0,
-        refine: false,
-    };
-    fn of_tree(t: &[Local]) -> Plan {
-        let mut p = Plan {
-            refine: true,
-            ..Plan::default()
-        };
-        for l in t {
-            match l {
-                Local::Mid(_) | Local::At(..) => p.nodes += 2,
-                Local::Leaf(_) => p.leaves += 1,
-                Local::Open => p.opens += 1,
-            }
-        }
-        p
-    }
-    /// What a box's outcome asks for.
-    fn of(outcome: &Outcome) -> Plan {
-        match outcome {
-            Outcome::Leaf => Plan::LEAF,
-            Outcome::Split(_) => Plan {
-                nodes: 2,
-                leaves: 0,
-                opens: 2,
-                refine: true,
-            },
-            Outcome::Tree(t) => Plan::of_tree(t),
-        }
-    }
-    /// Leaves (counting open boxes) it adds beyond the box itself.
-    fn extra(&self) -> usize {
-        (self.leaves + self.opens) as usize - 1
-    }
 }
 
 /// What is left unrefined, hence why refinement stopped.
@@ -640,9 +559,6 @@ fn slab_key(b: &PhaseBox) -> (u64, u64) {
     (b.theta[0].to_bits(), b.theta[1].to_bits())
 }
 
-/// Below this many items a level's step runs on the calling thread: waking
-/// the pool costs more (tens of µs per call) than the work.
-pub(super) const PAR_MIN: usize = 1024;
 /// The same for work of a microsecond or more per item (slabs, processing).
 /// The pool's first use in a process also starts its threads (about 0.2 ms
 /// here): from 512 items a level has enough work to pay for it. (At 64, a
@@ -654,31 +570,6 @@ fn par_map<T: Sync, U: Send>(xs: &[T], min: usize, f: impl Fn(&T) -> U + Sync + 
         xs.iter().map(f).collect()
     } else {
         xs.par_iter().map(f).collect()
-    }
-}
-
-/// `v` holding `f(k)` for `k` in `0..n`, written in parallel from `min`
-/// items (so a new buffer's pages are first touched by the
-/// pool's threads). A buffer too small is replaced, not grown: nothing
-/// is copied, and one never allocated gets exactly `n`.
-pub(super) fn refill<T: Send>(
-    v: &mut Vec<T>,
-    n: usize,
-    min: usize,
-    f: impl Fn(usize) -> T + Sync + Send,
-) {
-    v.clear();
-    if v.capacity() < n {
-        // At least double: a buffer that grows level by level is replaced
-        // every other level, not at each (its fresh pages cost faults).
-        let cap = n.max(2 * v.capacity());
-        *v = Vec::new();
-        *v = Vec::with_capacity(cap);
-    }
-    if n < min {
-        v.extend((0..n).map(f));
-    } else {
-        v.par_extend((0..n).into_par_iter().map(f));
     }
 }
 
@@ -703,13 +594,5 @@ fn par_fold<T: Copy + Send + Sync>(
         (0..n).map(f).fold(zero, op)
     } else {
         (0..n).into_par_iter().map(f).reduce(|| zero, op)
-    }
-}
-
-pub(super) fn par_each_mut<T: Send>(xs: &mut [T], f: impl Fn(&mut T) + Sync + Send) {
-    if xs.len() < PAR_MIN {
-        xs.iter_mut().for_each(f)
-    } else {
-        xs.par_iter_mut().for_each(f)
     }
 }

@@ -4,14 +4,12 @@
 //! [`centred_label`] (a centred form) only steers: it says a box is worth
 //! certifying by a few extra splits, never a label.
 
-use super::engine::Work;
+pub(super) use super::level::Labels;
+use super::level::Work;
 use super::{ConstraintSet, Label, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
 use crate::number::scalar::{is_defined, Dual};
 use crate::scene::Quadratic;
 use inari::{DecInterval, Interval};
-
-/// One label per constraint (unused slots past the constraint count).
-pub(super) type Labels = [Label; MAX_CONSTRAINTS];
 
 /// The constraints a paving labels: how many, which are copies of another,
 /// and which decide whether a box is refined.

@@ -10,12 +10,14 @@
 //! with [`Paving::nodes`] (bisection choices in preorder) and the leaf labels.
 
 pub mod area;
+mod bisection;
 mod centred;
 mod certify;
 mod contract;
 mod engine;
 pub mod export;
 pub mod labels;
+mod level;
 pub mod methods;
 mod natural;
 mod slices;

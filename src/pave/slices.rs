@@ -12,6 +12,7 @@
 //! to ε of the domain's height, as `natural` refines. So is what the
 //! contraction leaves undecided on a slab where a θ̇² coefficient may be 0.
 
+use super::bisection::Bisection;
 use super::contract::{contract_fresh, roots};
 use super::engine::{Local, Open, Refine, Work};
 use super::labels::{Labels, Scope};
@@ -111,6 +112,11 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
 
     fn scope(&self) -> &Scope<'_, S> {
         &self.scope
+    }
+
+    /// None: slabs are refined by their undecided area, not on a grid.
+    fn grid(&self) -> Option<&Bisection> {
+        None
     }
 
     /// θ only.

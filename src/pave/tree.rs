@@ -6,8 +6,7 @@
 //! A leaf keeps only its labels: its box is replayed from the root and the
 //! splits when the tree is assembled, exactly as the paving computed it.
 
-use super::engine::{par_each_mut, refill, Done, Local, Open, Outcome, Plan, PAR_MIN};
-use super::labels::Labels;
+use super::level::{par_each_mut, refill, Done, Labels, Local, Open, Outcome, Plan, PAR_MIN};
 use super::{Leaf, Node, PhaseBox};
 use rayon::prelude::*;
 use std::mem::size_of;

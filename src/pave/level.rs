@@ -1,0 +1,141 @@
+//! What one level of the paving loop passes around: the boxes it processes,
+//! what each one decided and adds to the tree, and the parallel helpers that
+//! fill a level's buffers. Shared by the engine, the tree and the labels.
+
+use super::{Label, PhaseBox, MAX_CONSTRAINTS};
+use rayon::prelude::*;
+use std::sync::Arc;
+
+/// One label per constraint (unused slots past the constraint count).
+pub(super) type Labels = [Label; MAX_CONSTRAINTS];
+
+/// A small subtree in preorder, produced for one box.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Local {
+    Mid(u8),
+    At(u8, f64),
+    Leaf(Labels),
+    /// Stays open: refined at the next level.
+    Open,
+}
+
+/// What processing one open box decided.
+pub(super) enum Outcome {
+    Leaf,
+    Split(u8),
+    Tree(Vec<Local>),
+}
+
+/// A box to process at the current level.
+pub(super) struct Open<Sl> {
+    pub bx: PhaseBox,
+    pub slab: Option<Arc<Sl>>,
+    /// The slab was computed for this box's θ-interval at this level: the
+    /// contraction has not seen it yet.
+    pub fresh: bool,
+}
+
+/// One box processed: its natural labels, outcome, work, and the slab it
+/// computed for itself (which its θ̇-children share).
+pub(super) struct Done<Sl> {
+    pub labels: Labels,
+    pub outcome: Outcome,
+    pub work: Work,
+    pub slab: Option<Arc<Sl>>,
+    /// Split before any interval work: its labels are not computed.
+    pub unevaluated: bool,
+}
+
+/// Per-box work counters.
+#[derive(Default, Clone, Copy)]
+pub(super) struct Work {
+    pub evals: u64,
+    pub slabs: u64,
+}
+
+/// What one box adds to the tree.
+#[derive(Clone, Copy, Default)]
+pub(super) struct Plan {
+    pub nodes: u32,
+    pub leaves: u32,
+    pub opens: u32,
+    /// Refined (split or subtree) rather than kept as one leaf.
+    pub refine: bool,
+}
+
+impl Plan {
+    pub const LEAF: Plan = Plan {
+        nodes: 0,
+        leaves: 1,
+        opens: 0,
+        refine: false,
+    };
+    pub fn of_tree(t: &[Local]) -> Plan {
+        let mut p = Plan {
+            refine: true,
+            ..Plan::default()
+        };
+        for l in t {
+            match l {
+                Local::Mid(_) | Local::At(..) => p.nodes += 2,
+                Local::Leaf(_) => p.leaves += 1,
+                Local::Open => p.opens += 1,
+            }
+        }
+        p
+    }
+    /// What a box's outcome asks for.
+    pub fn of(outcome: &Outcome) -> Plan {
+        match outcome {
+            Outcome::Leaf => Plan::LEAF,
+            Outcome::Split(_) => Plan {
+                nodes: 2,
+                leaves: 0,
+                opens: 2,
+                refine: true,
+            },
+            Outcome::Tree(t) => Plan::of_tree(t),
+        }
+    }
+    /// Leaves (counting open boxes) it adds beyond the box itself.
+    pub fn extra(&self) -> usize {
+        (self.leaves + self.opens) as usize - 1
+    }
+}
+
+/// Below this many items a level's step runs on the calling thread: waking
+/// the pool costs more (tens of µs per call) than the work.
+pub(super) const PAR_MIN: usize = 1024;
+
+/// `v` holding `f(k)` for `k` in `0..n`, written in parallel from `min`
+/// items (so a new buffer's pages are first touched by the
+/// pool's threads). A buffer too small is replaced, not grown: nothing
+/// is copied, and one never allocated gets exactly `n`.
+pub(super) fn refill<T: Send>(
+    v: &mut Vec<T>,
+    n: usize,
+    min: usize,
+    f: impl Fn(usize) -> T + Sync + Send,
+) {
+    v.clear();
+    if v.capacity() < n {
+        // At least double: a buffer that grows level by level is replaced
+        // every other level, not at each (its fresh pages cost faults).
+        let cap = n.max(2 * v.capacity());
+        *v = Vec::new();
+        *v = Vec::with_capacity(cap);
+    }
+    if n < min {
+        v.extend((0..n).map(f));
+    } else {
+        v.par_extend((0..n).into_par_iter().map(f));
+    }
+}
+
+pub(super) fn par_each_mut<T: Send>(xs: &mut [T], f: impl Fn(&mut T) + Sync + Send) {
+    if xs.len() < PAR_MIN {
+        xs.iter_mut().for_each(f)
+    } else {
+        xs.par_iter_mut().for_each(f)
+    }
+}
