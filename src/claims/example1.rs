@@ -13,10 +13,14 @@ use super::exact::{
     agreement, angle_d, angle_dd, dd_const, identity_test, jet2, qdec, sin_cos_of_tan_half, solve,
     strength_of, Identity, RationalPath, Rng, Sample, Q,
 };
+use super::figures::{
+    axis, grid, marks, params_text, series, Curves, FigureOf, FigureSpec, Region, Series, Shape,
+    THETA_RAD,
+};
 use super::witness::{find_difference, find_leaf, labels_on, window};
 use super::{dec, enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
-use crate::pave::Label;
+use crate::pave::{Label, PhaseBox};
 use crate::scene::Angle;
 use inari::{DecInterval, Interval};
 use serde_json::json;
@@ -447,6 +451,65 @@ pub fn f1_7(mutant: bool) -> Outcome {
         .correct("(C + m h'²) θ̈ + m h' h'' θ̇² = −m g h' − μ h² θ̇ (no factor 2 on the left); it changes (1.9)–(1.11), see F1.9–F1.11")
 }
 
+fn viscous_region(printed: bool, omega0: bool) -> Region {
+    Box::new(move |th, w| {
+        let p = P1::texts(DEFAULTS).map(DecInterval::new);
+        let an = Angle::new(DecInterval::new(th));
+        let w = DecInterval::new(w);
+        let (s, c) = (an.sin, an.cos);
+        let d = if omega0 {
+            derived_omega0(&p, s, c, w)
+        } else {
+            derived_omega(&p, s, c, w)
+        };
+        let pr = if printed {
+            printed_bracket(&p, s, c, w, omega0)
+        } else {
+            d
+        };
+        [pr, d]
+    })
+}
+
+/// The defaults of Example 1, as markup.
+fn example1_text() -> String {
+    format!(
+        "Example 1 (viscous disc), defaults {}",
+        params_text(&["a", "b", "m", "C", "μ", "g"], &DEFAULTS)
+    )
+}
+
+/// The picture of F1.7.
+fn f1_7_figure(_mark: Option<PhaseBox>) -> FigureSpec {
+    let pi = std::f64::consts::PI;
+    let theta_dd = "θ\u{308}";
+    let p = P1::texts(DEFAULTS).map(|x| x.mid());
+    let printed = |t: f64| printed_1_7(&p, t.sin(), t.cos(), 1.0, 2);
+    let newton = |t: f64| newton(&p, t.sin(), t.cos(), 1.0, 1).0;
+    FigureSpec::Lines(Curves {
+        title: format!("F1.7: {theta_dd} of (1.7) as printed against the Newton equations"),
+        subtitle: format!("θ\u{307} = 1; {}", example1_text()),
+        x: axis(THETA_RAD, [-pi, pi], true),
+        y: axis("θ\u{308} (rad/s²)", [-12.0, 9.0], false),
+        series: vec![
+            series(
+                "(1.7) as printed",
+                grid(-pi, pi, 400).map(|t| (t, printed(t))).collect(),
+            ),
+            series(
+                "Newton equations",
+                grid(-pi, pi, 400).map(|t| (t, newton(t))).collect(),
+            ),
+        ],
+        marks: vec![marks(
+            "θ = 0: values certified disjoint",
+            vec![(0.0, printed(0.0)), (0.0, newton(0.0))],
+            Shape::Dot,
+        )],
+        zero: true,
+    })
+}
+
 /// F1.8: `Λ̈ = ÿ − h''θ̇² − h'θ̈` against the second time derivative of
 /// `Λ = y − h(θ)` along a rational path `tan(θ(t)/2) = u₀ + u₁t + u₂t²`,
 /// `y = y₀ + y₁t + y₂t²`. Mutant: `+h''θ̇²`.
@@ -559,6 +622,45 @@ pub fn f1_9(mutant: bool) -> Outcome {
         .correct("Λ̈ = U + V N with V = 1/m + h'²/C and U = μ h² h' θ̇/C − g − h'' θ̇² (N free; in contact N = −U/V); substituting θ̈ of the corrected (1.7) before N is free gives N/m + (μ h² h' θ̇ − C g − C h'' θ̇²)/(C + m h'²), which is U/(mV) + N/m: the same N at contact")
 }
 
+/// The picture of F1.9.
+fn f1_9_figure(_mark: Option<PhaseBox>) -> FigureSpec {
+    let pi = std::f64::consts::PI;
+    let theta_dd = "θ\u{308}";
+    // Λ̈ at θ̇ = 1 with the reaction N = m g.
+    let p = P1::texts(DEFAULTS).map(|x| x.mid());
+    let n = p.m * p.g;
+    let by_1_8 = |t: f64, thdd: f64| {
+        let (_, h1, h2) = h_jet(&p, t.sin(), t.cos());
+        n / p.m - p.g - h2 - h1 * thdd
+    };
+    let pts = |f: &dyn Fn(f64) -> f64| grid(-pi, pi, 400).map(|t| (t, f(t))).collect();
+    FigureSpec::Lines(Curves {
+        title: "F1.9: Λ\u{308} of (1.9) as printed against (1.8)".into(),
+        subtitle: format!("θ\u{307} = 1, N = mg; {}", example1_text()),
+        x: axis(THETA_RAD, [-pi, pi], true),
+        y: axis("Λ\u{308} (m/s²)", [-1.0, 6.0], false),
+        series: vec![
+            series(
+                "(1.9) as printed",
+                pts(&|t| printed_1_9(&p, t.sin(), t.cos(), 1.0, n)),
+            ),
+            series(
+                format!("(1.8) with the Newton {theta_dd}"),
+                pts(&|t| by_1_8(t, newton(&p, t.sin(), t.cos(), 1.0, 1).0)),
+            ),
+            Series {
+                dashed: true,
+                ..series(
+                    format!("(1.8) with {theta_dd} of (1.7) as printed (dashed): equal to (1.9)"),
+                    pts(&|t| by_1_8(t, printed_1_7(&p, t.sin(), t.cos(), 1.0, 2))),
+                )
+            },
+        ],
+        marks: vec![],
+        zero: true,
+    })
+}
+
 fn viscous_pair(
     printed: fn(&P1<DecInterval>, DecInterval, DecInterval, DecInterval) -> DecInterval,
     derived: fn(&P1<DecInterval>, DecInterval, DecInterval, DecInterval) -> DecInterval,
@@ -615,6 +717,18 @@ pub fn f1_10(mutant: bool) -> Outcome {
     )
 }
 
+/// The picture of F1.10.
+fn f1_10_figure(mark: Option<PhaseBox>) -> FigureSpec {
+    FigureSpec::Region {
+        title: "F1.10: Ω of (1.10) as printed against free flight Λ\u{308} < 0".into(),
+        subtitle: example1_text(),
+        f: viscous_region(true, false),
+        win: window([0.0, 1.6], [0.0, 8.0]),
+        names: ["printed (1.10)".into(), "Λ\u{308} < 0".into()],
+        mark,
+    }
+}
+
 /// −N in contact (Ω₀ = {−N < 0}).
 pub fn derived_omega0<T: Scalar>(p: &P1<T>, s: T, c: T, w: T) -> T {
     -newton(p, s, c, w, 1).1
@@ -636,6 +750,18 @@ pub fn f1_11(mutant: bool) -> Outcome {
         "Ω₀: μ h² h' θ̇ − C g − C h'' θ̇² < 0 (N > 0 from the Newton equations); the printed set comes from the printed (1.7) and is wrong wherever m h'² ≠ 0; (1.12) still holds (S1.12)",
         &f,
     )
+}
+
+/// The picture of F1.11.
+fn f1_11_figure(mark: Option<PhaseBox>) -> FigureSpec {
+    FigureSpec::Region {
+        title: "F1.11: Ω_{0} of (1.11) as printed against N > 0".into(),
+        subtitle: example1_text(),
+        f: viscous_region(true, true),
+        win: window([-1.6, 1.6], [0.0, 10.0]),
+        names: ["printed (1.11)".into(), "N > 0".into()],
+        mark,
+    }
 }
 
 // ---------------------------------------------------------------- statements
@@ -997,6 +1123,43 @@ pub fn s1_eq(mutant: bool) -> Outcome {
     }
 }
 
+/// The picture of S1.eq.
+fn s1_eq_figure(_mark: Option<PhaseBox>) -> FigureSpec {
+    let (a, b, m, c, g): (f64, f64, f64, f64, f64) = (1.0, 0.5, 1.0, 0.3, 9.81);
+    let disc = |mu: f64| (mu * mu * (a - b).powi(4) - 4.0 * m * g * b * c) / (c * c);
+    let switch = 2.0 * (m * g * b * c).sqrt() / (a - b).powi(2);
+    FigureSpec::Lines(Curves {
+        title: "S1.eq: the equilibrium θ = −π/2, trace² − 4 det against μ".into(),
+        subtitle: format!(
+            "< 0: a stable focus, > 0: a stable node; {}",
+            params_text(
+                &["a", "b", "m", "C", "g"],
+                &["1", "0.5", "1", "0.3", "9.81"]
+            )
+        ),
+        x: axis("μ (kg/s)", [0.0, 21.0], false),
+        y: axis("trace² − 4 det (1/s²)", [-80.0, 260.0], false),
+        series: vec![series(
+            "(μ²(a − b)⁴ − 4mgbC)/C²",
+            grid(0.0, 21.0, 210).map(|u| (u, disc(u))).collect(),
+        )],
+        marks: vec![
+            marks(
+                "μ = 0.8 (default): a focus",
+                vec![(0.8, disc(0.8))],
+                Shape::Dot,
+            ),
+            marks("μ = 20: a node", vec![(20.0, disc(20.0))], Shape::Square),
+            marks(
+                "μ = 2√(mgbC)/(a − b)²: focus turns node",
+                vec![(switch, 0.0)],
+                Shape::Ring,
+            ),
+        ],
+        zero: true,
+    })
+}
+
 /// S1.traj: exact identity `J θ̈ + μ h² θ̇ = m b cos θ · g_Ω` (J = C + m h'²,
 /// g_Ω = b θ̇² sin θ − g). On ∂Ω (g_Ω = 0) inside Ω₀ (θ̇ cos θ < 0 by S1.12)
 /// the derivative of g_Ω along the flow is `θ̇²(b θ̇ cos θ − 2μ b h² sin θ/J) < 0`,
@@ -1048,6 +1211,16 @@ pub fn s1_traj(mutant: bool) -> Outcome {
 }
 
 /// This section's check functions, by claim id (`claims.toml` holds the rest).
+/// The claims of this section with a picture, each drawn by the function
+/// beside its check.
+pub(super) const FIGURES: &[(&str, FigureOf)] = &[
+    ("F1.7", f1_7_figure),
+    ("F1.9", f1_9_figure),
+    ("F1.10", f1_10_figure),
+    ("F1.11", f1_11_figure),
+    ("S1.eq", s1_eq_figure),
+];
+
 pub(super) const CHECKS: &[(&str, Check)] = &[
     ("F1.3", f1_3),
     ("F1.4", f1_4),

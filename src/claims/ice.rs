@@ -19,12 +19,18 @@ use super::exact::{
     agreement, angle_d, identity_test, sin_cos_of_tan_half, solve, strength_of, verdict_of,
     Identity, Rng, Sample, Q,
 };
+use super::figures::{
+    axis, grid, marks, momenta, series, signed, Curves, FigureOf, FigureSpec, Series, Shape,
+    THETA_DOT_UNITS, THETA_RAD,
+};
 use super::smooth::{
-    dt_dtheta, free_lambda_ddot, spin_rates, t_rot_printed, tau_printed, u_printed, P2,
+    dt_dtheta, free_lambda_ddot, p2_text, p2_texts, spin_rates, t_rot_printed, tau_printed,
+    u_printed, P2,
 };
 use super::witness::{find_difference, window};
 use super::{dec, enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
+use crate::pave::PhaseBox;
 use crate::roots::isolate::{isolate, point, RealFn};
 use crate::roots::{solve_3_3, Budget};
 use crate::scene::{Angle, IceDisc, Scene, SceneId};
@@ -325,6 +331,42 @@ pub fn f3_4(mutant: bool) -> Outcome {
         .correct("Λ̈ = U₀ + V₀ N with V₀ = 1/m + a² cos²θ/(A + m a² sin²θ) and U₀ = m V₀ × (the printed U₀): the printed (3.4) is the true Λ̈ divided by m V₀ > 0, so its sign, the reaction N = −U₀/V₀ and the condition (3.5) are right")
 }
 
+/// Right side R(θ) of (3.5) as printed, in `f64`.
+fn rhs(pf: &str, ps: &str, c0: f64, t: f64) -> f64 {
+    let p = p2_texts(pf, ps).map(|x| x.mid());
+    let an = Angle::new(t);
+    let (l1, l2) = logs(&an);
+    rhs_3_5(&p, an.sin, an.cos, vx_printed(&p, c0, l1, l2, 1))
+}
+
+/// The picture of F3.4.
+fn f3_4_figure(_mark: Option<PhaseBox>) -> FigureSpec {
+    let pi = std::f64::consts::PI;
+    let v = |t: f64| 1.0 + t.cos().powi(2) / (0.25 + t.sin().powi(2));
+    FigureSpec::Lines(Curves {
+        title: "F3.4: V_{0} of (3.4) as printed against Newton–Euler".into(),
+        subtitle: "disc on ice, m = 1, a = 1, A = 0.25".into(),
+        x: axis(THETA_RAD, [0.0, pi], true),
+        y: axis("V_{0} (1/kg)", [0.0, 5.5], false),
+        series: vec![
+            series(
+                "printed: 1/m",
+                grid(0.0, pi, 200).map(|t| (t, 1.0)).collect(),
+            ),
+            series(
+                "Newton–Euler: 1/m + a²cos²θ/(A + ma²sin²θ)",
+                grid(0.0, pi, 400).map(|t| (t, v(t))).collect(),
+            ),
+        ],
+        marks: vec![marks(
+            "θ = 1: values certified disjoint",
+            vec![(1.0, 1.0), (1.0, v(1.0))],
+            Shape::Dot,
+        )],
+        zero: false,
+    })
+}
+
 /// F3.5: right side minus left side of (3.5) equals N/m from Newton–Euler.
 /// Mutant: `+ m a v_x τ` in the bracket.
 pub fn f3_5(mutant: bool) -> Outcome {
@@ -483,6 +525,27 @@ pub fn s3_c0changes(mutant: bool) -> Outcome {
     }
 }
 
+/// The picture of S3.c0changes.
+fn s3_c0changes_figure(mark: Option<PhaseBox>) -> FigureSpec {
+    let p = p2_texts("2.5", "2");
+    let om = move |c0: &str, th: Interval, w: Interval| {
+        let pd = p.map(DecInterval::new);
+        let an = Angle::new(DecInterval::new(th));
+        let (l1, l2) = logs(&an);
+        let vx = vx_printed(&pd, DecInterval::new(super::dec(c0)), l1, l2, 1);
+        pd.a * DecInterval::new(w).sqr() * an.sin - rhs_3_5(&pd, an.sin, an.cos, vx)
+    };
+    FigureSpec::Region {
+        title: "S3.c0changes: Ω_{0} of (3.5) depends on c_{0}".into(),
+        subtitle: format!("disc on ice, {}, {}", momenta("2.5", "2"), p2_text()),
+        f: Box::new(move |th, w| [om("0", th, w), om("1", th, w)]),
+        // Where the boundaries of the two sets part most.
+        win: window([0.2, 1.8], [1.5, 4.5]),
+        names: ["Ω_{0} at c_{0} = 0".into(), "Ω_{0} at c_{0} = 1".into()],
+        mark,
+    }
+}
+
 /// S3.c0linear: second difference in c₀ of (3.5)'s right side vanishes and the
 /// slope is `m a² cos θ τ/(A + m a²)` (exact). Mutant: v_x with c₀².
 pub fn s3_c0linear(mutant: bool) -> Outcome {
@@ -575,6 +638,77 @@ pub fn s3_c0invariant(mutant: bool) -> Outcome {
     }
 }
 
+/// The picture of S3.c0invariant.
+fn s3_c0invariant_figure(_mark: Option<PhaseBox>) -> FigureSpec {
+    let pi = std::f64::consts::PI;
+    let ts = (0.8f64).acos();
+    let boundary = |c0: f64| -> Vec<(f64, f64)> {
+        let r = |t: f64| rhs("2.5", "2", c0, t);
+        // Ω₀ ∩ {θ̇ > 0} is θ̇ < √(R/(a sin θ)); none where R ≤ 0.
+        let at = |t: f64| {
+            let v = r(t);
+            (
+                t,
+                if v > 0.0 {
+                    (v / t.sin()).sqrt()
+                } else {
+                    f64::NAN
+                },
+            )
+        };
+        let mut pts: Vec<(f64, f64)> = Vec::new();
+        for t in grid(0.02, pi - 0.02, 600) {
+            let next = at(t);
+            // Where R changes sign between samples the boundary meets
+            // θ̇ = 0: add that point (bisection), so it does not stop
+            // a grid step short of the axis.
+            if let Some(&(t0, y0)) = pts.last() {
+                if y0.is_nan() != next.1.is_nan() {
+                    let (mut lo, mut hi) = (t0, t);
+                    for _ in 0..60 {
+                        let mid = 0.5 * (lo + hi);
+                        if (r(mid) > 0.0) == (r(lo) > 0.0) {
+                            lo = mid;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                    let z = if r(lo) > 0.0 { lo } else { hi };
+                    if y0.is_nan() {
+                        pts.push((z, f64::NAN));
+                        pts.push((z, 0.0));
+                    } else {
+                        pts.push((z, 0.0));
+                        pts.push((z, f64::NAN));
+                    }
+                }
+            }
+            pts.push(next);
+        }
+        pts
+    };
+    FigureSpec::Lines(Curves {
+        title: "S3.c0invariant: the boundary of Ω_{0} for three c_{0}".into(),
+        subtitle: format!(
+            "θ\u{307} > 0, disc on ice, {}, {}",
+            momenta("2.5", "2"),
+            p2_text()
+        ),
+        x: axis(THETA_RAD, [0.0, pi], true),
+        y: axis(THETA_DOT_UNITS, [0.0, 8.0], false),
+        series: [-5.0, 0.0, 5.0]
+            .into_iter()
+            .map(|c0| series(format!("c_{{0}} = {}", signed(c0)), boundary(c0)))
+            .collect(),
+        marks: vec![marks(
+            "common to every c_{0}: cos θ* = 0.8 and θ = π/2",
+            vec![(ts, 7.9788f64.sqrt()), (pi / 2.0, 9.81f64.sqrt())],
+            Shape::Dot,
+        )],
+        zero: false,
+    })
+}
+
 /// S3.c0anypoint: a point where τ = 0 (θ* above, θ̇ = 0) is in Ω₀ for every
 /// c₀ (exact). Mutant: the point tan(θ/2) = 1/2, where τ ≠ 0.
 pub fn s3_c0anypoint(mutant: bool) -> Outcome {
@@ -610,6 +744,41 @@ pub fn s3_c0anypoint(mutant: bool) -> Outcome {
             w,
         )
     }
+}
+
+/// The picture of S3.c0anypoint.
+fn s3_c0anypoint_figure(_mark: Option<PhaseBox>) -> FigureSpec {
+    let pi = std::f64::consts::PI;
+    let ts = (0.8f64).acos();
+    // g(A + m a² sin²θ*)/(A + m a²) with m = a = 1, A = 0.25.
+    let at_star = 9.81 * (0.25 + ts.sin().powi(2)) / 1.25;
+    FigureSpec::Lines(Curves {
+        title: "S3.c0anypoint: at θ*, θ\u{307} = 0 the point is in Ω_{0} for every c_{0}".into(),
+        subtitle: format!(
+            "right side R(θ) of (3.5); in Ω_{{0}} at θ\u{307} = 0 where R > 0; {}, {}",
+            momenta("2.5", "2"),
+            p2_text()
+        ),
+        x: axis(THETA_RAD, [0.0, pi], true),
+        y: axis("R(θ) (m/s²)", [-20.0, 30.0], false),
+        series: [-5.0, 0.0, 5.0]
+            .into_iter()
+            .map(|c0| {
+                series(
+                    format!("c_{{0}} = {}", signed(c0)),
+                    grid(0.02, pi - 0.02, 600)
+                        .map(|t| (t, rhs("2.5", "2", c0, t)))
+                        .collect(),
+                )
+            })
+            .collect(),
+        marks: vec![marks(
+            "θ*, cos θ* = 0.8: R = g(A + ma²sin²θ*)/(A + ma²) > 0",
+            vec![(ts, at_star)],
+            Shape::Dot,
+        )],
+        zero: true,
+    })
 }
 
 /// `(3.5)`'s right side as a function of θ for the forms classification.
@@ -689,6 +858,50 @@ pub fn s3_forms(mutant: bool) -> Outcome {
     Outcome::new(Verdict::NotCheckable, Strength::Certified,
         format!("Fig. 3 is lost, so the forms a, b, c cannot be matched; certified forms found on the window over {} samples: {}", ps_list.len() * c0_list.len() - undecided, names.join("; ")), w)
         .correct("the forms found are listed in the witness: the θ-projection of Ω₀ is a union of 1, 2 or more intervals depending on (p_φ, p_ψ, c₀); (a) and (b) of §2 are one and two intervals")
+}
+
+/// The picture of S3.forms.
+fn s3_forms_figure(_mark: Option<PhaseBox>) -> FigureSpec {
+    let pi = std::f64::consts::PI;
+    let samples: &[(&str, &str, f64)] = &[
+        ("2.5", "2", 0.0),
+        ("2.5", "2", 20.0),
+        ("1", "0.2", -20.0),
+        ("1", "1", 5.0),
+    ];
+    let mut ss = Vec::new();
+    for (pf, ps, c0) in samples {
+        let p = p2_texts(pf, ps).map(|x| x.mid());
+        let pts: Vec<(f64, f64)> = grid(0.02, pi - 0.02, 600)
+            .map(|t| {
+                let an = Angle::new(t);
+                let (l1, l2) = logs(&an);
+                let vx = vx_printed(&p, *c0, l1, l2, 1);
+                (t, rhs_3_5(&p, an.sin, an.cos, vx))
+            })
+            .collect();
+        ss.push(series(
+            format!(
+                "(p_{{φ}}, p_{{ψ}}, c_{{0}}) = ({pf}, {ps}, {})",
+                signed(*c0)
+            ),
+            pts,
+        ));
+    }
+    let (title, y, range) = (
+        "S3.forms: right side R(θ) of (3.5); Ω_{0}-slices where R > 0",
+        "R(θ) (m/s²)",
+        [-40.0, 40.0],
+    );
+    FigureSpec::Lines(Curves {
+        title: title.into(),
+        subtitle: format!("disc on ice, {}", p2_text()),
+        x: axis(THETA_RAD, [0.0, pi], true),
+        y: axis(y, range, false),
+        series: ss,
+        marks: vec![],
+        zero: true,
+    })
 }
 
 /// S3.symmetry: under θ → π − θ (cos → −cos, ln tg(θ/2) → −ln tg(θ/2)),
@@ -1120,6 +1333,66 @@ pub fn s3_sub2(mutant: bool) -> Outcome {
     }
 }
 
+/// The picture of S3.sub2.
+fn s3_sub2_figure(_mark: Option<PhaseBox>) -> FigureSpec {
+    let pi = std::f64::consts::PI;
+    // Subcase 2, p_φ = p_ψ = 1: equilibria where c₀ = G(θ) (S3.sub2).
+    let p = p2_texts("1", "1");
+    let pm = p.map(|x| x.mid());
+    let g = |t: f64| {
+        let th = (t / 2.0).tan();
+        g_sub2(&pm, th, ((1.0 + th * th) / 2.0).ln())
+    };
+    let (tstar, gmin) = min_g_sub2("1");
+    let t_min = 2.0 * tstar.mid().atan();
+    let g_min = gmin.mid();
+    let curve: Vec<(f64, f64)> = grid(0.05, pi - 0.05, 600).map(|t| (t, g(t))).collect();
+    let level = |c0: f64| vec![(0.0, c0), (pi, c0)];
+    let eqs: Vec<(f64, f64)> = equilibria_sub2("1", "3")
+        .into_iter()
+        .map(|r| (0.5 * (r[0] + r[1]), 3.0))
+        .collect();
+    FigureSpec::Lines(Curves {
+        title: "S3.sub2: subcase 2, equilibria where c_{0} = G(θ)".into(),
+        subtitle: format!(
+            "disc on ice, p_{{φ}} = p_{{ψ}} = 1, {}; G falls then rises (proved)",
+            p2_text()
+        ),
+        x: axis(THETA_RAD, [0.0, pi], true),
+        y: axis("c_{0}, G (m/s)", [-4.0, 12.0], false),
+        series: vec![
+            series(
+                "G(θ): (3.3) at θ\u{307} = 0 vanishes where G = c_{0}",
+                curve,
+            ),
+            Series {
+                dashed: true,
+                ..series("c_{0} = 3: two equilibria", level(3.0))
+            },
+            Series {
+                dashed: true,
+                ..series(
+                    format!("c_{{0}} = min G ≈ {g_min:.4}: one (tangent)"),
+                    level(g_min),
+                )
+            },
+            Series {
+                dashed: true,
+                ..series("c_{0} = −3: none", level(-3.0))
+            },
+        ],
+        marks: vec![
+            marks("equilibria at c_{0} = 3 (certified)", eqs, Shape::Dot),
+            marks(
+                "the tangent point (certified min G)",
+                vec![(t_min, g_min)],
+                Shape::Ring,
+            ),
+        ],
+        zero: false,
+    })
+}
+
 /// A.onlyN (the abstract): "checking only N ≥ 0 leads to wrong qualitative
 /// conclusions". N ≥ 0 alone marks Ω₀; where a point of Ω₀ lies outside Ω,
 /// free flight is possible too, and the N ≥ 0 test misses that second motion.
@@ -1394,6 +1667,17 @@ pub fn s3_sub3fig(mutant: bool) -> Outcome {
 }
 
 /// This section's check functions, by claim id (`claims.toml` holds the rest).
+/// The claims of this section with a picture, each drawn by the function
+/// beside its check.
+pub(super) const FIGURES: &[(&str, FigureOf)] = &[
+    ("F3.4", f3_4_figure),
+    ("S3.c0changes", s3_c0changes_figure),
+    ("S3.c0invariant", s3_c0invariant_figure),
+    ("S3.c0anypoint", s3_c0anypoint_figure),
+    ("S3.forms", s3_forms_figure),
+    ("S3.sub2", s3_sub2_figure),
+];
+
 pub(super) const CHECKS: &[(&str, Check)] = &[
     ("A.onlyN", a_only_n),
     ("F3.1", f3_1),

@@ -28,6 +28,7 @@ pub mod smooth;
 pub mod symbolic;
 pub mod witness;
 
+use crate::pave::PhaseBox;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -319,6 +320,38 @@ pub fn checks() -> Vec<(&'static str, Check)> {
     [example1::CHECKS, smooth::CHECKS, ice::CHECKS].concat()
 }
 
+/// Every claim's picture, by id; each is registered beside its check.
+pub fn figures_of() -> Vec<(&'static str, figures::FigureOf)> {
+    [example1::FIGURES, smooth::FIGURES, ice::FIGURES].concat()
+}
+
+/// The claims with a picture, in report order.
+pub fn with_figure() -> Vec<&'static str> {
+    let pictured = figures_of();
+    registry()
+        .iter()
+        .map(|c| c.id.as_str())
+        .filter(|id| pictured.iter().any(|(p, _)| p == id))
+        .collect()
+}
+
+/// The picture of claim `id`, if it has one; `mark` is the certified
+/// witness box of a region claim.
+pub fn figure(id: &str, mark: Option<PhaseBox>) -> Result<Option<figures::ClaimFigure>, String> {
+    match figures_of().into_iter().find(|(p, _)| *p == id) {
+        Some((_, picture)) => picture(mark).build().map(Some),
+        None => Ok(None),
+    }
+}
+
+/// Relative path of a claim's figure (SVG) inside the report folder.
+pub fn figure_path(id: &str) -> Option<String> {
+    figures_of()
+        .iter()
+        .any(|(p, _)| *p == id)
+        .then(|| format!("figures/{}.svg", id.replace('.', "_")))
+}
+
 /// Every claim, in report order (the order of `claims.toml`).
 pub fn registry() -> &'static [Claim] {
     static REGISTRY: OnceLock<Vec<Claim>> = OnceLock::new();
@@ -384,7 +417,7 @@ pub fn run_one(c: &Claim, mutant: bool) -> ClaimResult {
         correction: o.correction,
         witness: o.witness,
         proof_file: proof_file(&c.id).map(String::from),
-        figure: figures::figure_path(&c.id),
+        figure: figure_path(&c.id),
     }
 }
 

@@ -11,8 +11,13 @@ use super::exact::{
     agreement, angle_d, dd_const, identity_test, jet2, qdec, sin_cos_of_tan_half, solve,
     strength_of, verdict_of, RationalPath, Rng, Sample, Q,
 };
+use super::figures::{
+    axis, grid, marks, momenta, params_text, series, Curves, FigureOf, FigureSpec, Series, Shape,
+    THETA_RAD,
+};
 use super::{enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
+use crate::pave::PhaseBox;
 use crate::roots::critical::{band_cell, g as g_crit};
 use crate::roots::equations::kappa_alpha;
 use crate::roots::isolate::{point, RealFn};
@@ -854,6 +859,44 @@ pub fn s2_case1fr(mutant: bool) -> Outcome {
     }
 }
 
+/// The parameters of §2–3 other than the momenta, as markup.
+pub(super) fn p2_text() -> String {
+    params_text(&["m", "a", "A", "C", "g"], &DEFAULTS[..5])
+}
+
+/// sin³θ·Π̃′(θ) of (2.12) for the momenta `(pf, ps)`, scaled to a largest
+/// value 1 in absolute value on [0, π].
+fn scaled_slope(pf: &str, ps: &str) -> Vec<(f64, f64)> {
+    let pi = std::f64::consts::PI;
+    let f = ClearedSlope(p2_texts(pf, ps));
+    let pts: Vec<(f64, f64)> = grid(0.0, pi, 400).map(|t| (t, f.eval(t))).collect();
+    let scale = pts.iter().map(|p| p.1.abs()).fold(1e-300, f64::max);
+    pts.iter().map(|&(x, y)| (x, y / scale)).collect()
+}
+
+const SLOPE_TITLE: &str = "sin³θ·Π\u{303}′(θ) of (2.12), each scaled to max |·| = 1";
+
+/// The picture of S2.case1fr.
+fn s2_case1fr_figure(_mark: Option<PhaseBox>) -> FigureSpec {
+    let pi = std::f64::consts::PI;
+    FigureSpec::Lines(Curves {
+        title: "S2.case1fr: f_{r}(θ) = −cos²θ at α = 0 is not < 0".into(),
+        subtitle: "§2, case 1 of the proof that Φ > 0".into(),
+        x: axis(THETA_RAD, [0.0, pi], true),
+        y: axis("f_{r} (dimensionless)", [-1.1, 0.3], false),
+        series: vec![series(
+            "f_{r} = −cos²θ",
+            grid(0.0, pi, 300).map(|t| (t, -t.cos().powi(2))).collect(),
+        )],
+        marks: vec![marks(
+            "f_{r}(π/2) = 0 (exact)",
+            vec![(pi / 2.0, 0.0)],
+            Shape::Dot,
+        )],
+        zero: true,
+    })
+}
+
 fn roots_json(r: &EquationRoots) -> serde_json::Value {
     json!({"complete": r.complete, "count": r.unique_count(),
            "roots": r.roots.iter().map(|x| json!([x.lo, x.hi])).collect::<Vec<_>>()})
@@ -1109,6 +1152,41 @@ pub fn s2_12count(mutant: bool) -> Outcome {
     }
 }
 
+/// The picture of S2.12count.
+fn s2_12count_figure(_mark: Option<PhaseBox>) -> FigureSpec {
+    let pi = std::f64::consts::PI;
+    let samples = [("1", "1"), ("0.3", "0.3"), ("1", "0.2"), ("2.5", "2")];
+    let mut ss = Vec::new();
+    let mut roots = Vec::new();
+    for (pf, ps) in samples {
+        let (found, _, _) = equilibria(pf, ps);
+        let count = match &found {
+            Some(rs) if rs.len() == 1 => "1 root".to_string(),
+            Some(rs) => format!("{} roots", rs.len()),
+            None => "count not certified".into(),
+        };
+        ss.push(series(
+            format!("{}: {count}", momenta(pf, ps)),
+            scaled_slope(pf, ps),
+        ));
+        roots.extend(
+            found
+                .into_iter()
+                .flatten()
+                .map(|r| (0.5 * (r[0] + r[1]), 0.0)),
+        );
+    }
+    FigureSpec::Lines(Curves {
+        title: "S2.12count: how many roots (2.12) has".into(),
+        subtitle: format!("{SLOPE_TITLE}; {}", p2_text()),
+        x: axis(THETA_RAD, [0.0, pi], true),
+        y: axis("scaled slope (dimensionless)", [-1.05, 1.05], false),
+        series: ss,
+        marks: vec![marks("certified roots (enclosures)", roots, Shape::Dot)],
+        zero: true,
+    })
+}
+
 /// S2.12type: types of the equilibria (sign of Π̃'' on the certified root
 /// enclosures). Mutant: only |α| < 1 samples.
 pub fn s2_12type(mutant: bool) -> Outcome {
@@ -1136,6 +1214,55 @@ pub fn s2_12type(mutant: bool) -> Outcome {
         Outcome::new(Verdict::False, Strength::Certified, format!("not one centre nor a saddle and two centres: {}", bad.join("; ")), w)
             .correct("for |α| < 1 one centre or a saddle between two centres (all samples); for α = ±1 a saddle and one centre, or no equilibrium")
     }
+}
+
+/// The picture of S2.12type.
+fn s2_12type_figure(_mark: Option<PhaseBox>) -> FigureSpec {
+    let pi = std::f64::consts::PI;
+    // Π̃ of (2.5): its minima are centres, its maxima saddles.
+    let samples = [("0.3", "0.3"), ("1", "0.2"), ("2.5", "2")];
+    let mut ss = Vec::new();
+    let (mut centres, mut saddles) = (Vec::new(), Vec::new());
+    for (pf, ps) in samples {
+        let p = p2_texts(pf, ps).map(|x| x.mid());
+        let pot = |t: f64| {
+            p.m * p.g * p.a * t.sin()
+                + (p.ps - p.pf * t.cos()).powi(2) / (2.0 * p.big_a * t.sin().powi(2))
+        };
+        let (found, types, _) = equilibria(pf, ps);
+        let rs = found.unwrap_or_default();
+        ss.push(series(
+            format!("{}: {}", momenta(pf, ps), types.join(", ")),
+            grid(0.02, pi - 0.02, 600).map(|t| (t, pot(t))).collect(),
+        ));
+        for (r, t) in rs.iter().zip(&types) {
+            let th = 0.5 * (r[0] + r[1]);
+            match *t {
+                "centre" => centres.push((th, pot(th))),
+                "saddle" => saddles.push((th, pot(th))),
+                _ => {}
+            }
+        }
+    }
+    FigureSpec::Lines(Curves {
+        title: "S2.12type: the types of the equilibria of (2.5)".into(),
+        subtitle: format!(
+            "reduced potential Π\u{303}(θ) of (2.5): a centre at a minimum, a saddle at a maximum; {}",
+            p2_text()
+        ),
+        x: axis(THETA_RAD, [0.0, pi], true),
+        y: axis("Π\u{303} (J)", [0.0, 25.0], false),
+        series: ss,
+        marks: vec![
+            marks("centre: Π\u{303} minimum (certified)", centres, Shape::Dot),
+            marks(
+                "saddle: Π\u{303} maximum (certified)",
+                saddles,
+                Shape::Square,
+            ),
+        ],
+        zero: false,
+    })
 }
 
 /// S2.12inOmega: `U(θ, 0) − (a cos θ/A)·Π̃'(θ) = −g(1 + m a² cos²θ/A)` exactly,
@@ -1225,7 +1352,85 @@ pub fn s2_12components(mutant: bool) -> Outcome {
     }
 }
 
+/// The picture of S2.12components.
+fn s2_12components_figure(_mark: Option<PhaseBox>) -> FigureSpec {
+    let pi = std::f64::consts::PI;
+    // The gap of Ω is where Φ < 0, i.e. where κ sin³θ − f_r(θ) < 0
+    // (F2.9: Φ·A²sin⁴θ/p_M² = κ sin³θ − f_r); equilibria on the axis.
+    let samples = [("2", "2"), ("2.5", "2")];
+    let mut ss = Vec::new();
+    let mut eq = Vec::new();
+    let mut counts = Vec::new();
+    let mut gap_marks = Vec::new();
+    for (((pf, ps), shape), dashed) in samples
+        .into_iter()
+        .zip([Shape::Ring, Shape::Square])
+        .zip([false, true])
+    {
+        let d = disc(pf, ps);
+        let ka = kappa_alpha(&d).ok();
+        if let Some((kappa, alpha)) = ka.map(|(k, a)| (k.mid(), a.mid())) {
+            let f = |t: f64| {
+                let c = t.cos();
+                kappa * t.sin().powi(3) - c * (alpha - c) * (1.0 - alpha * c)
+            };
+            ss.push(Series {
+                dashed,
+                ..series(
+                    format!(
+                        "{} ({}): κ = {kappa:.4}, α = {alpha:.2}",
+                        momenta(pf, ps),
+                        if dashed { "dashed" } else { "solid" }
+                    ),
+                    grid(0.0, pi, 600).map(|t| (t, f(t))).collect(),
+                )
+            });
+        }
+        let (found, _, _) = equilibria(pf, ps);
+        let found = found.unwrap_or_default();
+        counts.push(format!("{} at ({pf}, {ps})", found.len()));
+        eq.extend(found.iter().map(|r| (0.5 * (r[0] + r[1]), 0.0)));
+        let gaps: Vec<(f64, f64)> = ka
+            .and_then(|(kappa, alpha)| solve_2_9(kappa, alpha, &Budget::default()).ok())
+            .filter(|g| g.complete)
+            .map(|g| g.roots.iter().map(|r| (0.5 * (r.lo + r.hi), 0.0)).collect())
+            .unwrap_or_default();
+        gap_marks.push(marks(
+            format!("({pf}, {ps}): ends of the gap of Ω, certified roots of (2.9)"),
+            gaps,
+            shape,
+        ));
+    }
+    let mut all = vec![marks(
+        format!("equilibria (certified): {}", counts.join(", ")),
+        eq,
+        Shape::Dot,
+    )];
+    all.extend(gap_marks);
+    FigureSpec::Lines(Curves {
+        title: "S2.12components: equilibria on the two sides of the gap of Ω".into(),
+        subtitle: format!(
+            "κ sin³θ − f_{{r}}(θ), the sign of Φ of (2.8): Ω has a gap where it is < 0; {}",
+            p2_text()
+        ),
+        x: axis(THETA_RAD, [0.0, pi], true),
+        y: axis("κ sin³θ − f_{r} (dimensionless)", [-0.1, 0.3], false),
+        series: ss,
+        marks: all,
+        zero: true,
+    })
+}
+
 /// This section's check functions, by claim id (`claims.toml` holds the rest).
+/// The claims of this section with a picture, each drawn by the function
+/// beside its check.
+pub(super) const FIGURES: &[(&str, FigureOf)] = &[
+    ("S2.case1fr", s2_case1fr_figure),
+    ("S2.12count", s2_12count_figure),
+    ("S2.12type", s2_12type_figure),
+    ("S2.12components", s2_12components_figure),
+];
+
 pub(super) const CHECKS: &[(&str, Check)] = &[
     ("F2.1", f2_1),
     ("F2.5", f2_5),

@@ -39,7 +39,8 @@ pub fn run_check_paper(a: &CheckPaperArgs) -> CliResult {
         write("claims.toml", claims::TABLE.to_string())?;
         for r in results.iter().filter(|r| r.figure.is_some()) {
             let mark = claims::figures::witness_box(&r.witness);
-            claims::figures::draw(&r.id, draft.path(), mark).map_err(CliError::runtime)?;
+            detach::figures::claims::draw_claim(&r.id, draft.path(), mark)
+                .map_err(CliError::runtime)?;
         }
         draft.commit().map_err(fail)?;
     }

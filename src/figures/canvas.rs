@@ -37,24 +37,37 @@ pub fn em_of(size: f64) -> f64 {
     size / 1.24
 }
 
-/// Error of a [`Figure`].
-#[derive(Debug)]
-pub struct FigureError(pub String);
-
-impl std::fmt::Display for FigureError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
+/// Why a figure was not written.
+#[derive(Debug, thiserror::Error)]
+pub enum FigureError {
+    #[error("picture size {}×{} is too small (at least {}×{})", .size.0, .size.1, .least.0, .least.1)]
+    TooSmall { size: (u32, u32), least: (u32, u32) },
+    #[error("picture size {0}×{1} is too large (at most {MAX_SIDE} pixels a side)")]
+    TooLarge(u32, u32),
+    #[error("cannot create directory {path}: {source}")]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{0}: a figure file's name ends in .svg or .png")]
+    Format(PathBuf),
+    #[error("drawing failed: {0}")]
+    Draw(String),
+    #[error("the embedded font could not be registered")]
+    Font,
 }
 
-impl std::error::Error for FigureError {}
+/// A drawing error, from plotters or a backend.
+pub fn draw_err(e: impl std::fmt::Display) -> FigureError {
+    FigureError::Draw(e.to_string())
+}
 
 type DErr = DrawingErrorKind<FigureError>;
 
 fn lift<E: std::error::Error + Send + Sync + 'static>(e: DrawingErrorKind<E>) -> DErr {
     match e {
         DrawingErrorKind::DrawingError(e) => {
-            DrawingErrorKind::DrawingError(FigureError(e.to_string()))
+            DrawingErrorKind::DrawingError(FigureError::Draw(e.to_string()))
         }
         DrawingErrorKind::FontError(e) => DrawingErrorKind::FontError(e),
     }
@@ -374,7 +387,7 @@ impl SvgDoc {
         // Written once: every caller draws to a temporary file that
         // `files::render_atomic` renames into place.
         std::fs::write(&self.path, doc)
-            .map_err(|e| FigureError(format!("cannot write {}: {e}", self.path.display())))
+            .map_err(|e| FigureError::Draw(format!("cannot write {}: {e}", self.path.display())))
     }
 }
 
@@ -546,19 +559,6 @@ impl<'a> Figure<'a> {
                 Ok(())
             }
         }
-    }
-
-    /// Draws markup text with its pen origin (baseline) at `o`.
-    pub fn text_at(
-        &mut self,
-        text: &str,
-        o: (f64, f64),
-        size: f64,
-        bold: bool,
-        color: BackendColor,
-    ) -> Result<(), DErr> {
-        let lay = layout(text, em_of(size), bold);
-        self.put_text(&lay, o, color, FontTransform::None)
     }
 
     fn put_text(

@@ -1,7 +1,7 @@
 //! The speed–accuracy chart of `detach methods`: undecided area against
 //! time, log–log, one panel per problem, one curve per method (and peer).
 
-use super::{draw_err, start_drawing, AtlasError};
+use super::{draw_err, write_figure, FigureError};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -40,27 +40,18 @@ pub fn draw_speed_accuracy(
     size: (u32, u32),
     svg: &Path,
     png: &Path,
-) -> Result<(), AtlasError> {
-    start_drawing([svg, png])?;
-    crate::files::render_atomic(svg, |tmp| {
-        let root = SVGBackend::new(tmp, size).into_drawing_area();
-        render(&root, panels, title)?;
-        root.present().map_err(draw_err)
-    })
-    .map_err(AtlasError::Draw)?;
-    crate::files::render_atomic(png, |tmp| {
-        let root = BitMapBackend::new(tmp, size).into_drawing_area();
-        render(&root, panels, title)?;
-        root.present().map_err(draw_err)
-    })
-    .map_err(AtlasError::Draw)
+) -> Result<(), FigureError> {
+    for path in [svg, png] {
+        write_figure(path, size, |root| render(root, panels, title))?;
+    }
+    Ok(())
 }
 
 fn render<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     panels: &[Panel],
     title: &str,
-) -> Result<(), AtlasError> {
+) -> Result<(), FigureError> {
     root.fill(&WHITE).map_err(draw_err)?;
     let root = root
         .titled(title, ("sans-serif", 22).into_font())

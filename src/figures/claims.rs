@@ -10,75 +10,15 @@
 
 use super::roots::okabe_ito as oi;
 use super::{
-    class_swatch, draw_err, draw_x_ticks, register_fonts, text_width, theta_ticks, AtlasError,
-    CellLayer, Class,
+    class_swatch, draw_err, draw_x_ticks, native, nice_ticks, text_width, theta_ticks, tick_label,
+    write_figure, Area, CellLayer, Class, FigureError,
 };
-use super::{native, nice_ticks, tick_label, Figure};
-use crate::pave::{Paving, PhaseBox};
-use plotters::coord::Shift;
+use crate::claims::figures::{Axis, ClaimFigure, Shape, THETA_DOT_UNITS, THETA_RAD};
+use crate::pave::PhaseBox;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::FontTransform;
 use std::path::Path;
-
-/// One claim's picture.
-pub enum ClaimFigure {
-    Region(RegionFigure),
-    Lines(Curves),
-}
-
-/// Two sets compared on a window: a paving of the pair (its root box is the
-/// window), coloured by its leaves' labels, and the witness box.
-pub struct RegionFigure {
-    /// Markup (`Ω_{0}`, `θ\u{308}` …), as all text here.
-    pub title: String,
-    pub subtitle: String,
-    pub paving: Box<Paving>,
-    /// The two sets, in the paving's constraint order.
-    pub names: [String; 2],
-    pub mark: Option<PhaseBox>,
-}
-
-/// Curves and marked points on two axes.
-pub struct Curves {
-    pub title: String,
-    pub subtitle: String,
-    pub x: Axis,
-    pub y: Axis,
-    pub series: Vec<Series>,
-    pub marks: Vec<Marks>,
-    /// Draw the line y = 0 (listed in the legend).
-    pub zero: bool,
-}
-
-/// An axis: its name and the range shown.
-pub struct Axis {
-    pub name: &'static str,
-    pub range: [f64; 2],
-    /// Ticks at multiples of π/4 (an angle axis).
-    pub angle: bool,
-}
-
-/// One curve; a non-finite value breaks it.
-pub struct Series {
-    pub name: String,
-    pub pts: Vec<(f64, f64)>,
-    pub dashed: bool,
-}
-
-/// Points drawn with one marker.
-pub struct Marks {
-    pub name: String,
-    pub pts: Vec<(f64, f64)>,
-    pub shape: Shape,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Shape {
-    Dot,
-    Ring,
-    Square,
-}
 
 /// What a legend entry shows.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -264,9 +204,7 @@ pub fn legend(fig: &ClaimFigure) -> Vec<Entry> {
     Prepared::new(fig).legend()
 }
 
-type Area<'a> = DrawingArea<Figure<'a>, Shift>;
-
-fn render(root: &Area, prep: &Prepared) -> Result<(), AtlasError> {
+fn render(root: &Area, prep: &Prepared) -> Result<(), FigureError> {
     let (width, height) = root.dim_in_pixel();
     root.fill(&WHITE).map_err(draw_err)?;
     let (title, subtitle) = match prep.fig {
@@ -288,12 +226,12 @@ fn render(root: &Area, prep: &Prepared) -> Result<(), AtlasError> {
             let b = r.paving.root;
             (
                 Axis {
-                    name: super::THETA_RAD,
+                    name: THETA_RAD,
                     range: b.theta,
                     angle: true,
                 },
                 Axis {
-                    name: super::THETA_DOT_UNITS,
+                    name: THETA_DOT_UNITS,
                     range: b.theta_dot,
                     angle: false,
                 },
@@ -349,7 +287,7 @@ fn render(root: &Area, prep: &Prepared) -> Result<(), AtlasError> {
                     fig.stroke(&shift(&outline), ink, 1.5)?;
                     fig.stroke(&shift(&ring), ink, 2.0)
                 })
-                .map_err(AtlasError::Draw)?;
+                .map_err(FigureError::Draw)?;
             }
         }
         (ClaimFigure::Lines(c), _) => {
@@ -381,7 +319,7 @@ fn render(root: &Area, prep: &Prepared) -> Result<(), AtlasError> {
                 }
                 Ok(())
             })
-            .map_err(AtlasError::Draw)?;
+            .map_err(FigureError::Draw)?;
             for m in &c.marks {
                 for &p in &m.pts {
                     let (x, y) = to_px(p);
@@ -471,7 +409,7 @@ fn draw_marker(
     at: (i32, i32),
     shape: Shape,
     rgb: (u8, u8, u8),
-) -> Result<(), AtlasError> {
+) -> Result<(), FigureError> {
     let c = col(rgb);
     match shape {
         Shape::Dot => area.draw(&Circle::new(at, 5, c.filled())),
@@ -484,7 +422,7 @@ fn draw_marker(
     .map_err(draw_err)
 }
 
-fn draw_legend(area: &Area, entries: &[Entry]) -> Result<(), AtlasError> {
+fn draw_legend(area: &Area, entries: &[Entry]) -> Result<(), FigureError> {
     let name = ("sans-serif", 15).into_font();
     let body = ("sans-serif", 13).into_font();
     let (x0, sw, sh) = (12, 34, 20);
@@ -509,7 +447,7 @@ fn draw_legend(area: &Area, entries: &[Entry]) -> Result<(), AtlasError> {
                     }
                     Ok(())
                 })
-                .map_err(AtlasError::Draw)?;
+                .map_err(FigureError::Draw)?;
             }
             Swatch::Mark { rgb, shape } => {
                 draw_marker(area, (x0 + sw / 2, y + sh / 2), shape, rgb)?;
@@ -668,42 +606,38 @@ fn dashes(pts: &[(f64, f64)], on: f64, off: f64) -> Vec<Vec<(f64, f64)>> {
     out
 }
 
+/// Writes `<dir>/figures/<id>.svg` and `.png` for a claim with a figure;
+/// `mark` is the certified witness box of region claims.
+pub fn draw_claim(id: &str, dir: &Path, mark: Option<PhaseBox>) -> Result<(), FigureError> {
+    match crate::claims::figure(id, mark).map_err(FigureError::Draw)? {
+        Some(fig) => draw_claim_figure(&fig, &dir.join("figures"), &id.replace('.', "_")),
+        None => Ok(()),
+    }
+}
+
 /// Writes `<dir>/<stem>.svg` and `.png`.
-pub fn draw_claim_figure(fig: &ClaimFigure, dir: &Path, stem: &str) -> Result<(), String> {
-    register_fonts().map_err(|e| e.to_string())?;
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+pub fn draw_claim_figure(fig: &ClaimFigure, dir: &Path, stem: &str) -> Result<(), FigureError> {
     let prep = Prepared::new(fig);
     for ext in ["svg", "png"] {
-        crate::files::render_atomic(&dir.join(format!("{stem}.{ext}")), |tmp| {
-            let f = if ext == "svg" {
-                Figure::svg(tmp, SIZE)
-            } else {
-                Figure::png(tmp, SIZE)
-            };
-            let root = f.into_drawing_area();
-            render(&root, &prep)?;
-            root.present().map_err(draw_err)
+        write_figure(&dir.join(format!("{stem}.{ext}")), SIZE, |root| {
+            render(root, &prep)
         })?;
     }
     Ok(())
 }
 
 /// The PNG picture of `fig` as RGB bytes (3 a pixel, row-major, `SIZE`).
-pub fn render_rgb(fig: &ClaimFigure) -> Result<Vec<u8>, String> {
-    register_fonts().map_err(|e| e.to_string())?;
+pub fn render_rgb(fig: &ClaimFigure) -> Result<Vec<u8>, FigureError> {
     let prep = Prepared::new(fig);
-    let mut buf = vec![0u8; 3 * (SIZE.0 * SIZE.1) as usize];
-    {
-        let root = Figure::rgb(&mut buf, SIZE).into_drawing_area();
-        render(&root, &prep).map_err(|e| e.to_string())?;
-        root.present().map_err(|e| e.to_string())?;
-    }
-    Ok(buf)
+    super::render_rgb(SIZE, |root| render(root, &prep))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::claims::witness::window;
+    use crate::claims::{figure, with_figure};
+    use std::collections::HashMap;
 
     #[test]
     fn clipping_keeps_lines_inside_and_breaks_them_at_gaps() {
@@ -747,5 +681,110 @@ mod tests {
         assert!(px + pw as i32 <= lx, "plot reaches into the legend");
         assert!(ly >= 0 && lx + lw as i32 <= SIZE.0 as i32 && ly + lh as i32 <= SIZE.1 as i32);
         assert!(py + ph as i32 <= SIZE.1 as i32);
+    }
+
+    /// Exact colours of the plot area's pixels (its frame left out), with
+    /// their counts.
+    fn plot_colours(buf: &[u8]) -> HashMap<(u8, u8, u8), usize> {
+        let (px, py, pw, ph) = plot_rect();
+        let mut out = HashMap::new();
+        for y in py + 1..py + ph as i32 - 1 {
+            for x in px + 1..px + pw as i32 - 1 {
+                let k = 3 * (y as usize * SIZE.0 as usize + x as usize);
+                *out.entry((buf[k], buf[k + 1], buf[k + 2])).or_insert(0) += 1;
+            }
+        }
+        out
+    }
+
+    fn swatch_rgb(s: &Swatch) -> (u8, u8, u8) {
+        match *s {
+            Swatch::Fill(c) => c.rgb(),
+            Swatch::Line { rgb, .. } | Swatch::Mark { rgb, .. } => rgb,
+        }
+    }
+
+    /// Every colour the legend lists is drawn in the plot (for curves, on at
+    /// least 30 pixels of exactly that colour: the middle of a 2-pixel line),
+    /// and a region picture draws no colour its legend does not list.
+    #[test]
+    fn figures_draw_exactly_the_colours_their_legends_list() {
+        for id in with_figure() {
+            let fig = figure(id, None).expect("drawn").expect("has a figure");
+            let entries = legend(&fig);
+            assert!(!entries.is_empty(), "{id}: empty legend");
+            let drawn = plot_colours(&render_rgb(&fig).expect("rendered"));
+            for e in &entries {
+                let c = swatch_rgb(&e.swatch);
+                let least = match e.swatch {
+                    Swatch::Line { .. } => 30,
+                    _ => 1,
+                };
+                let n = drawn.get(&c).copied().unwrap_or(0);
+                assert!(n >= least, "{id}: `{}` listed, {n} pixels drawn", e.text);
+            }
+            if let ClaimFigure::Region(_) = fig {
+                let listed: Vec<(u8, u8, u8)> =
+                    entries.iter().map(|e| swatch_rgb(&e.swatch)).collect();
+                let hatch = entries
+                    .iter()
+                    .any(|e| e.swatch == Swatch::Fill(Class::Undefined));
+                for (c, n) in &drawn {
+                    let ok = listed.contains(c) || (hatch && *c == (0x22, 0x22, 0x22));
+                    assert!(ok, "{id}: {c:?} drawn on {n} pixels, not in the legend");
+                }
+            }
+        }
+    }
+
+    /// The witness box of a region picture is drawn and listed.
+    #[test]
+    fn region_figures_mark_their_witness() {
+        let mark = window([0.7, 0.75], [5.4, 5.5]);
+        let fig = figure("F1.10", Some(mark)).unwrap().unwrap();
+        assert!(legend(&fig)
+            .iter()
+            .any(|e| matches!(e.swatch, Swatch::Mark { .. }) && e.text.contains("witness")));
+        let with = plot_colours(&render_rgb(&fig).unwrap());
+        let without = plot_colours(&render_rgb(&figure("F1.10", None).unwrap().unwrap()).unwrap());
+        let black = |m: &HashMap<(u8, u8, u8), usize>| m.get(&(0, 0, 0)).copied().unwrap_or(0);
+        assert!(black(&with) > 40 && black(&without) == 0);
+    }
+
+    /// Each curve has its own colour in the legend.
+    #[test]
+    fn curves_have_distinct_legend_colours() {
+        for id in with_figure() {
+            let Some(ClaimFigure::Lines(c)) = figure(id, None).unwrap() else {
+                continue;
+            };
+            let fig = ClaimFigure::Lines(c);
+            let lines: Vec<(u8, u8, u8)> = legend(&fig)
+                .iter()
+                .filter_map(|e| match e.swatch {
+                    Swatch::Line { rgb, .. } => Some(rgb),
+                    _ => None,
+                })
+                .collect();
+            let ClaimFigure::Lines(c) = &fig else {
+                unreachable!()
+            };
+            assert_eq!(lines.len(), c.series.len() + usize::from(c.zero), "{id}");
+            for (i, a) in lines.iter().enumerate() {
+                assert!(!lines[i + 1..].contains(a), "{id}: colour {a:?} twice");
+            }
+        }
+    }
+
+    /// Every registered picture belongs to a claim of the table (a typo in
+    /// an id would leave it never drawn), and is registered once.
+    #[test]
+    fn every_picture_belongs_to_one_claim() {
+        let pictured = crate::claims::figures_of();
+        let ids = with_figure();
+        assert_eq!(ids.len(), pictured.len(), "{ids:?}");
+        for (id, _) in &pictured {
+            assert!(ids.contains(id), "{id}: no such claim");
+        }
     }
 }

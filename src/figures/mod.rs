@@ -15,6 +15,7 @@
 mod canvas;
 pub mod chart;
 pub mod claims;
+mod output;
 mod palette;
 mod portrait;
 mod raster;
@@ -24,23 +25,21 @@ pub mod stability;
 mod ticks;
 
 pub use canvas::{
-    layout, native, parse_size, plain, text_width, Figure, FigureError, Formats, MAX_SIDE,
+    draw_err, layout, native, parse_size, plain, text_width, Figure, FigureError, Formats, MAX_SIDE,
 };
+pub use output::{check_size, render_rgb, write_figure, Area};
 pub use palette::{delta_e, min_delta_e};
 pub use portrait::{level_lines, phase_portrait, phase_portrait_px, thin, trajectories, Polyline};
 pub use raster::{merge_rects, rasterize, Class, PixelRect, Raster};
 pub use regions::{even_odd_area, inside_even_odd, vector_regions, Region, Tracing};
 pub use ticks::{nice_ticks, theta_ticks, tick_label};
 
-use crate::files::render_atomic;
 use crate::pave::Paving;
 use crate::scene::{Scene, Variant};
-use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::FontStyle;
-use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
+use std::path::Path;
 
 /// Size of the whole picture in pixels (PNG pixels; SVG user units).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -71,23 +70,6 @@ pub struct PictureInfo<'a> {
     /// The window inside the scene's domain, as given (`θ ∈ [0.5, 2.5]`),
     /// when the picture shows one; stated in the subtitle.
     pub window: Option<String>,
-}
-
-#[derive(Debug, thiserror::Error)]
-pub enum AtlasError {
-    #[error("picture size {0}×{1} is too small (at least {MIN_WIDTH}×{MIN_HEIGHT})")]
-    TooSmall(u32, u32),
-    #[error("cannot create directory {path}: {source}")]
-    Io {
-        path: PathBuf,
-        source: std::io::Error,
-    },
-    #[error("picture size {0}×{1} is too large (at most {MAX_SIDE} pixels a side)")]
-    TooLarge(u32, u32),
-    #[error("drawing failed: {0}")]
-    Draw(String),
-    #[error("the embedded font could not be registered")]
-    Font,
 }
 
 /// Smallest accepted picture.
@@ -141,24 +123,6 @@ pub fn plot_area_pixels(style: &AtlasStyle) -> (u32, u32) {
     )
 }
 
-static FONTS: OnceLock<bool> = OnceLock::new();
-
-/// Registers the embedded DejaVu Sans (regular and bold) as `sans-serif` for
-/// PNG text. Runs once per process; called by [`draw_atlas`].
-pub fn register_fonts() -> Result<(), AtlasError> {
-    let ok = *FONTS.get_or_init(|| {
-        plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
-            .is_ok()
-            && plotters::style::register_font("sans-serif", FontStyle::Bold, dejavu::sans::bold())
-                .is_ok()
-    });
-    if ok {
-        Ok(())
-    } else {
-        Err(AtlasError::Font)
-    }
-}
-
 /// Closed rings in pixels.
 type Rings = Vec<Vec<(f64, f64)>>;
 
@@ -188,7 +152,7 @@ pub fn draw_atlas(
     style: &AtlasStyle,
     svg_path: &Path,
     png_path: &Path,
-) -> Result<(), AtlasError> {
+) -> Result<(), FigureError> {
     draw_atlas_files(paving, info, style, Some(svg_path), Some(png_path))
 }
 
@@ -199,51 +163,14 @@ pub fn draw_atlas_files(
     style: &AtlasStyle,
     svg_path: Option<&Path>,
     png_path: Option<&Path>,
-) -> Result<(), AtlasError> {
-    if style.width < MIN_WIDTH || style.height < MIN_HEIGHT {
-        return Err(AtlasError::TooSmall(style.width, style.height));
-    }
-    if style.width > MAX_SIDE || style.height > MAX_SIDE {
-        return Err(AtlasError::TooLarge(style.width, style.height));
-    }
-    start_drawing([svg_path, png_path].into_iter().flatten())?;
-    let prep = prepare(paving, info, style);
+) -> Result<(), FigureError> {
     let size = (style.width, style.height);
-    if let Some(p) = svg_path {
-        render_atomic(p, |tmp| {
-            let root = Figure::svg(tmp, size).into_drawing_area();
-            render(&root, paving, &prep)?;
-            root.present().map_err(draw_err)
-        })
-        .map_err(AtlasError::Draw)?;
-    }
-    if let Some(p) = png_path {
-        render_atomic(p, |tmp| {
-            let root = Figure::png(tmp, size).into_drawing_area();
-            render(&root, paving, &prep)?;
-            root.present().map_err(draw_err)
-        })
-        .map_err(AtlasError::Draw)?;
+    check_size(size, (MIN_WIDTH, MIN_HEIGHT))?;
+    let prep = prepare(paving, info, style);
+    for p in [svg_path, png_path].into_iter().flatten() {
+        write_figure(p, size, |root| render(root, paving, &prep))?;
     }
     Ok(())
-}
-
-/// Registers the fonts and creates the folders the output files go into.
-fn start_drawing<'a>(paths: impl IntoIterator<Item = &'a Path>) -> Result<(), AtlasError> {
-    register_fonts()?;
-    for p in paths {
-        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|source| AtlasError::Io {
-                path: dir.to_path_buf(),
-                source,
-            })?;
-        }
-    }
-    Ok(())
-}
-
-fn draw_err(e: impl std::fmt::Display) -> AtlasError {
-    AtlasError::Draw(e.to_string())
 }
 
 fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared {
@@ -317,11 +244,10 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
 /// construction, non-uniqueness when Ω₀ ⊂ Ω is proved.
 fn empty_classes(paving: &Paving, info: &PictureInfo) -> [Option<&'static str>; 6] {
     let empty = crate::pave::empty_cells(paving, info.scene, info.variant);
-    // The four cell classes come first, in the order of cells 2..6.
-    std::array::from_fn(|j| {
-        (j < Class::CELLS.len())
-            .then(|| empty[j + 2].map(|e| e.symbol()))
-            .flatten()
+    Class::ALL.map(|c| {
+        c.cell()
+            .and_then(|cell| empty[cell.index()])
+            .map(|e| e.symbol())
     })
 }
 
@@ -374,9 +300,7 @@ const INK: RGBColor = RGBColor(0x22, 0x22, 0x22);
 const LINE: RGBColor = RGBColor(0x10, 0x10, 0x30);
 const WARN: RGBColor = RGBColor(0xB0, 0x20, 0x20);
 
-type Area<'a> = DrawingArea<Figure<'a>, Shift>;
-
-fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasError> {
+fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), FigureError> {
     let (width, height) = root.dim_in_pixel();
     let s = prep.scale;
     let (title_h, legend_w) = (px(s, TITLE_H), px(s, LEGEND_W));
@@ -433,7 +357,7 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), AtlasErro
         }
         Ok(())
     })
-    .map_err(AtlasError::Draw)?;
+    .map_err(FigureError::Draw)?;
 
     // Axes: θ̇ ticks by plotters, θ ticks at multiples of π/4 by hand.
     let label_font = ("sans-serif", 16.0 * s).into_font();
@@ -541,7 +465,7 @@ impl CellLayer {
     }
 
     /// Draws the layer on `plot` (the plot area, origin at its top left).
-    pub(crate) fn draw(&self, plot: &Area) -> Result<(), AtlasError> {
+    pub(crate) fn draw(&self, plot: &Area) -> Result<(), FigureError> {
         // Undecided is the background (so anti-aliasing seams between regions
         // read as undecided); then the cells and undefined leaves: exact vector
         // regions in SVG, the conservative raster in PNG.
@@ -561,7 +485,7 @@ impl CellLayer {
             }
             Ok(())
         })
-        .map_err(AtlasError::Draw)?;
+        .map_err(FigureError::Draw)?;
         if !plot_is_vector(plot) {
             for pr in self.rects.iter().filter(|r| r.class != Class::Undecided) {
                 plot.draw(&Rectangle::new(
@@ -584,7 +508,7 @@ impl CellLayer {
                 .collect();
             fig.hatch(&shifted, (0x22, 0x22, 0x22))
         })
-        .map_err(AtlasError::Draw)
+        .map_err(FigureError::Draw)
     }
 }
 
@@ -599,7 +523,7 @@ fn draw_x_ticks(
     pw: u32,
     font: &TextStyle,
     s: f64,
-) -> Result<(), AtlasError> {
+) -> Result<(), FigureError> {
     for (t, label) in ticks {
         let x = ((t - range[0]) / (range[1] - range[0]) * f64::from(pw)).round() as i32;
         let x = x.min(pw as i32 - 1);
@@ -690,9 +614,6 @@ const HATCH_WIDEN: u32 = 6;
 
 /// θ̇ as θ followed by a combining dot above (placed by the text layout).
 pub const THETA_DOT: &str = "θ\u{307}";
-/// Axis names with units (rad, rad/s), for the paper-check figures.
-pub const THETA_RAD: &str = "θ (rad)";
-pub const THETA_DOT_UNITS: &str = "θ\u{307} (rad/s)";
 
 /// The symbol of a class as markup: complements carry a combining overbar.
 /// A legend swatch of `class` at `(x, y)`, `(w, h)` pixels: its colour,
@@ -703,7 +624,7 @@ fn class_swatch(
     (x, y): (i32, i32),
     (w, h): (i32, i32),
     s: f64,
-) -> Result<(), AtlasError> {
+) -> Result<(), FigureError> {
     area.draw(&Rectangle::new(
         [(x, y), (x + w, y + h)],
         rgb(class).filled(),
@@ -717,7 +638,7 @@ fn class_swatch(
                 (0x22, 0x22, 0x22),
             )
         })
-        .map_err(AtlasError::Draw)?;
+        .map_err(FigureError::Draw)?;
     }
     area.draw(&Rectangle::new(
         [(x, y), (x + w, y + h)],
@@ -738,7 +659,7 @@ fn symbol_markup(class: Class) -> &'static str {
     }
 }
 
-fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), AtlasError> {
+fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), FigureError> {
     let s = prep.scale;
     let k = |v: i32| pxi(s, v);
     let head = ("sans-serif", 17.0 * s).into_font().style(FontStyle::Bold);

@@ -4,29 +4,13 @@
 //! set; text goes through [`crate::figures::Figure`] (typeset sub- and
 //! superscripts, even glyph spacing in PNG).
 
-use crate::figures::{nice_ticks, tick_label, Figure, Formats};
+use crate::figures::{
+    check_size, draw_err, nice_ticks, tick_label, write_figure, Area, FigureError, Formats,
+};
 use crate::roots::critical::{AtlasBox, AtlasLabel, CriticalCurve};
 use crate::roots::tangency::{Outcome, TangencyReport};
-use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
-use std::sync::Once;
-
-static FONT: Once = Once::new();
-
-/// Registers DejaVu Sans for text drawn by plotters' own bitmap backend
-/// (once per process). The figures here lay text out themselves; this is
-/// kept for other bitmap drawings.
-pub fn register_font() {
-    FONT.call_once(|| {
-        // An embedded, valid TrueType font: registration cannot fail.
-        let _ = plotters::style::register_font(
-            "sans-serif",
-            plotters::style::FontStyle::Normal,
-            dejavu::sans::regular(),
-        );
-    });
-}
 
 /// Okabe–Ito colours (safe for the common colour-vision deficiencies).
 pub mod okabe_ito {
@@ -53,53 +37,22 @@ pub struct FigureOptions {
 /// Smallest accepted size of these figures.
 pub const MIN_SIZE: (u32, u32) = (400, 300);
 
-type DrawResult = Result<(), String>;
-type Area<'a> = DrawingArea<Figure<'a>, Shift>;
-
-fn err<E: std::fmt::Display>(e: E) -> String {
-    format!("drawing failed: {e}")
-}
+type DrawResult = Result<(), FigureError>;
 
 /// Writes `<stem>.svg` and/or `<stem>.png` in `dir` with the same drawing.
-fn write_figure(
+fn write_files(
     dir: &Path,
     stem: &str,
     default_size: (u32, u32),
     opts: &FigureOptions,
     draw: impl Fn(&Area) -> DrawResult,
-) -> Result<Vec<PathBuf>, String> {
+) -> Result<Vec<PathBuf>, FigureError> {
     let size = opts.size.unwrap_or(default_size);
-    if size.0 < MIN_SIZE.0
-        || size.1 < MIN_SIZE.1
-        || size.0 > crate::figures::MAX_SIDE
-        || size.1 > crate::figures::MAX_SIDE
-    {
-        return Err(format!(
-            "figure size {}×{} outside [{}, {}] × [{}, {}]",
-            size.0,
-            size.1,
-            MIN_SIZE.0,
-            crate::figures::MAX_SIDE,
-            MIN_SIZE.1,
-            crate::figures::MAX_SIDE
-        ));
-    }
-    // plotters measures some text itself (captions), with registered fonts.
-    crate::figures::register_fonts().map_err(err)?;
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    check_size(size, MIN_SIZE)?;
     let mut files = Vec::new();
     for ext in opts.formats.extensions() {
         let path = dir.join(format!("{stem}.{ext}"));
-        crate::files::render_atomic(&path, |tmp| {
-            let fig = if ext == "svg" {
-                Figure::svg(tmp, size)
-            } else {
-                Figure::png(tmp, size)
-            };
-            let root = fig.into_drawing_area();
-            draw(&root)?;
-            root.present().map_err(err)
-        })?;
+        write_figure(&path, size, &draw)?;
         files.push(path);
     }
     Ok(files)
@@ -119,7 +72,7 @@ fn log_label(v: f64) -> String {
 }
 
 fn draw_tangency(rep: &TangencyReport, root: &Area) -> DrawResult {
-    root.fill(&WHITE).map_err(err)?;
+    root.fill(&WHITE).map_err(draw_err)?;
     let k_max = rep.rows.iter().map(|r| r.k).max().unwrap_or(1);
     let e_max = rep
         .rows
@@ -137,7 +90,7 @@ fn draw_tangency(rep: &TangencyReport, root: &Area) -> DrawResult {
         .y_label_area_size(72)
         // Integer k, with half a step of room at both ends.
         .build_cartesian_2d(0i32..(k_max + 1), (10f64..e_max).log_scale())
-        .map_err(err)?;
+        .map_err(draw_err)?;
     chart
         .configure_mesh()
         .x_desc("k")
@@ -156,7 +109,7 @@ fn draw_tangency(rep: &TangencyReport, root: &Area) -> DrawResult {
         .light_line_style(RGBColor(0xEE, 0xEE, 0xEE))
         .bold_line_style(RGBColor(0xCC, 0xCC, 0xCC))
         .draw()
-        .map_err(err)?;
+        .map_err(draw_err)?;
     for (sign, color, name) in [
         (-1, oi::BLUE, "κ below κ_{0} (two roots)"),
         (1, oi::VERMILLION, "κ above κ_{0} (no root)"),
@@ -172,7 +125,7 @@ fn draw_tangency(rep: &TangencyReport, root: &Area) -> DrawResult {
                 pts.iter().map(|p| (p.0, p.1)),
                 color.stroke_width(2),
             ))
-            .map_err(err)?
+            .map_err(draw_err)?
             .label(name)
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
@@ -188,13 +141,13 @@ fn draw_tangency(rep: &TangencyReport, root: &Area) -> DrawResult {
             if sign < 0 {
                 chart
                     .draw_series(std::iter::once(Circle::new((x, y), r, style)))
-                    .map_err(err)?;
+                    .map_err(draw_err)?;
             } else {
                 chart
                     .draw_series(std::iter::once(
                         EmptyElement::at((x, y)) + Rectangle::new([(-r, -r), (r, r)], style),
                     ))
-                    .map_err(err)?;
+                    .map_err(draw_err)?;
             }
         }
     }
@@ -204,7 +157,7 @@ fn draw_tangency(rep: &TangencyReport, root: &Area) -> DrawResult {
         .background_style(WHITE.mix(0.9))
         .border_style(BLACK)
         .draw()
-        .map_err(err)?;
+        .map_err(draw_err)?;
     chart
         .plotting_area()
         .strip_coord_spec()
@@ -213,12 +166,12 @@ fn draw_tangency(rep: &TangencyReport, root: &Area) -> DrawResult {
             &("sans-serif", 15).into_font().color(&BLACK),
             (10, 8),
         )
-        .map_err(err)?;
+        .map_err(draw_err)?;
     Ok(())
 }
 
 /// Writes `tangency.svg` and `tangency.png`.
-pub fn plot_tangency(rep: &TangencyReport, dir: &Path) -> Result<Vec<PathBuf>, String> {
+pub fn plot_tangency(rep: &TangencyReport, dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
     plot_tangency_with(rep, dir, &FigureOptions::default())
 }
 
@@ -227,8 +180,8 @@ pub fn plot_tangency_with(
     rep: &TangencyReport,
     dir: &Path,
     opts: &FigureOptions,
-) -> Result<Vec<PathBuf>, String> {
-    write_figure(dir, "tangency", (900, 600), opts, |r| draw_tangency(rep, r))
+) -> Result<Vec<PathBuf>, FigureError> {
+    write_files(dir, "tangency", (900, 600), opts, |r| draw_tangency(rep, r))
 }
 
 /// Colours of the (α, κ) atlas: light sky blue, light orange, grey (apart in
@@ -292,7 +245,7 @@ pub fn critical_ranges(kappa_max: f64, px: (u32, u32), margin: f64) -> ([f64; 2]
 pub const KAPPA0_RADIUS: u32 = 5;
 
 fn draw_critical(cc: &CriticalCurve, root: &Area) -> DrawResult {
-    root.fill(&WHITE).map_err(err)?;
+    root.fill(&WHITE).map_err(draw_err)?;
     let (w, h) = root.dim_in_pixel();
     // Plot area as laid out below (caption 40, margins 14, label areas).
     let px = (w.saturating_sub(28 + 84), h.saturating_sub(28 + 40 + 48));
@@ -306,7 +259,7 @@ fn draw_critical(cc: &CriticalCurve, root: &Area) -> DrawResult {
         .x_label_area_size(48)
         .y_label_area_size(84)
         .build_cartesian_2d(xr[0]..xr[1], yr[0]..yr[1])
-        .map_err(err)?;
+        .map_err(draw_err)?;
     let (_, ystep) = nice_ticks(0.0, cc.kappa_max, 8);
     chart
         .configure_mesh()
@@ -320,7 +273,7 @@ fn draw_critical(cc: &CriticalCurve, root: &Area) -> DrawResult {
         .y_label_formatter(&|v| tick_label(*v, ystep))
         .disable_mesh()
         .draw()
-        .map_err(err)?;
+        .map_err(draw_err)?;
     chart
         .draw_series(merge_atlas(&cc.atlas).iter().map(|b| {
             Rectangle::new(
@@ -328,7 +281,7 @@ fn draw_critical(cc: &CriticalCurve, root: &Area) -> DrawResult {
                 atlas_color(b.label).filled(),
             )
         }))
-        .map_err(err)?;
+        .map_err(draw_err)?;
     for (pick, name, c) in [
         (0usize, "κ_{crit} lower bound", oi::BLACK),
         (1, "κ_{crit} upper bound", oi::VERMILLION),
@@ -343,7 +296,7 @@ fn draw_critical(cc: &CriticalCurve, root: &Area) -> DrawResult {
             .collect();
         chart
             .draw_series(LineSeries::new(pts, c.stroke_width(1)))
-            .map_err(err)?
+            .map_err(draw_err)?
             .label(name)
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
     }
@@ -353,7 +306,7 @@ fn draw_critical(cc: &CriticalCurve, root: &Area) -> DrawResult {
             KAPPA0_RADIUS,
             oi::BLACK.filled(),
         )))
-        .map_err(err)?
+        .map_err(draw_err)?
         .label("κ_{0} = √3/9 at α = 1")
         .legend(|(x, y)| Circle::new((x + 10, y), 4, oi::BLACK.filled()));
     for (l, name) in [
@@ -364,7 +317,7 @@ fn draw_critical(cc: &CriticalCurve, root: &Area) -> DrawResult {
         let c = atlas_color(l);
         chart
             .draw_series(std::iter::empty::<Rectangle<(f64, f64)>>())
-            .map_err(err)?
+            .map_err(draw_err)?
             .label(name)
             .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 15, y + 5)], c.filled()));
     }
@@ -375,12 +328,12 @@ fn draw_critical(cc: &CriticalCurve, root: &Area) -> DrawResult {
         .background_style(WHITE.mix(0.9))
         .border_style(BLACK)
         .draw()
-        .map_err(err)?;
+        .map_err(draw_err)?;
     Ok(())
 }
 
 /// Writes `critical-curve.svg` and `critical-curve.png`.
-pub fn plot_critical(cc: &CriticalCurve, dir: &Path) -> Result<Vec<PathBuf>, String> {
+pub fn plot_critical(cc: &CriticalCurve, dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
     plot_critical_with(cc, dir, &FigureOptions::default())
 }
 
@@ -389,8 +342,8 @@ pub fn plot_critical_with(
     cc: &CriticalCurve,
     dir: &Path,
     opts: &FigureOptions,
-) -> Result<Vec<PathBuf>, String> {
-    write_figure(dir, "critical-curve", (900, 700), opts, |r| {
+) -> Result<Vec<PathBuf>, FigureError> {
+    write_files(dir, "critical-curve", (900, 700), opts, |r| {
         draw_critical(cc, r)
     })
 }

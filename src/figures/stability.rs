@@ -12,7 +12,7 @@
 
 use super::raster::Class;
 use super::THETA_DOT;
-use super::{draw_err, nice_ticks, start_drawing, theta_ticks, tick_label, AtlasError, Figure};
+use super::{draw_err, nice_ticks, theta_ticks, tick_label, write_figure, Figure, FigureError};
 use crate::pave::{Paving, PhaseBox};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -147,26 +147,17 @@ pub fn draw_stability_map(
     title: &str,
     svg: &Path,
     png: &Path,
-) -> Result<(), AtlasError> {
-    start_drawing([svg, png])?;
+) -> Result<(), FigureError> {
     let grids: Vec<HeatGrid> = panels
         .iter()
         .map(|p| heat_grid(p.paving, GRID.0, GRID.1))
         .collect();
     let rows = panels.len().div_ceil(2).max(1) as u32;
     let size = (WIDTH, HEADER_H + ROW_H * rows);
-    crate::files::render_atomic(svg, |tmp| {
-        let root = Figure::svg(tmp, size).into_drawing_area();
-        render(&root, panels, &grids, title)?;
-        root.present().map_err(draw_err)
-    })
-    .map_err(AtlasError::Draw)?;
-    crate::files::render_atomic(png, |tmp| {
-        let root = Figure::png(tmp, size).into_drawing_area();
-        render(&root, panels, &grids, title)?;
-        root.present().map_err(draw_err)
-    })
-    .map_err(AtlasError::Draw)
+    for path in [svg, png] {
+        write_figure(path, size, |root| render(root, panels, &grids, title))?;
+    }
+    Ok(())
 }
 
 fn render(
@@ -174,7 +165,7 @@ fn render(
     panels: &[StabilityPanel],
     grids: &[HeatGrid],
     title: &str,
-) -> Result<(), AtlasError> {
+) -> Result<(), FigureError> {
     root.fill(&WHITE).map_err(draw_err)?;
     let bold = ("sans-serif", 24).into_font().style(FontStyle::Bold);
     root.draw_text(title, &bold.color(&INK), (16, 10))
