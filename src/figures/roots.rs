@@ -170,12 +170,8 @@ fn draw_tangency(rep: &TangencyReport, root: &Area) -> DrawResult {
     Ok(())
 }
 
-/// Writes `tangency.svg` and `tangency.png`.
-pub fn plot_tangency(rep: &TangencyReport, dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
-    plot_tangency_with(rep, dir, &FigureOptions::default())
-}
-
-/// [`plot_tangency`] at a chosen size and in chosen formats.
+/// Writes `tangency.svg` and/or `tangency.png` in `dir` (the default size
+/// unless `opts` gives one).
 pub fn plot_tangency_with(
     rep: &TangencyReport,
     dir: &Path,
@@ -332,12 +328,8 @@ fn draw_critical(cc: &CriticalCurve, root: &Area) -> DrawResult {
     Ok(())
 }
 
-/// Writes `critical-curve.svg` and `critical-curve.png`.
-pub fn plot_critical(cc: &CriticalCurve, dir: &Path) -> Result<Vec<PathBuf>, FigureError> {
-    plot_critical_with(cc, dir, &FigureOptions::default())
-}
-
-/// [`plot_critical`] at a chosen size and in chosen formats.
+/// Writes `critical-curve.svg` and/or `critical-curve.png` in `dir` (the
+/// default size unless `opts` gives one).
 pub fn plot_critical_with(
     cc: &CriticalCurve,
     dir: &Path,
