@@ -129,3 +129,32 @@ fn render<DB: DrawingBackend>(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Both files are written, through the one figure writer, with the
+    /// title and every curve's label as text in the SVG.
+    #[test]
+    fn the_chart_writes_both_files() {
+        let dir = std::env::temp_dir().join(format!("detach-chart-{}", std::process::id()));
+        let curve = |label: &str, peer: bool, k: f64| Curve {
+            label: label.into(),
+            peer,
+            points: vec![(1e-3 * k, 0.03), (1e-2 * k, 0.01), (1e-1 * k, 0.002)],
+        };
+        let panels = [Panel {
+            title: "a panel".into(),
+            curves: vec![curve("detach slices", false, 1.0), curve("Codac", true, 80.0)],
+        }];
+        let (svg, png) = (dir.join("c.svg"), dir.join("c.png"));
+        draw_speed_accuracy(&panels, "a title", (900, 500), &svg, &png).unwrap();
+        let text = std::fs::read_to_string(&svg).unwrap();
+        for t in ["a title", "a panel", "detach slices", "Codac"] {
+            assert!(text.contains(t), "{t} not in the SVG");
+        }
+        assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
