@@ -541,3 +541,35 @@ fn pave_table_names_its_box_counts_as_the_json_does() {
     assert_eq!(row[n - 2], b["outer"].to_string());
     assert_eq!(row[n - 1], b["undecided"].to_string());
 }
+
+/// The library alone (`default-features = false`) depends on none of the
+/// command line's crates, nor on `nalgebra` (tests only), by `cargo tree`.
+#[test]
+fn the_library_alone_builds_without_the_command_line_crates() {
+    let tree = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO"))
+            .args(["tree", "--offline", "-p", "detach", "-e", "normal"])
+            .args(["--prefix", "none", "--format", "{p}"])
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .expect("cargo tree runs");
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let text = String::from_utf8(out.stdout).unwrap();
+        let names: Vec<String> = text
+            .lines()
+            .filter_map(|l| l.split_whitespace().next().map(String::from))
+            .collect();
+        names
+    };
+    let cli = ["clap", "indicatif", "sha2"];
+    let full = tree(&[]);
+    for c in cli {
+        assert!(full.iter().any(|n| n == c), "{c} missing from the default build");
+    }
+    let lib = tree(&["--no-default-features"]);
+    for c in cli.iter().chain(&["nalgebra"]) {
+        assert!(!lib.iter().any(|n| n == c), "{c} in the library's tree");
+    }
+    assert!(lib.iter().any(|n| n == "inari"), "{lib:?}");
+}
