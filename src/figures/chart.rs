@@ -146,7 +146,10 @@ mod tests {
         };
         let panels = [Panel {
             title: "a panel".into(),
-            curves: vec![curve("detach slices", false, 1.0), curve("Codac", true, 80.0)],
+            curves: vec![
+                curve("detach slices", false, 1.0),
+                curve("Codac", true, 80.0),
+            ],
         }];
         let (svg, png) = (dir.join("c.svg"), dir.join("c.png"));
         draw_speed_accuracy(&panels, "a title", (900, 500), &svg, &png).unwrap();

@@ -554,7 +554,11 @@ fn the_library_alone_builds_without_the_command_line_crates() {
             .current_dir(env!("CARGO_MANIFEST_DIR"))
             .output()
             .expect("cargo tree runs");
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         let text = String::from_utf8(out.stdout).unwrap();
         let names: Vec<String> = text
             .lines()
@@ -565,7 +569,10 @@ fn the_library_alone_builds_without_the_command_line_crates() {
     let cli = ["clap", "indicatif", "sha2"];
     let full = tree(&[]);
     for c in cli {
-        assert!(full.iter().any(|n| n == c), "{c} missing from the default build");
+        assert!(
+            full.iter().any(|n| n == c),
+            "{c} missing from the default build"
+        );
     }
     let lib = tree(&["--no-default-features"]);
     for c in cli.iter().chain(&["nalgebra"]) {
