@@ -479,6 +479,10 @@ fn regions_of_any_form_pave_and_prove() {
     // The row is the paving's own: its leaves (as `pave` counts them at the
     // same ε), its time, no quadrature columns.
     assert_eq!(r["method"], "paving");
+    assert_eq!(
+        [&r["provenance"], &r["lower_from"], &r["upper_from"]],
+        ["paving", "paving", "paving"]
+    );
     assert!(r.get("undecided_pieces").is_none(), "{r}");
     assert!(r["elapsed_s"].as_f64().unwrap() > 0.0, "{r}");
     let p = json(&["pave", "--scene-file", f, "--eps", "0.0009765625", "--json"]);
