@@ -20,6 +20,7 @@ pub mod methods;
 mod natural;
 mod slices;
 mod tree;
+pub mod undefined;
 
 use crate::number::scalar::{is_continuous, is_defined};
 use crate::scene::{Angle, Constraints, Domain, Quadratic, Scene, Variant};
