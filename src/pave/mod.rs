@@ -19,6 +19,7 @@ pub mod labels;
 pub mod methods;
 mod natural;
 mod slices;
+pub mod stability;
 mod tree;
 pub mod undefined;
 
