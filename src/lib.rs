@@ -73,6 +73,7 @@
 //! `docs/library.md` in the repository has the details and
 //! `examples/dependent/` a complete dependent crate.
 
+pub mod area;
 pub mod certificate;
 /// The independent proof checker, its own crate so that it can be built alone.
 pub use detach_check as check;

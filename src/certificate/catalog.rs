@@ -11,11 +11,12 @@
 
 use super::paving::{paving_proof, PavingStatement};
 use super::roots::{build_pieces, kappa0_proof, roots_proof, RootsStatement};
-use crate::number::param::{enclose_decimal, ParamSet};
 use crate::number::scalar::Scalar;
 use crate::pave::{pave_scene, PaveOptions};
+use crate::roots::equations::{Eq210, Eq29};
 use crate::roots::isolate::Budget;
-use crate::roots::{prove_kappa0, solve_2_10, solve_2_12, solve_2_9, RealFn};
+use crate::roots::request::Problem;
+use crate::roots::{prove_kappa0, EquationId, EquationRoots, RealFn, RootsInputs, RootsRequest};
 use crate::scene::{Scene, SceneId, SmoothDisc, Variant};
 use inari::Interval;
 use serde_json::Value;
@@ -70,14 +71,11 @@ pub fn prove_named(name: &str) -> Result<Value, String> {
         ["roots", "2.9"] => roots_2_9("0.05", "0.7"),
         ["roots", "2.10"] => roots_2_10("0.1"),
         ["critical-band"] => Ok(super::band::critical_band_proof(BAND_BOXES)),
-        ["roots", "2.12"] => Ok(roots_2_12(
-            &ParamSet::build(
-                SceneId::SmoothDisc.name(),
-                SceneId::SmoothDisc.params(),
-                &[],
-            )
-            .expect("defaults are valid"),
-        )),
+        ["roots", "2.12"] => solved_proof(&RootsInputs {
+            equation: "2.12",
+            scene: Some(SceneId::SmoothDisc.name()),
+            ..RootsInputs::default()
+        }),
         _ => Err(format!(
             "unknown result `{name}` (known: {})",
             HEADLINE.join(", ")
@@ -111,58 +109,126 @@ pub fn atlas_proof(id: SceneId, variant: Variant) -> Value {
     )
 }
 
-fn dec(name: &str, text: &str) -> Result<Interval, String> {
-    enclose_decimal(name, text).map_err(|e| e.to_string())
+/// The proof of a root problem, solved within the default budget.
+fn solved_proof(inputs: &RootsInputs) -> Result<Value, String> {
+    let request = RootsRequest::new(inputs).map_err(|e| e.to_string())?;
+    let roots = request
+        .solve(&Budget::default())
+        .map_err(|e| e.to_string())?;
+    roots_proof_of(&request, &roots)
+}
+
+/// The roots of (2.9) for κ, α given as decimal text.
+pub fn roots_2_9(kappa: &str, alpha: &str) -> Result<Value, String> {
+    solved_proof(&RootsInputs {
+        equation: "2.9",
+        kappa: Some(kappa),
+        alpha: Some(alpha),
+        ..RootsInputs::default()
+    })
+}
+
+/// The roots of (2.10) for κ given as decimal text.
+pub fn roots_2_10(kappa: &str) -> Result<Value, String> {
+    solved_proof(&RootsInputs {
+        equation: "2.10",
+        kappa: Some(kappa),
+        ..RootsInputs::default()
+    })
+}
+
+/// The proof file of a solved root problem, its evidence built from the
+/// roots found: (2.9) at κ and α given, (2.10), or (2.12) of the smooth
+/// disc or the disc on ice; an error says why no proof exists for another.
+pub fn roots_proof_of(request: &RootsRequest, roots: &EquationRoots) -> Result<Value, String> {
+    let given = |name: &str| {
+        request
+            .parameters
+            .iter()
+            .find(|p| p.name == name)
+            .map(|p| p.text.clone())
+            .expect("a checked request")
+    };
+    let pi = Interval::PI.sup();
+    match (&request.problem, request.equation) {
+        (Problem::KappaAlpha { kappa, alpha }, _) => {
+            let (kt, at) = (given("kappa"), given("alpha"));
+            let f = Eq29 {
+                kappa: *kappa,
+                alpha: *alpha,
+            };
+            Ok(roots_proof(
+                &RootsStatement {
+                    title: format!("the roots of (2.9) on θ ∈ (0, π) at κ = {kt}, α = {at}"),
+                    equation: "2.9",
+                    paper: "§2 (2.9): κ sin³θ = cos θ (α − cos θ)(1 − α cos θ), written f(θ) = 0",
+                    parameters: vec![("kappa".into(), kt), ("alpha".into(), at)],
+                    definitions: vec![],
+                    variable: "t",
+                    function: F_2_9.into(),
+                    domain: ["0", "pi"],
+                },
+                &build_pieces(&f, 0.0, pi, &roots.roots),
+            ))
+        }
+        (Problem::Kappa { kappa }, _) => {
+            let kt = given("kappa");
+            let f = Eq210 { kappa: *kappa };
+            Ok(roots_proof(
+                &RootsStatement {
+                    title: format!("the positive roots of (2.10) at κ = {kt}"),
+                    equation: "2.10",
+                    paper: "§2, case 2 (2.10): 2κ = μ(1 − μ)(1 + μ), μ = tg(θ/2) > 0",
+                    parameters: vec![("kappa".into(), kt)],
+                    definitions: vec![],
+                    variable: "mu",
+                    function: F_2_10.into(),
+                    domain: ["0", "inf"],
+                },
+                &build_pieces(&f, 0.0, f64::INFINITY, &roots.roots),
+            ))
+        }
+        (Problem::Scene { scene, params }, EquationId::E2_12) => {
+            let disc = match scene {
+                Scene::Smooth(d) => d,
+                Scene::Ice(i) => &i.disc,
+                _ => unreachable!("a checked request"),
+            };
+            let keep = ["m", "g", "a", "A", "p_phi", "p_psi"];
+            Ok(roots_proof(
+                &RootsStatement {
+                    title: "the stationary points of Π̃ (2.12) on θ ∈ (0, π), smooth disc".into(),
+                    equation: "2.12",
+                    paper: "§2 (2.12): m g a cos θ + A τ τ' = 0; multiplied by sin³θ > 0, \
+                            A τ τ' sin³θ = (p_ψ − p_φ cos θ)(p_φ − p_ψ cos θ)/A",
+                    parameters: params
+                        .texts()
+                        .into_iter()
+                        .filter(|(n, _)| keep.contains(n))
+                        .map(|(n, t)| (n.to_string(), t))
+                        .collect(),
+                    definitions: vec![],
+                    variable: "t",
+                    function: F_2_12.into(),
+                    domain: ["0", "pi"],
+                },
+                &build_pieces(&ClearedSlope(disc), 0.0, pi, &roots.roots),
+            ))
+        }
+        (_, eq) => Err(format!(
+            "proof files exist for (2.9) at given κ and α, (2.10) and (2.12); not for ({eq}){}",
+            if eq == EquationId::E2_9 {
+                " of a scene"
+            } else {
+                ""
+            }
+        )),
+    }
 }
 
 const F_2_9: &str = "kappa*sin(t)^2*sin(t) - cos(t)*(alpha - cos(t))*(1 - alpha*cos(t))";
 
-/// The roots of (2.9) for κ, α given as decimal text.
-pub fn roots_2_9(kappa: &str, alpha: &str) -> Result<Value, String> {
-    let (k, a) = (dec("kappa", kappa)?, dec("alpha", alpha)?);
-    let sol = solve_2_9(k, a, &Budget::default()).map_err(|e| e.to_string())?;
-    let f = crate::roots::equations::Eq29 { kappa: k, alpha: a };
-    let pieces = build_pieces(&f, 0.0, Interval::PI.sup(), &sol.roots);
-    Ok(roots_proof(
-        &RootsStatement {
-            title: format!("the roots of (2.9) on θ ∈ (0, π) at κ = {kappa}, α = {alpha}"),
-            equation: "2.9",
-            paper: "§2 (2.9): κ sin³θ = cos θ (α − cos θ)(1 − α cos θ), written f(θ) = 0",
-            parameters: vec![
-                ("kappa".into(), kappa.into()),
-                ("alpha".into(), alpha.into()),
-            ],
-            definitions: vec![],
-            variable: "t",
-            function: F_2_9.into(),
-            domain: ["0", "pi"],
-        },
-        &pieces,
-    ))
-}
-
 const F_2_10: &str = "mu*(1 - mu)*(1 + mu) - 2*kappa";
-
-/// The roots of (2.10) for κ given as decimal text.
-pub fn roots_2_10(kappa: &str) -> Result<Value, String> {
-    let k = dec("kappa", kappa)?;
-    let sol = solve_2_10(k, &Budget::default()).map_err(|e| e.to_string())?;
-    let f = crate::roots::equations::Eq210 { kappa: k };
-    let pieces = build_pieces(&f, 0.0, f64::INFINITY, &sol.roots);
-    Ok(roots_proof(
-        &RootsStatement {
-            title: format!("the positive roots of (2.10) at κ = {kappa}"),
-            equation: "2.10",
-            paper: "§2, case 2 (2.10): 2κ = μ(1 − μ)(1 + μ), μ = tg(θ/2) > 0",
-            parameters: vec![("kappa".into(), kappa.into())],
-            definitions: vec![],
-            variable: "mu",
-            function: F_2_10.into(),
-            domain: ["0", "inf"],
-        },
-        &pieces,
-    ))
-}
 
 /// `sin³θ · Π̃'(θ)` of (2.12) with the singular factors cleared:
 /// `m g a cos θ sin³θ + (p_ψ − p_φ cos θ)(p_φ − p_ψ cos θ)/A`. Same zeros as
@@ -180,33 +246,6 @@ impl RealFn for ClearedSlope<'_> {
         let (pf, ps) = (T::lift(d.p_phi), T::lift(d.p_psi));
         m * g * a * c * s.sqr() * s + (ps - pf * c) * (pf - ps * c) / big_a
     }
-}
-
-/// The stationary points of Π̃ (2.12) for a smooth disc.
-pub fn roots_2_12(params: &ParamSet) -> Value {
-    let disc = SmoothDisc::from_param_set(params);
-    let sol = solve_2_12(&disc, &Budget::default());
-    let pieces = build_pieces(&ClearedSlope(&disc), 0.0, Interval::PI.sup(), &sol.roots);
-    let keep = ["m", "g", "a", "A", "p_phi", "p_psi"];
-    roots_proof(
-        &RootsStatement {
-            title: "the stationary points of Π̃ (2.12) on θ ∈ (0, π), smooth disc".into(),
-            equation: "2.12",
-            paper: "§2 (2.12): m g a cos θ + A τ τ' = 0; multiplied by sin³θ > 0, \
-                    A τ τ' sin³θ = (p_ψ − p_φ cos θ)(p_φ − p_ψ cos θ)/A",
-            parameters: params
-                .texts()
-                .into_iter()
-                .filter(|(n, _)| keep.contains(n))
-                .map(|(n, t)| (n.to_string(), t))
-                .collect(),
-            definitions: vec![],
-            variable: "t",
-            function: F_2_12.into(),
-            domain: ["0", "pi"],
-        },
-        &pieces,
-    )
 }
 
 #[cfg(test)]
@@ -250,49 +289,5 @@ mod tests {
             }
             assert!(prove_named("nope").is_err());
         }
-    }
-}
-
-/// What a `roots` run asks a proof of: the equation and the values it was
-/// given (decimal text; `overrides` are a scene's `NAME=VALUE` parameters).
-#[derive(Debug, Clone, Copy)]
-pub struct RootsRequest<'a> {
-    pub equation: &'a str,
-    pub kappa: Option<&'a str>,
-    pub alpha: Option<&'a str>,
-    pub scene: Option<&'a str>,
-    pub overrides: &'a [(String, String)],
-}
-
-/// The proof file of a `roots` run: (2.9) with κ and α, (2.10) with κ, or
-/// (2.12) of the smooth disc or the disc on ice; an error names what is
-/// missing or why no proof exists for the request.
-pub fn requested_roots_proof(r: &RootsRequest) -> Result<Value, String> {
-    let eq = r
-        .equation
-        .trim()
-        .trim_start_matches('(')
-        .trim_end_matches(')');
-    fn need<'s>(flag: Option<&'s str>, name: &str, eq: &str) -> Result<&'s str, String> {
-        flag.map(str::trim)
-            .ok_or_else(|| format!("--proof for ({eq}) needs --{name}"))
-    }
-    match eq {
-        "2.9" if r.scene.is_none() => {
-            roots_2_9(need(r.kappa, "kappa", eq)?, need(r.alpha, "alpha", eq)?)
-        }
-        "2.10" => roots_2_10(need(r.kappa, "kappa", eq)?),
-        "2.12" => {
-            let id: SceneId = need(r.scene, "scene", eq)?.parse()?;
-            if !matches!(id, SceneId::SmoothDisc | SceneId::IceDisc) {
-                return Err("(2.12) needs --scene smooth-disc or ice-disc".into());
-            }
-            let (_, params) = Scene::build(id, r.overrides).map_err(|e| e.to_string())?;
-            Ok(roots_2_12(&params))
-        }
-        _ => Err(format!(
-            "proof files exist for (2.9) with --kappa/--alpha, (2.10) and (2.12); not for ({eq}){}",
-            if eq == "2.9" { " with --scene" } else { "" }
-        )),
     }
 }

@@ -1,13 +1,12 @@
 //! `detach area`: certified areas of regions and cells by quadrature over θ.
 
 use super::{CliError, CliResult};
+use detach::area::{certified_areas, AreasError, Provenance, Source};
 use detach::certificate::numbers::{fixed, Round};
 use detach::number::param::parse_assignment;
-use detach::pave::{pave_scene_method, Method, MethodOptions, PaveOptions, Paving};
-use detach::quadrature::{cell_area, check_target, AreaEnclosure, AreaError, AreaOptions};
-use detach::scene::{Cell, Scene, Variant};
+use detach::quadrature::AreaOptions;
+use detach::scene::{Cell, Variant};
 use serde::Serialize;
-use std::time::Instant;
 
 #[derive(clap::Args, Debug)]
 pub struct AreaArgs {
@@ -53,6 +52,12 @@ struct RegionArea {
     target_met: bool,
     /// `quadrature`, or `paving` where the bounds are a paving's alone.
     method: &'static str,
+    /// `quadrature`, `paving`, or `intersection` (the quadrature's enclosure
+    /// narrowed by a paving's bounds where it missed its target).
+    provenance: Provenance,
+    /// What gave the lower bound (`quadrature` or `paving`), and the upper.
+    lower_from: Source,
+    upper_from: Source,
     /// Missed because binary64 rounding limits this area to about its width.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     at_rounding_floor: bool,
@@ -87,10 +92,6 @@ struct AreaReport {
     note: Option<String>,
 }
 
-/// Resolution of the paving whose bounds stand in for, or narrow, the
-/// quadrature's.
-const FALLBACK_EPS: f64 = 1.0 / 1024.0;
-
 pub fn run_area(args: &AreaArgs) -> CliResult {
     let overrides = args
         .params
@@ -114,135 +115,49 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
     }
     let mut wanted = Vec::new();
     for r in &args.region {
-        let i = r
-            .parse::<Cell>()
-            .map_err(|e| CliError::usage(e.to_string()))?
-            .index();
-        if !wanted.contains(&i) {
-            wanted.push(i);
+        let cell = r.parse::<Cell>().map_err(|e| CliError::usage(e.to_string()))?;
+        if !wanted.contains(&cell) {
+            wanted.push(cell);
         }
     }
     if wanted.is_empty() {
-        wanted = (0..Cell::ALL.len()).collect();
+        wanted = Cell::ALL.to_vec();
     }
     let tol = 10f64.powi(-args.digits);
     let opts = AreaOptions {
         tol,
         max_pieces: args.max_pieces,
     };
-    // A paving's bounds stand in where the quadrature does not apply (a
-    // scene file's region of another form than degree ≤ 2 in θ̇), and narrow
-    // its enclosure where it missed the target (a cell whose two boundaries
-    // coincide along a curve): both enclose the area.
-    let pave_once = || -> Result<(Paving, f64), CliError> {
-        let start = Instant::now();
-        let opts = PaveOptions {
-            eps: FALLBACK_EPS,
-            ..PaveOptions::default()
-        };
-        // The default method: for a region not quadratic in θ̇ it bisects.
-        let mo = MethodOptions::new(Method::default());
-        let p = pave_scene_method(&scene, args.variant, &domain, opts, &mo, |_, _, _| {})
-            .map_err(|e| CliError::runtime(format!("paving failed: {e:?}")))?;
-        Ok((p, start.elapsed().as_secs_f64()))
-    };
-    let not_quadratic = match &scene {
-        Scene::File(f) => f.not_quadratic(),
-        _ => None,
-    };
-    let mut paving: Option<(Paving, f64)> = None;
-    let mut notes = Vec::new();
-    if let Some(region) = not_quadratic {
-        paving = Some(pave_once()?);
-        notes.push(format!(
-            "region `{region}` is not of degree at most 2 in theta_dot: every row is a paving's \
-             inner and outer bounds at eps = 1/1024, with its leaves and time"
-        ));
-    }
-    let refusal = |i: usize, e: AreaError| {
-        CliError::usage(format!(
-            "{} ({}): {e}",
-            Cell::ALL[i].label(),
-            Cell::ALL[i].name()
-        ))
-    };
-    if not_quadratic.is_none() {
-        // Every set's rounding first, so that one refusal names them all and
-        // the digits that every one of them can reach.
-        let (mut below, mut floor, mut least) = (Vec::new(), 0f64, 0f64);
-        for &i in &wanted {
-            match check_target(&scene, args.variant, &domain, Cell::ALL[i], tol) {
-                Ok(()) => {}
-                Err(AreaError::BelowRounding {
-                    floor: f, least: l, ..
-                }) => {
-                    below.push(format!(
-                        "{} ({})",
-                        Cell::ALL[i].label(),
-                        Cell::ALL[i].name()
-                    ));
-                    (floor, least) = (floor.max(f), least.max(l));
-                }
-                Err(e) => return Err(refusal(i, e)),
+    let areas =
+        certified_areas(&scene, args.variant, &domain, &wanted, opts).map_err(|e| match e {
+            AreasError::Refused(_) => CliError::usage(e),
+            AreasError::Paving(_) => CliError::runtime(e),
+        })?;
+    let regions = areas
+        .sets
+        .iter()
+        .map(|s| {
+            let (e, by_paving) = (&s.enclosure, s.provenance == Provenance::Paving);
+            RegionArea {
+                name: s.cell.name(),
+                label: s.cell.label(),
+                lower: s.lower(),
+                upper: s.upper(),
+                width: e.width(),
+                target_met: e.width() <= tol,
+                method: if by_paving { "paving" } else { "quadrature" },
+                provenance: s.provenance,
+                lower_from: s.lower_from,
+                upper_from: s.upper_from,
+                at_rounding_floor: e.at_rounding_floor,
+                pieces: e.pieces,
+                undecided_pieces: (!by_paving).then_some(e.undecided_pieces),
+                empty: e.proved_empty.then_some("omega0 = omega"),
+                elapsed_s: s.elapsed_s,
             }
-        }
-        if !below.is_empty() {
-            return Err(CliError::usage(format!(
-                "{}: a width of {tol:e} is below what binary64 arithmetic certifies \
-                 (rounding alone leaves up to about {floor:.1e}); ask for --digits {} or fewer",
-                below.join(", "),
-                (-least.log10()).floor() as i32
-            )));
-        }
-    }
-    let mut regions = Vec::new();
-    for i in wanted {
-        let start = Instant::now();
-        let bounds = |p: &Paving| {
-            let b = p.area_bounds(&Cell::ALL[i].spec(), domain.uncovered_area_sup());
-            AreaEnclosure::bounds(b.inner_area, b.outer_area, p.leaves.len())
-        };
-        let by_paving = not_quadratic.is_some();
-        let mut elapsed = None;
-        let e = match (&paving, by_paving) {
-            (Some((p, t)), true) => {
-                // One paving for every row: its own time.
-                elapsed = Some(*t);
-                bounds(p)
-            }
-            _ => {
-                let e = cell_area(&scene, args.variant, &domain, Cell::ALL[i], opts)
-                    .map_err(|e| refusal(i, e))?;
-                // At its rounding floor the enclosure is already far
-                // narrower than a paving's.
-                if e.width() <= tol || e.at_rounding_floor {
-                    e
-                } else {
-                    if paving.is_none() {
-                        paving = Some(pave_once()?);
-                        notes.push(
-                            "where the quadrature missed its target (e.g. a cell whose two boundaries coincide along a curve), its enclosure is intersected with a paving's bounds at eps = 1/1024".into(),
-                        );
-                    }
-                    e.intersect(&bounds(&paving.as_ref().expect("just paved").0))
-                }
-            }
-        };
-        regions.push(RegionArea {
-            name: Cell::ALL[i].name(),
-            label: Cell::ALL[i].label(),
-            lower: e.area.inf() + 0.0,
-            upper: e.area.sup() + 0.0,
-            width: e.width(),
-            target_met: e.width() <= tol,
-            method: if by_paving { "paving" } else { "quadrature" },
-            at_rounding_floor: e.at_rounding_floor,
-            pieces: e.pieces,
-            undecided_pieces: (!by_paving).then_some(e.undecided_pieces),
-            empty: e.proved_empty.then_some("omega0 = omega"),
-            elapsed_s: elapsed.unwrap_or_else(|| start.elapsed().as_secs_f64()),
-        });
-    }
+        })
+        .collect();
+    let notes = areas.notes;
     let report = AreaReport {
         detach: detach::provenance(),
         scene: scene.name().to_string(),
@@ -288,7 +203,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
             continue;
         }
         outln!(
-            "  {label} [{}, {}]  width {:.1e}{}  {} {}  {:.3} s",
+            "  {label} [{}, {}]  width {:.1e}{}  {} {}  {:.3} s{}",
             fixed(r.lower, places, Round::Down),
             fixed(r.upper, places, Round::Up),
             r.width,
@@ -306,6 +221,14 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
                 "pieces"
             },
             r.elapsed_s,
+            if r.provenance == Provenance::Intersection {
+                format!(
+                    "  (lower bound by {}, upper by {})",
+                    r.lower_from, r.upper_from
+                )
+            } else {
+                String::new()
+            },
         );
     }
     if let Some(why) = &report.note {

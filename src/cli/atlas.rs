@@ -319,7 +319,7 @@ fn summarise(
             },
         })
         .collect();
-    let (undefined_area, warnings) = undefined_warnings(paving);
+    let undefined = paving.undefined_area();
     PaveReport {
         detach: detach::provenance(),
         scene: scene.name().to_string(),
@@ -347,62 +347,10 @@ fn summarise(
         elapsed_s,
         leaves: paving.leaves.len(),
         stats: paving.stats,
-        undefined_area,
-        warnings,
+        undefined_area: undefined.area_sup,
+        warnings: undefined.warning().into_iter().collect(),
         regions,
     }
-}
-
-/// The area of undefined leaves, and a warning when they are all of the
-/// paving or most of its area: then a formula is undefined there or the
-/// enclosures under- or overflowed, and the bounds say little.
-fn undefined_warnings(paving: &Paving) -> (f64, Vec<String>) {
-    use detach::pave::Label;
-    use inari::Interval;
-    let n = paving.names.len();
-    let undefined: Vec<_> = paving
-        .leaves
-        .iter()
-        .filter(|l| l.labels[..n].contains(&Label::Undefined))
-        .collect();
-    let zero = Interval::try_from((0.0, 0.0)).expect("0");
-    let area = undefined.iter().fold(zero, |a, l| a + l.bx.area());
-    let total = paving.root.area();
-    let mut warnings = Vec::new();
-    let all = !undefined.is_empty() && undefined.len() == paving.leaves.len();
-    // (areas of tiny windows may underflow: "all leaves" is counted, not summed)
-    if all || !undefined.is_empty() && 2.0 * area.inf() > total.sup() {
-        let hull = |f: fn(&detach::pave::PhaseBox) -> [f64; 2]| {
-            undefined
-                .iter()
-                .fold([f64::INFINITY, f64::NEG_INFINITY], |h, l| {
-                    let r = f(&l.bx);
-                    [h[0].min(r[0]), h[1].max(r[1])]
-                })
-        };
-        let (th, thd) = (hull(|b| b.theta), hull(|b| b.theta_dot));
-        let what = if all {
-            "every leaf is undefined".to_string()
-        } else {
-            format!(
-                "undefined leaves cover more than half of the area ({} of {} leaves)",
-                undefined.len(),
-                paving.leaves.len()
-            )
-        };
-        let n = detach::number::param::short_num;
-        warnings.push(format!(
-            "{what}, in θ ∈ [{}, {}], θ̇ ∈ [{}, {}]: a formula is undefined there \
-             (division by an interval holding 0, ln or sqrt of a value that may be ≤ 0), \
-             or the enclosures under- or overflowed the double range, so the area bounds \
-             say little; check the expressions, or rescale the parameters or the window",
-            n(th[0]),
-            n(th[1]),
-            n(thd[0]),
-            n(thd[1])
-        ));
-    }
-    ((area.sup() + 0.0).min(f64::MAX), warnings)
 }
 
 /// Pads `s` on the right to `width` columns, counting combining marks (the

@@ -1,23 +1,17 @@
 //! `detach roots`, `detach kappa0`, `detach critical-curve`, `detach tangency`.
 
 use super::{CliError, CliResult};
-use detach::certificate::catalog::{requested_roots_proof, RootsRequest};
+use detach::certificate::catalog::roots_proof_of;
 use detach::figures::roots::{plot_critical_with, plot_tangency_with};
-use detach::number::param::{enclose_decimal, parse_assignment, ParamSet};
-use detach::roots::critical::critical_curve;
-use detach::roots::equations::kappa_alpha;
+use detach::number::param::parse_assignment;
+use detach::roots::critical::{critical_curve, kappa_max_below};
 use detach::roots::isolate::ulps_between;
 use detach::roots::kappa0::{Bound, Verdict};
+use detach::roots::request::Value;
 use detach::roots::tangency::{tangency_scan, Outcome};
-use detach::roots::{
-    prove_kappa0, solve_2_10, solve_2_12, solve_2_9, solve_3_3, Budget, EquationId, EquationRoots,
-    RootStatus,
-};
-use detach::scene::{Scene, SceneId};
-use inari::Interval;
+use detach::roots::{prove_kappa0, Budget, EquationRoots, RootStatus, RootsInputs, RootsRequest};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
-use std::str::FromStr;
 
 /// Certified roots of (2.9), (2.10), (2.12) or the equilibria of (3.3).
 #[derive(clap::Args, Debug, Clone)]
@@ -126,32 +120,13 @@ pub struct TangencyArgs {
 }
 
 #[derive(Serialize)]
-struct ParamOut {
-    name: String,
-    text: String,
-    enclosure: [f64; 2],
-}
-
-#[derive(Serialize)]
 struct RootsOutput<'a> {
     #[serde(flatten)]
     result: &'a EquationRoots,
     scene: Option<&'static str>,
-    parameters: Vec<ParamOut>,
+    parameters: &'a [Value],
     /// κ and α of (2.9) derived from the scene, when relevant.
-    derived: Vec<ParamOut>,
-}
-
-fn param(name: &str, text: &str, x: Interval) -> ParamOut {
-    ParamOut {
-        name: name.into(),
-        text: text.into(),
-        enclosure: [x.inf(), x.sup()],
-    }
-}
-
-fn decimal(name: &str, text: &str) -> Result<Interval, CliError> {
-    enclose_decimal(name, text).map_err(CliError::usage)
+    derived: &'a [Value],
 }
 
 /// JSON of `x` with a leading `"detach": {"version", "commit"}` and the
@@ -172,174 +147,31 @@ fn to_json<T: Serialize>(x: &T, arguments: serde_json::Value) -> Result<String, 
     .map_err(|e| CliError::runtime(format!("JSON: {e}")))
 }
 
-fn build_scene(args: &RootsArgs, default: SceneId) -> Result<(Scene, ParamSet), CliError> {
-    let id = match &args.scene {
-        Some(s) => SceneId::from_str(s).map_err(CliError::usage)?,
-        None => default,
-    };
-    let overrides = args
+/// The request of `roots`, its inputs checked (errors name the options).
+fn request(args: &RootsArgs) -> Result<RootsRequest, CliError> {
+    let params = args
         .params
         .iter()
         .map(|p| parse_assignment(p))
         .collect::<Result<Vec<_>, _>>()
         .map_err(CliError::usage)?;
-    Scene::build(id, &overrides).map_err(CliError::usage)
-}
-
-/// Solves one equation from command-line arguments (no printing).
-fn solve(args: &RootsArgs) -> Result<(EquationRoots, RootsOutputParts), CliError> {
-    let eq = EquationId::parse(&args.equation).ok_or_else(|| {
-        CliError::usage(format!(
-            "unknown equation `{}` (known: 2.9, 2.10, 2.12, 3.3)",
-            args.equation
-        ))
-    })?;
-    if args.max_evaluations == 0 {
-        return Err(CliError::usage("--max-evaluations must be positive"));
-    }
-    let budget = Budget {
-        max_evaluations: args.max_evaluations,
-        ..Budget::default()
-    };
-    let mut parts = RootsOutputParts::default();
-    let no_scene_flags = |what: &str| -> Result<(), CliError> {
-        if args.scene.is_some() || !args.params.is_empty() {
-            return Err(CliError::usage(format!(
-                "equation ({eq}) takes {what}, not --scene/--param"
-            )));
-        }
-        Ok(())
-    };
-    let kappa_of = |parts: &mut RootsOutputParts| -> Result<Interval, CliError> {
-        let text = args
-            .kappa
-            .as_deref()
-            .ok_or_else(|| CliError::usage(format!("equation ({eq}) needs --kappa K")))?;
-        let k = decimal("kappa", text)?;
-        if k.inf() <= 0.0 {
-            return Err(CliError::usage(format!(
-                "κ must be positive (and at least the smallest positive double), got {}",
-                text.trim()
-            )));
-        }
-        parts.parameters.push(param("kappa", text.trim(), k));
-        Ok(k)
-    };
-    let result = match eq {
-        EquationId::E2_10 => {
-            no_scene_flags("--kappa")?;
-            if args.alpha.is_some() {
-                return Err(CliError::usage(
-                    "equation (2.10) is (2.9) at α = 1: drop --alpha",
-                ));
-            }
-            let k = kappa_of(&mut parts)?;
-            solve_2_10(k, &budget).map_err(CliError::usage)?
-        }
-        EquationId::E2_9 if args.scene.is_some() => {
-            if args.kappa.is_some() || args.alpha.is_some() {
-                return Err(CliError::usage(
-                    "equation (2.9): give either --kappa/--alpha or --scene, not both",
-                ));
-            }
-            let (scene, set) = build_scene(args, SceneId::SmoothDisc)?;
-            let disc = match &scene {
-                Scene::Smooth(d) => d,
-                Scene::Ice(i) => &i.disc,
-                Scene::Viscous(_) | Scene::File(_) => {
-                    return Err(CliError::usage(
-                        "equation (2.9) needs scene smooth-disc or ice-disc",
-                    ))
-                }
-            };
-            parts.scene = scene.id().map(SceneId::name);
-            parts.set_params(&set);
-            let (k, a) = kappa_alpha(disc).map_err(CliError::usage)?;
-            parts.derived.push(param("kappa", "g A^2/(a p_M^2)", k));
-            parts.derived.push(param("alpha", "p_m/p_M", a));
-            solve_2_9(k, a, &budget).map_err(CliError::usage)?
-        }
-        EquationId::E2_9 => {
-            let k = kappa_of(&mut parts)?;
-            let text = args
-                .alpha
-                .as_deref()
-                .ok_or_else(|| CliError::usage("equation (2.9) needs --alpha A (or --scene)"))?;
-            let a = decimal("alpha", text)?;
-            if !(a.inf() >= -1.0 && a.sup() <= 1.0) {
-                return Err(CliError::usage(format!(
-                    "α must lie in [-1, 1], got {}",
-                    text.trim()
-                )));
-            }
-            parts.parameters.push(param("alpha", text.trim(), a));
-            solve_2_9(k, a, &budget).map_err(CliError::usage)?
-        }
-        EquationId::E2_12 | EquationId::E3_3 => {
-            if args.kappa.is_some() || args.alpha.is_some() {
-                return Err(CliError::usage(format!(
-                    "equation ({eq}) takes --scene and --param, not --kappa/--alpha"
-                )));
-            }
-            let default = if eq == EquationId::E2_12 {
-                SceneId::SmoothDisc
-            } else {
-                SceneId::IceDisc
-            };
-            let (scene, set) = build_scene(args, default)?;
-            parts.scene = scene.id().map(SceneId::name);
-            parts.set_params(&set);
-            match (eq, &scene) {
-                (EquationId::E2_12, Scene::Smooth(d)) => solve_2_12(d, &budget),
-                (EquationId::E2_12, Scene::Ice(i)) => solve_2_12(&i.disc, &budget),
-                (EquationId::E3_3, Scene::Ice(i)) => solve_3_3(i, &budget),
-                _ => {
-                    return Err(CliError::usage(format!(
-                        "equation ({eq}) needs scene {}, got {}",
-                        if eq == EquationId::E2_12 {
-                            "smooth-disc or ice-disc"
-                        } else {
-                            "ice-disc"
-                        },
-                        scene.name()
-                    )))
-                }
-            }
-        }
-    };
-    Ok((result, parts))
-}
-
-#[derive(Default)]
-struct RootsOutputParts {
-    scene: Option<&'static str>,
-    parameters: Vec<ParamOut>,
-    derived: Vec<ParamOut>,
-}
-
-impl RootsOutputParts {
-    fn set_params(&mut self, set: &ParamSet) {
-        for ((name, text), p) in set.texts().into_iter().zip(&set.values) {
-            self.parameters.push(param(name, &text, p.value));
-        }
-    }
-}
-
-/// `roots --proof FILE`: the roots of this run as a checked proof file.
-fn write_roots_proof(path: &std::path::Path, args: &RootsArgs) -> CliResult {
-    let overrides = args
-        .params
-        .iter()
-        .map(|t| detach::number::param::parse_assignment(t).map_err(CliError::usage))
-        .collect::<Result<Vec<_>, _>>()?;
-    let proof = requested_roots_proof(&RootsRequest {
+    let request = RootsRequest::new(&RootsInputs {
         equation: &args.equation,
         kappa: args.kappa.as_deref(),
         alpha: args.alpha.as_deref(),
         scene: args.scene.as_deref(),
-        overrides: &overrides,
+        params: &params,
     })
-    .map_err(CliError::usage)?;
+    .map_err(|e| CliError::usage(e.message(|i| format!("--{i}"))))?;
+    if args.max_evaluations == 0 {
+        return Err(CliError::usage("--max-evaluations must be positive"));
+    }
+    Ok(request)
+}
+
+/// `roots --proof FILE`: the roots of this run as a checked proof file.
+fn write_roots_proof(path: &Path, request: &RootsRequest, roots: &EquationRoots) -> CliResult {
+    let proof = roots_proof_of(request, roots).map_err(CliError::usage)?;
     let (bytes, _, units) = super::write_checked(path, &proof)?;
     eprintln!(
         "wrote {} ({bytes} B, {units}, checked VALID)",
@@ -470,16 +302,21 @@ fn incomplete_summary(rows: &[Row]) -> String {
 /// `detach roots`.
 pub fn run_roots(args: &RootsArgs) -> CliResult {
     super::take_stdout(&[("--proof", args.proof.as_deref())], args.json)?;
-    let (result, parts) = solve(args)?;
+    let request = request(args)?;
+    let budget = Budget {
+        max_evaluations: args.max_evaluations,
+        ..Budget::default()
+    };
+    let result = request.solve(&budget).map_err(CliError::usage)?;
     if let Some(path) = &args.proof {
-        write_roots_proof(path, args)?;
+        write_roots_proof(path, &request, &result)?;
     }
     if args.json {
         let out = RootsOutput {
             result: &result,
-            scene: parts.scene,
-            parameters: parts.parameters,
-            derived: parts.derived,
+            scene: request.scene_name(),
+            parameters: &request.parameters,
+            derived: &request.derived,
         };
         outln!("{}", to_json(&out, roots_arguments(args))?);
         return Ok(());
@@ -489,12 +326,12 @@ pub fn run_roots(args: &RootsArgs) -> CliResult {
         result.equation,
         result.variable,
         result.domain_text,
-        parts
-            .scene
+        request
+            .scene_name()
             .map(|s| format!(", scene {s}"))
             .unwrap_or_default()
     );
-    for p in parts.parameters.iter().chain(&parts.derived) {
+    for p in request.parameters.iter().chain(&request.derived) {
         outln!(
             "  {:<6} = {:<18} ∈ {}",
             p.name,
@@ -643,14 +480,15 @@ pub fn run_critical_curve(args: &CriticalCurveArgs) -> CliResult {
              {MAX_CRITICAL_CELLS} cells (about 200 bytes of JSON each); use fewer boxes"
         )));
     }
-    let km = decimal("kappa_max", &args.kappa_max)?;
-    if km.inf() <= 0.0 {
-        return Err(CliError::usage(format!(
-            "--kappa-max must be positive, got {}",
-            args.kappa_max
-        )));
-    }
-    let cc = critical_curve(args.alpha_boxes, args.kappa_boxes, km.inf());
+    let km = kappa_max_below(&args.kappa_max)
+        .map_err(CliError::usage)?
+        .ok_or_else(|| {
+            CliError::usage(format!(
+                "--kappa-max must be positive, got {}",
+                args.kappa_max
+            ))
+        })?;
+    let cc = critical_curve(args.alpha_boxes, args.kappa_boxes, km);
     let arguments = serde_json::json!({
         "alpha_boxes": args.alpha_boxes,
         "kappa_boxes": args.kappa_boxes,

@@ -21,7 +21,9 @@ mod level;
 pub mod methods;
 mod natural;
 mod slices;
+pub mod stability;
 mod tree;
+pub mod undefined;
 
 use crate::number::scalar::{is_continuous, is_defined};
 use crate::scene::{Angle, Constraints, Domain, Quadratic, Scene, Variant};

@@ -177,6 +177,14 @@ pub const LEMMA: &str = "8s⁴G'(s) = q(s²), q(u) = e²u²(1−3u) + d²(3−u)
     q' < 0 on [1/3, 3] (checked per α-box), q < 0 on [3, ∞): G is strictly unimodal in s > 0, \
     so κ > κ_crit(α) ⇒ no root, 0 < κ < κ_crit(α) ⇒ exactly two simple roots";
 
+/// The top of the κ range from decimal text: the largest double not above
+/// it, so the grid stays inside the range asked; `None` unless that double
+/// is positive.
+pub fn kappa_max_below(text: &str) -> Result<Option<f64>, crate::number::param::ParamError> {
+    let k = crate::number::param::enclose_decimal("kappa_max", text)?;
+    Ok((k.inf() > 0.0).then_some(k.inf()))
+}
+
 /// Computes the band on `n_alpha` α-boxes of [0, 1] and the atlas with
 /// `n_kappa` κ-boxes of (0, κ_max]. Both counts should be powers of two
 /// (exact box edges).

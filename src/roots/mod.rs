@@ -9,6 +9,8 @@
 //!   unbounded domain.
 //! * [`kappa0`]: the enclosure of κ₀ = √3/9 and the proof, for every κ, of the
 //!   number of positive roots of (2.10).
+//! * [`request`]: one root problem as asked (an equation and its inputs),
+//!   checked once, solved once.
 //! * [`tangency`]: the double root at κ = κ₀ and how the isolator behaves as κ
 //!   approaches it.
 //! * [`critical`]: the critical curve κ_crit(α) of (2.9) and a certified
@@ -22,6 +24,7 @@ pub mod critical;
 pub mod equations;
 pub mod isolate;
 pub mod kappa0;
+pub mod request;
 pub mod tangency;
 
 pub use cluster::{Cluster, Parity};
@@ -32,6 +35,7 @@ pub use isolate::{
     isolate, Budget, Isolation, RealFn, RootEnclosure, RootStatus, Stats, UndecidedReason,
 };
 pub use kappa0::{prove_kappa0, Kappa0Proof};
+pub use request::{RequestError, RootsInputs, RootsRequest};
 
 use thiserror::Error;
 

@@ -442,3 +442,74 @@ fn area_takes_windows_like_pave() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The strategy of `detach area` (`detach::area::certified_areas`) and what
+/// it says of each bound. At the defaults the quadrature alone meets 10⁻⁹
+/// and gives both bounds. Held to 8 θ-pieces (the first grid has 64) it
+/// misses 10⁻⁶ far from its rounding floor; the paving at ε = 1/1024 then
+/// decides both bounds of Ω and Ω₀ of the viscous disc: the result is
+/// narrower than the quadrature's own enclosure, still holds the mpmath
+/// references above, and says it is an intersection whose bounds are the
+/// paving's.
+#[test]
+fn the_area_strategy_says_how_each_bound_was_obtained() {
+    use detach::area::{certified_areas, Provenance, Source};
+    use detach::pave::Cell;
+    let s = Scene::default_of(SceneId::ViscousDisc);
+    let d = s.domain();
+    let cells = [Cell::Omega, Cell::Omega0];
+    let refs = [VISCOUS_OMEGA, VISCOUS_OMEGA0];
+    let a = certified_areas(&s, Variant::Derived, &d, &cells, AreaOptions::default()).unwrap();
+    assert!(a.notes.is_empty());
+    for (set, r) in a.sets.iter().zip(refs) {
+        assert_eq!(set.provenance, Provenance::Quadrature);
+        assert_eq!(
+            (set.lower_from, set.upper_from),
+            (Source::Quadrature, Source::Quadrature)
+        );
+        assert!(contains(set.enclosure.area, r) && set.enclosure.width() <= 1e-9);
+    }
+    let held = AreaOptions {
+        tol: 1e-6,
+        max_pieces: 8,
+    };
+    let a = certified_areas(&s, Variant::Derived, &d, &cells, held).unwrap();
+    assert!(
+        a.notes[0].contains("intersected with a paving's bounds"),
+        "{:?}",
+        a.notes
+    );
+    for ((set, r), c) in a.sets.iter().zip(refs).zip(cells) {
+        let q = cell_area(&s, Variant::Derived, &d, CELLS[c.index()], held).unwrap();
+        assert!(q.width() > 1e-6 && !q.at_rounding_floor);
+        assert_eq!((set.cell, set.provenance), (c, Provenance::Intersection));
+        assert_eq!(
+            (set.lower_from, set.upper_from),
+            (Source::Paving, Source::Paving)
+        );
+        assert!(
+            set.lower() > q.area.inf() && set.upper() < q.area.sup(),
+            "{set:?} vs {q:?}"
+        );
+        assert!(contains(set.enclosure.area, r), "{set:?} misses {r}");
+    }
+}
+
+/// A set below binary64's rounding is refused before any area is computed,
+/// naming every such set and the decimal places they all reach.
+#[test]
+fn the_area_strategy_refuses_a_width_below_rounding_for_all_sets_at_once() {
+    use detach::area::{certified_areas, AreasError};
+    use detach::pave::Cell;
+    let s = Scene::default_of(SceneId::ViscousDisc);
+    let opts = AreaOptions {
+        tol: 1e-15,
+        ..AreaOptions::default()
+    };
+    let e = certified_areas(&s, Variant::Derived, &s.domain(), &Cell::ALL, opts).unwrap_err();
+    let AreasError::Refused(msg) = &e else {
+        panic!("{e}")
+    };
+    assert!(msg.starts_with("Ω (omega), Ω₀ (omega0), Ω∩Ω₀"), "{msg}");
+    assert!(msg.ends_with("decimal places or fewer"), "{msg}");
+}

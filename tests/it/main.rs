@@ -26,6 +26,7 @@ mod proof_mutations;
 mod proofs;
 mod reference;
 mod roots;
+mod roots_request;
 mod scene_files;
 mod soundness;
 mod stability;

@@ -479,6 +479,10 @@ fn regions_of_any_form_pave_and_prove() {
     // The row is the paving's own: its leaves (as `pave` counts them at the
     // same ε), its time, no quadrature columns.
     assert_eq!(r["method"], "paving");
+    assert_eq!(
+        [&r["provenance"], &r["lower_from"], &r["upper_from"]],
+        ["paving", "paving", "paving"]
+    );
     assert!(r.get("undecided_pieces").is_none(), "{r}");
     assert!(r["elapsed_s"].as_f64().unwrap() > 0.0, "{r}");
     let p = json(&["pave", "--scene-file", f, "--eps", "0.0009765625", "--json"]);
@@ -635,6 +639,51 @@ fn an_undefined_half_window_is_named_in_the_warning() {
     assert!(w.contains("a formula is undefined there"), "{v}");
     assert!(v["undefined_area"].as_f64().unwrap() >= 1.0, "{v}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The undefined-area analysis of a paving: `ln(θ̇)` is
+/// undefined for θ̇ ≤ 0, the lower half of θ ∈ [0, 1], θ̇ ∈ [−1, 1] (area 1
+/// of 2, by hand), so the undefined leaves cover that half and the strip of
+/// boxes straddling θ̇ = 0 (at eps = 1/32 at most 2/32 more): more than half
+/// the window, which makes them dominant, within θ̇ ≤ 1/16.
+#[test]
+fn undefined_leaves_are_measured_and_dominate_when_over_half() {
+    let ln = "name = \"ln\"\n[domain]\ntheta = [\"0\", \"1\"]\ntheta_dot = [\"-1\", \"1\"]\n\
+              [regions]\nomega = \"theta + theta_dot < 0\"\nomega0 = \"ln(theta_dot) < 0\"\n";
+    let scene = Scene::File(Box::new(FileScene::parse(ln, &[]).unwrap()));
+    let opts = PaveOptions {
+        eps: 1.0 / 32.0,
+        ..PaveOptions::default()
+    };
+    let p = pave_with(&scene, detach::pave::Method::Natural, opts);
+    let u = p.undefined_area();
+    assert!(
+        u.area_sup >= 1.0 && u.area_sup <= 1.0 + 2.0 / 32.0 + 1e-12,
+        "{u:?}"
+    );
+    assert!(
+        u.leaves > 0 && u.leaves < u.of_leaves && !u.everywhere(),
+        "{u:?}"
+    );
+    let [th, thd] = u.dominant.expect("over half the window");
+    assert!(th[0] == 0.0 && th[1] == 1.0 && thd[0] == -1.0, "{u:?}");
+    assert!(thd[1] > 0.0 && thd[1] <= 1.0 / 16.0, "{u:?}");
+    let w = u.warning().unwrap();
+    assert!(
+        w.starts_with("undefined leaves cover more than half of the area")
+            && w.contains(&format!("({} of {} leaves)", u.leaves, u.of_leaves)),
+        "{w}"
+    );
+    // The disc on ice is undefined only where sin θ = 0, at the domain's
+    // ends: a few leaves, far from half of it, and no warning.
+    let ice = Scene::default_of(SceneId::IceDisc);
+    let p = pave_with(&ice, detach::pave::Method::Natural, opts);
+    let u = p.undefined_area();
+    assert!(
+        u.leaves > 0 && u.area_sup < 0.1 * p.root.area().inf(),
+        "{u:?}"
+    );
+    assert_eq!((u.dominant, u.warning()), (None, None));
 }
 
 /// `inf` is reserved in proof files (FORMAT.md, Expressions), so a scene

@@ -168,3 +168,61 @@ fn heat_grid_is_pale_only_where_every_leaf_is_decided() {
         "{sd} vs {undefined}"
     );
 }
+
+/// The stress cases as data: ten cases; each pinch case's parameters put
+/// κ = g A²/(a p²) (α = 1, p_φ = p_ψ = p) just above κ₀ = √3/9, at relative
+/// distance 10⁻ᵏ, checked in 200-bit arithmetic from the decimal text (rug,
+/// independent of the f64 arithmetic that placed them).
+#[test]
+fn stress_cases_place_the_pinch_above_kappa0() {
+    use detach::pave::stability::{stress_cases, Feature};
+    use rug::Float;
+    let cases = stress_cases().unwrap();
+    assert_eq!(cases.len(), 10);
+    let prec = 200;
+    let kappa0 = Float::with_val(prec, 3).sqrt() / 9u32;
+    for k in [2i32, 4, 6] {
+        let c = cases
+            .iter()
+            .find(|c| c.key == format!("pinch k={k}"))
+            .expect("a pinch case");
+        assert_eq!(c.feature, Feature::Neck);
+        let get = |n: &str| {
+            let t = &c.params.iter().find(|(m, _)| m == n).expect(n).1;
+            Float::with_val(prec, Float::parse(t).unwrap())
+        };
+        assert_eq!(get("p_phi"), get("p_psi"));
+        let kappa = get("g") * get("A").square() / (get("a") * get("p_phi").square());
+        let rel = (kappa / &kappa0 - 1u32) * Float::with_val(prec, Float::u_pow_u(10, k as u32));
+        assert!((rel.to_f64() - 1.0).abs() < 1e-6, "k = {k}: {rel}");
+    }
+}
+
+/// Every method on the singular-line case and the maps, through the library
+/// at a coarse resolution: at sin θ = 0 every method leaves undefined
+/// leaves and the feature (every leaf touching θ = 0 undefined, every other
+/// decided) holds; each map's Ω column is its run's own undecided area.
+#[test]
+fn stress_runs_score_the_singular_line_and_maps_agree() {
+    use detach::pave::stability::{method_maps, run_stress_cases, stress_cases};
+    use detach::pave::PaveOptions;
+    let opts = PaveOptions {
+        eps: 1.0 / 16.0,
+        max_boxes: 100_000,
+    };
+    let cases = stress_cases().unwrap();
+    let rows = run_stress_cases(&cases[..1], opts).unwrap();
+    assert_eq!(rows.len(), 4);
+    for r in &rows {
+        assert_eq!((r.case.as_str(), r.region), ("sin0", "omega"));
+        assert!(r.undefined_area > 0.0 && r.feature_decided, "{r:?}");
+    }
+    let maps = method_maps(opts).unwrap();
+    assert_eq!(maps.len(), 3);
+    for m in &maps {
+        assert_eq!(m.runs.len(), 4);
+        for ((run, _), u) in m.runs.iter().zip(&m.undecided) {
+            assert_eq!(run.undecided_area, u[0], "{}", m.id.name());
+        }
+    }
+}
