@@ -4,7 +4,7 @@
 //! its target. Each bound says which of the two gave it.
 
 use crate::pave::{pave_scene_method, Cell, Method, MethodOptions, PaveOptions, Paving};
-use crate::quadrature::{cell_area, check_target, AreaEnclosure, AreaError, AreaOptions, CELLS};
+use crate::quadrature::{cell_area, check_target, AreaEnclosure, AreaError, AreaOptions};
 use crate::scene::{Domain, Scene, Variant};
 use serde::Serialize;
 use std::time::Instant;
@@ -149,7 +149,7 @@ pub fn certified_areas(
     // the digits that every one of them can reach.
     let (mut below, mut floor, mut least) = (Vec::new(), 0f64, 0f64);
     for &c in cells {
-        match check_target(scene, variant, domain, CELLS[c.index()], opts.tol) {
+        match check_target(scene, variant, domain, c, opts.tol) {
             Ok(()) => {}
             Err(AreaError::BelowRounding {
                 floor: f, least: l, ..
@@ -173,7 +173,7 @@ pub fn certified_areas(
     let mut sets = Vec::new();
     for &cell in cells {
         let start = Instant::now();
-        let q = cell_area(scene, variant, domain, CELLS[cell.index()], opts)
+        let q = cell_area(scene, variant, domain, cell, opts)
             .map_err(|e| refusal(cell, e))?;
         // At its rounding floor the enclosure is already far narrower than
         // a paving's.

@@ -480,7 +480,7 @@ fn the_area_strategy_says_how_each_bound_was_obtained() {
         a.notes
     );
     for ((set, r), c) in a.sets.iter().zip(refs).zip(cells) {
-        let q = cell_area(&s, Variant::Derived, &d, CELLS[c.index()], held).unwrap();
+        let q = cell_area(&s, Variant::Derived, &d, c, held).unwrap();
         assert!(q.width() > 1e-6 && !q.at_rounding_floor);
         assert_eq!((set.cell, set.provenance), (c, Provenance::Intersection));
         assert_eq!(
