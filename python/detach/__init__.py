@@ -31,6 +31,7 @@ __all__ = [
     "Interrupted",
     "verify",
     "scenes",
+    "palette",
     "LABELS",
     "CLASSES",
 ]
