@@ -17,14 +17,16 @@
 //! ```
 
 use crate::number::param::ParamSet;
-use crate::pave::{pave_scene_method, standard_cell_bounds, LevelFlow, MethodOptions, PaveOptions};
+use crate::pave::{pave_scene_method, standard_cell_bounds, MethodOptions, PaveOptions};
 use crate::quadrature::{cell_area, check_target, AreaEnclosure, AreaError, AreaOptions, CELLS};
 use crate::scene::{Domain, SceneText};
 use std::path::Path;
 use std::time::Instant;
 
 pub use crate::check::{Report, Verdict};
-pub use crate::pave::{Cell, Emptiness, Label, Leaf, Method, Paving, PhaseBox, StopReason};
+pub use crate::pave::{
+    Cell, Emptiness, Label, Leaf, LevelFlow, Method, Paving, PhaseBox, StopReason,
+};
 pub use crate::scene::{Scene, Variant};
 
 /// Most leaves one paving may be asked for (about 230 bytes each while
@@ -520,7 +522,11 @@ mod tests {
             assert!(p.leaves.len() <= held && p.leaves.len() < full.paving.leaves.len());
             assert_eq!(p.replay_boxes().unwrap().len(), p.leaves.len());
             for (a, b) in stopped.areas.iter().zip(&full.areas) {
-                assert!(a.inner <= b.inner && b.outer <= a.outer, "{method} {:?}", a.cell);
+                assert!(
+                    a.inner <= b.inner && b.outer <= a.outer,
+                    "{method} {:?}",
+                    a.cell
+                );
             }
         }
     }

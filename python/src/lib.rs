@@ -13,6 +13,9 @@ use pyo3::types::PyBytes;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 
+/// One set's area: `(name, label, lower, upper, how)`.
+type AreaRow = (String, String, f64, f64, String);
+
 fn value_error(message: String) -> PyErr {
     PyValueError::new_err(message)
 }
@@ -134,11 +137,7 @@ impl Scene {
     }
 
     /// Certified areas: `(name, label, lower, upper, how)` per set.
-    fn area(
-        &self,
-        py: Python<'_>,
-        digits: i32,
-    ) -> PyResult<Vec<(String, String, f64, f64, String)>> {
+    fn area(&self, py: Python<'_>, digits: i32) -> PyResult<Vec<AreaRow>> {
         let areas = py
             .detach(|| self.problem.area(digits))
             .map_err(value_error)?;
@@ -213,7 +212,7 @@ impl Paving {
     }
 
     /// `(name, label, inner, outer, how)` per set.
-    fn areas(&self) -> Vec<(String, String, f64, f64, String)> {
+    fn areas(&self) -> Vec<AreaRow> {
         self.paved
             .areas
             .iter()
