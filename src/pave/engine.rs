@@ -13,8 +13,8 @@ use super::labels::Scope;
 use super::level::{par_each_mut, refill, Done, Labels, Outcome, Plan, PAR_MIN};
 use super::tree::Tree;
 use super::{
-    BudgetStop, ConstraintSet, Label, PaveOptions, PaveStats, Paving, PerConstraint, PhaseBox,
-    SlabEnds, StopReason, MAX_CONSTRAINTS,
+    BudgetStop, ConstraintSet, Label, LevelFlow, PaveOptions, PaveStats, Paving, PerConstraint,
+    PhaseBox, SlabEnds, StopReason, MAX_CONSTRAINTS,
 };
 use inari::Interval;
 use rayon::prelude::*;
@@ -96,19 +96,31 @@ impl Left {
 /// contraction: such a run is started again with those splits stopped one
 /// level earlier (at most once per level: each try is cheaper), so every
 /// slab it keeps is labelled.
-pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
+///
+/// A `progress` that asks to stop lowers the budget to the leaves and open
+/// boxes held at that level: the level's boxes are labelled and kept.
+pub(super) fn pave<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
     method: &R,
     root: PhaseBox,
     opts: PaveOptions,
     names: Vec<String>,
-    mut progress: impl FnMut(u32, usize, usize),
+    mut progress: impl FnMut(u32, usize, usize) -> F,
 ) -> Paving {
+    let mut opts = opts;
+    let mut interrupted = false;
+    let mut progress = |level: u32, open: usize, leaves: usize| {
+        if !progress(level, open, leaves).go_on() && !interrupted {
+            interrupted = true;
+            return Some(leaves + open);
+        }
+        None
+    };
     let mut cap = u32::MAX;
     let mut budget = None;
     let mut abandoned = PaveStats::default();
     let mut peak = 0usize;
     let run = loop {
-        match grow_levels(method, root, opts, cap, &mut progress) {
+        match grow_levels(method, root, &mut opts, cap, &mut progress) {
             Err(again) => {
                 budget = budget.or(Some(again.budget));
                 abandoned.box_evaluations += again.stats.box_evaluations;
@@ -128,7 +140,10 @@ pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
     } = run;
     stats.box_evaluations += abandoned.box_evaluations;
     stats.slab_evaluations += abandoned.slab_evaluations;
-    let stop = left.stop();
+    let stop = match left.stop() {
+        StopReason::Budget if interrupted => StopReason::Interrupted,
+        s => s,
+    };
     let budget = budget.or(bite).filter(|_| stop == StopReason::Budget);
 
     let (nodes, leaves, assembly) = tree.into_preorder(root);
@@ -143,7 +158,7 @@ pub(super) fn pave<S: ConstraintSet, R: Refine<S>>(
         eps: opts.eps,
         nodes,
         leaves,
-        complete: stop != StopReason::Budget,
+        complete: !matches!(stop, StopReason::Budget | StopReason::Interrupted),
         stop,
         budget,
         same_as: method.scope().same_as.clone(),
@@ -173,12 +188,13 @@ struct Again {
 }
 
 /// The level loop: boxes split unevaluated only below level `cap`.
+/// `progress` returns a lower budget when the caller asks to stop.
 fn grow_levels<S: ConstraintSet, R: Refine<S>>(
     method: &R,
     root: PhaseBox,
-    opts: PaveOptions,
+    opts: &mut PaveOptions,
     mut cap: u32,
-    progress: &mut impl FnMut(u32, usize, usize),
+    progress: &mut impl FnMut(u32, usize, usize) -> Option<usize>,
 ) -> Result<Run, Again> {
     let set = method.scope().set;
     let mut tree = Tree::new();
@@ -206,7 +222,9 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>>(
     let (mut done, mut plan, mut next) = (Vec::new(), Vec::new(), Vec::new());
 
     while !frontier.is_empty() {
-        progress(level, frontier.len(), tree.leaves());
+        if let Some(budget) = progress(level, frontier.len(), tree.leaves()) {
+            opts.max_boxes = opts.max_boxes.min(budget);
+        }
         opens.push(frontier.len());
         start.push(tree.leaves() + frontier.len());
         let shared = if R::SHARED_SLABS {
@@ -266,7 +284,7 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>>(
         );
         if let (Some(needed), None) = (demand, bite) {
             let leaves = tree.leaves();
-            bite = Some(BudgetStop::new(opts, level, &opens, leaves, needed));
+            bite = Some(BudgetStop::new(*opts, level, &opens, leaves, needed));
         }
         // Everything held at this point: the tree and its bookkeeping, both
         // frontiers, this level's results and plan, and the slabs computed

@@ -124,12 +124,12 @@ impl MethodOptions {
 
 /// Paves `root` with a method. `natural` with every constraint relevant is
 /// [`super::pave`].
-pub fn pave_with<S: ConstraintSet>(
+pub fn pave_with<S: ConstraintSet, F: super::LevelFlow>(
     set: &S,
     root: PhaseBox,
     opts: PaveOptions,
     mo: &MethodOptions,
-    progress: impl FnMut(u32, usize, usize),
+    progress: impl FnMut(u32, usize, usize) -> F,
 ) -> Result<Paving, PaveError> {
     if !(opts.eps.is_finite() && opts.eps > 0.0 && opts.eps <= 1.0) {
         return Err(PaveError::BadEps(opts.eps));

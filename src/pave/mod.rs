@@ -446,6 +446,26 @@ impl Default for PaveOptions {
     }
 }
 
+/// What a progress callback returns: `()` to go on, or a
+/// [`std::ops::ControlFlow`] whose `Break` stops refinement at that level as
+/// the budget would (the paving is valid and coarser, its stop reason
+/// [`StopReason::Interrupted`]).
+pub trait LevelFlow {
+    fn go_on(self) -> bool;
+}
+
+impl LevelFlow for () {
+    fn go_on(self) -> bool {
+        true
+    }
+}
+
+impl LevelFlow for std::ops::ControlFlow<()> {
+    fn go_on(self) -> bool {
+        self.is_continue()
+    }
+}
+
 /// Counts of the work done.
 #[derive(Clone, Copy, Debug, Default, Serialize)]
 pub struct PaveStats {
@@ -476,6 +496,9 @@ pub enum StopReason {
     /// The leaf budget (`max_boxes`) stopped refinement: a valid, coarser
     /// result.
     Budget,
+    /// The progress callback asked to stop (e.g. Ctrl-C): a valid, coarser
+    /// result, as for the budget.
+    Interrupted,
 }
 
 impl StopReason {
@@ -488,6 +511,7 @@ impl StopReason {
                 "boxes one ulp wide: the resolution limit of double precision"
             }
             StopReason::Budget => "budget reached: coarser result",
+            StopReason::Interrupted => "interrupted: coarser result",
         }
     }
 }
@@ -499,6 +523,7 @@ impl std::fmt::Display for StopReason {
             StopReason::Resolution => "resolution",
             StopReason::DoublePrecisionLimit => "double_precision_limit",
             StopReason::Budget => "budget",
+            StopReason::Interrupted => "interrupted",
         })
     }
 }
@@ -525,9 +550,9 @@ pub struct Paving {
     pub eps: f64,
     pub nodes: Vec<Node>,
     pub leaves: Vec<Leaf>,
-    /// False when the box budget stopped refinement.
+    /// False when the box budget or the caller stopped refinement.
     pub complete: bool,
-    /// Why refinement stopped (`complete` is `stop != Budget`).
+    /// Why refinement stopped (`complete` unless `Budget` or `Interrupted`).
     pub stop: StopReason,
     /// When the budget stopped refinement: what the asked ε needs.
     pub budget: Option<BudgetStop>,
@@ -552,11 +577,11 @@ pub enum PaveError {
 /// Paves `root` for every constraint of `set` with the natural method.
 /// `progress` is called once per level with (level, open boxes, leaves so
 /// far).
-pub fn pave<S: ConstraintSet>(
+pub fn pave<S: ConstraintSet, F: LevelFlow>(
     set: &S,
     root: PhaseBox,
     opts: PaveOptions,
-    progress: impl FnMut(u32, usize, usize),
+    progress: impl FnMut(u32, usize, usize) -> F,
 ) -> Result<Paving, PaveError> {
     methods::pave_with(
         set,
@@ -600,22 +625,22 @@ impl Paving {
 }
 
 /// Paves Ω and Ω₀ of a scene over its whole domain.
-pub fn pave_scene(
+pub fn pave_scene<F: LevelFlow>(
     scene: &Scene,
     variant: Variant,
     opts: PaveOptions,
-    progress: impl FnMut(u32, usize, usize),
+    progress: impl FnMut(u32, usize, usize) -> F,
 ) -> Result<Paving, PaveError> {
     pave_scene_in(scene, variant, &scene.domain(), opts, progress)
 }
 
 /// Paves Ω and Ω₀ of a scene over a window of the phase plane.
-pub fn pave_scene_in(
+pub fn pave_scene_in<F: LevelFlow>(
     scene: &Scene,
     variant: Variant,
     domain: &Domain,
     opts: PaveOptions,
-    progress: impl FnMut(u32, usize, usize),
+    progress: impl FnMut(u32, usize, usize) -> F,
 ) -> Result<Paving, PaveError> {
     match scene {
         Scene::File(file) if !file.is_quadratic() => {
@@ -643,13 +668,13 @@ fn root_box(domain: &Domain) -> Result<PhaseBox, PaveError> {
 }
 
 /// [`pave_scene_in`] with a method.
-pub fn pave_scene_method(
+pub fn pave_scene_method<F: LevelFlow>(
     scene: &Scene,
     variant: Variant,
     domain: &Domain,
     opts: PaveOptions,
     mo: &MethodOptions,
-    progress: impl FnMut(u32, usize, usize),
+    progress: impl FnMut(u32, usize, usize) -> F,
 ) -> Result<Paving, PaveError> {
     match scene {
         Scene::File(file) if !file.is_quadratic() => {

@@ -1,0 +1,358 @@
+"""detach from Python: certified detachment regions, as the `detach` CLI.
+
+    import detach
+    rod = detach.Scene.load("painleve-rod", mu="1.5")
+    paving = rod.pave(eps=1/256)
+    paving.areas["omega"]          # certified inner and outer bounds
+    paving.plot()                  # the atlas, in the CLI's colours
+
+Parameters are decimal text (`mu="1.5"`), or ints or `decimal.Decimal`; a
+float is refused (see `detach._text.decimal_text`). Every number comes from
+the Rust library the CLI is built from, so results equal the CLI's.
+"""
+
+from __future__ import annotations
+
+import decimal
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+
+from . import _detach
+from ._text import decimal_text
+
+__all__ = [
+    "Scene",
+    "Paving",
+    "SetArea",
+    "Area",
+    "Verification",
+    "Interrupted",
+    "verify",
+    "scenes",
+    "palette",
+    "LABELS",
+    "CLASSES",
+]
+
+__version__ = _detach.VERSION.split()[0]
+
+#: Label words of a leaf per constraint, as in `detach pave --leaves`.
+LABELS = ("in", "out", "undecided", "undefined")
+#: A leaf's class: the four cells (both labels decided), then undecided and
+#: undefined; the order of `palette()`.
+CLASSES = (
+    "omega_and_omega0",
+    "not_omega_and_not_omega0",
+    "not_omega_and_omega0",
+    "omega_and_not_omega0",
+    "undecided",
+    "undefined",
+)
+
+
+def scenes():
+    """The names `Scene.load` knows: the paper's scenes, then shipped files."""
+    return list(_detach.scene_names())
+
+
+def palette():
+    """`{class: (symbol, meaning, "#rrggbb")}` as the CLI's atlas draws them."""
+    return dict(zip(CLASSES, _detach.palette()))
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C during `Scene.pave`: `.paving` is the valid, coarser result
+    reached (its `stop` is `"interrupted"`)."""
+
+    def __init__(self, paving):
+        super().__init__("paving interrupted; the partial result is in .paving")
+        self.paving = paving
+
+
+def _pairs(params):
+    return [(name, decimal_text(name, value)) for name, value in params.items()]
+
+
+def _window(name, window):
+    if window is None:
+        return None
+    try:
+        lo, hi = window
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be (lo, hi), got {window!r}") from None
+    return [decimal_text(name, lo), decimal_text(name, hi)]
+
+
+class Scene:
+    """A scene at given parameters, in one reading of the paper."""
+
+    def __init__(self, native, toml=None):
+        self._native = native
+        self._toml = toml
+
+    @classmethod
+    def load(cls, name, variant="derived", **params):
+        """A paper scene (`viscous-disc`, `smooth-disc`, `ice-disc`; `variant`
+        `derived` or `printed`) or a shipped scene file (`painleve-rod`)."""
+        return cls(_detach.Scene.load(name, _pairs(params), variant))
+
+    @classmethod
+    def from_file(cls, path, **params):
+        """A scene file (TOML, docs/scene-files.md)."""
+        native = _detach.Scene.from_file(str(path), _pairs(params))
+        with open(path, encoding="utf-8") as f:
+            return cls(native, f.read())
+
+    @classmethod
+    def from_toml(cls, text, **params):
+        """A scene file's text."""
+        return cls(_detach.Scene.from_toml(text, "<toml>", _pairs(params)), text)
+
+    @classmethod
+    def from_sympy(cls, omega, omega0=None, **kwargs):
+        """A scene from sympy expressions: see `detach.sympy.scene_toml` for
+        the arguments. The text written is `scene.toml`."""
+        from .sympy import scene_toml
+
+        return cls.from_toml(scene_toml(omega, omega0, **kwargs))
+
+    @property
+    def name(self):
+        return self._native.name
+
+    @property
+    def title(self):
+        return self._native.title
+
+    @property
+    def variant(self):
+        return self._native.variant
+
+    @property
+    def params(self):
+        """`{name: decimal text}` of every parameter."""
+        return dict(self._native.params)
+
+    @property
+    def domain(self):
+        """`{"theta": (lo, hi), "theta_dot": (lo, hi)}` as text."""
+        th, thd = self._native.domain_text
+        return {"theta": tuple(th), "theta_dot": tuple(thd)}
+
+    @property
+    def toml(self):
+        """The scene file's text (None for a paper scene)."""
+        return self._toml
+
+    @property
+    def warnings(self):
+        return list(self._native.warnings)
+
+    def __repr__(self):
+        ps = " ".join(f"{k}={v}" for k, v in self.params.items())
+        return f"<detach.Scene {self.name} ({self.variant}) {ps}>"
+
+    def pave(
+        self,
+        eps=1 / 1024,
+        method="slices",
+        region=None,
+        theta=None,
+        theta_dot=None,
+        max_boxes=4_000_000,
+    ):
+        """Paves Ω and Ω₀ as `detach pave` does (same defaults).
+
+        `theta`, `theta_dot`: windows `(lo, hi)` inside the domain (decimal
+        text, `"pi/2"`). The GIL is released while paving; Ctrl-C stops it
+        between levels and raises `Interrupted`, which carries the valid,
+        coarser paving reached."""
+        if isinstance(max_boxes, bool) or not isinstance(max_boxes, int) or max_boxes < 0:
+            raise ValueError(f"--max-boxes must be a positive integer, got {max_boxes!r}")
+        native, interrupted = self._native.pave(
+            float(eps),
+            max_boxes,
+            method,
+            region,
+            _window("theta", theta),
+            _window("theta_dot", theta_dot),
+        )
+        paving = Paving(native, self)
+        if interrupted:
+            raise Interrupted(paving)
+        return paving
+
+    def area(self, digits=10):
+        """Certified areas of Ω, Ω₀ and the four cells to `digits` places, as
+        `detach area`: `{name: Area}`, each saying how it was obtained."""
+        return {
+            name: Area(name, label, lower, upper, how)
+            for name, label, lower, upper, how in self._native.area(int(digits))
+        }
+
+
+@dataclass(frozen=True)
+class Area:
+    """`lower ≤ area ≤ upper` (doubles rounded outward); `how`:
+    `quadrature`, `paving`, `quadrature and paving`, or `empty: ...`."""
+
+    name: str
+    label: str
+    lower: float
+    upper: float
+    how: str
+
+    @property
+    def width(self):
+        return self.upper - self.lower
+
+
+@dataclass(frozen=True)
+class SetArea:
+    """A set's certified area bounds from a paving: `inner ≤ area ≤ outer`.
+
+    `inner`, `outer` are doubles rounded outward; `inner_text`,
+    `outer_text` the same doubles' exact decimal values. `empty` says why a
+    set is empty by construction (both bounds then exactly 0)."""
+
+    name: str
+    label: str
+    inner: float
+    outer: float
+    empty: Optional[str]
+
+    @property
+    def inner_text(self):
+        return str(decimal.Decimal(self.inner))
+
+    @property
+    def outer_text(self):
+        return str(decimal.Decimal(self.outer))
+
+
+_LEAF_DTYPE_EDGES = [
+    ("theta_lo", "f8"),
+    ("theta_hi", "f8"),
+    ("theta_dot_lo", "f8"),
+    ("theta_dot_hi", "f8"),
+]
+
+
+class Paving:
+    """The result of `Scene.pave`: leaves, certified areas, why it stopped."""
+
+    def __init__(self, native, scene):
+        self._native = native
+        self.scene = scene
+        self._leaves = None
+
+    @property
+    def leaves(self):
+        """Every leaf as a numpy structured array: `theta_lo`, `theta_hi`,
+        `theta_dot_lo`, `theta_dot_hi` (the exact double edges), one label
+        column per region (`omega`, `omega0`: in, out, undecided, undefined)
+        and `cell` (one of `CLASSES`)."""
+        if self._leaves is None:
+            edges = np.frombuffer(self._native.edges(), dtype=np.float64).reshape(-1, 4)
+            names = list(self._native.names)
+            codes = np.frombuffer(self._native.labels(), dtype=np.uint8).reshape(-1, len(names) + 1)
+            dtype = _LEAF_DTYPE_EDGES + [(n, "U9") for n in names] + [("cell", "U24")]
+            out = np.empty(len(edges), dtype=dtype)
+            for i, (field, _) in enumerate(_LEAF_DTYPE_EDGES):
+                out[field] = edges[:, i]
+            for j, n in enumerate(names):
+                out[n] = np.array(LABELS)[codes[:, j]]
+            out["cell"] = np.array(CLASSES)[codes[:, -1]]
+            out.flags.writeable = False
+            self._leaves = out
+        return self._leaves
+
+    @property
+    def areas(self):
+        """`{name: SetArea}` for Ω, Ω₀ and the four cells, as `detach pave`
+        reports them."""
+        return {
+            name: SetArea(name, label, inner, outer, empty or None)
+            for name, label, inner, outer, empty in self._native.areas()
+        }
+
+    @property
+    def stop(self):
+        """Why refinement stopped: `all_decided`, `resolution`,
+        `double_precision_limit`, `budget` or `interrupted`."""
+        return self._native.stop
+
+    @property
+    def stop_text(self):
+        return self._native.stop_text
+
+    @property
+    def complete(self):
+        """False when the budget or an interruption stopped refinement."""
+        return self._native.complete
+
+    @property
+    def elapsed(self):
+        """Seconds spent paving (as `pave --json`'s `elapsed_s`)."""
+        return self._native.elapsed
+
+    @property
+    def eps(self):
+        return self._native.eps
+
+    @property
+    def root(self):
+        """The box paved: `((theta lo, hi), (theta_dot lo, hi))`."""
+        return self._native.root
+
+    def __len__(self):
+        return len(self.leaves)
+
+    def __repr__(self):
+        return f"<detach.Paving {self.scene.name}: {len(self)} leaves, stop {self.stop}>"
+
+    def to_pandas(self):
+        """The leaves as a pandas DataFrame (labels and cell categorical)."""
+        import pandas as pd
+
+        df = pd.DataFrame(self.leaves)
+        for n in list(self._native.names):
+            df[n] = pd.Categorical(df[n], categories=LABELS)
+        df["cell"] = pd.Categorical(df["cell"], categories=CLASSES)
+        return df
+
+    def save_proof(self, path):
+        """Writes the paving as a proof file (proofs/FORMAT.md), once the
+        independent checker says VALID, as `detach pave --proof`."""
+        self._native.save_proof(self.scene._native, str(path))
+
+    def plot(self, ax=None, legend=True):
+        """Draws the atlas with matplotlib in the CLI's colours: the four
+        cells, undecided (grey) and undefined (hatched) leaves."""
+        from ._plot import plot_paving
+
+        return plot_paving(self, ax=ax, legend=legend)
+
+
+@dataclass(frozen=True)
+class Verification:
+    """What the independent checker says of a proof file."""
+
+    verdict: str
+    claim: str
+    why: str
+
+    @property
+    def valid(self):
+        return self.verdict == "VALID"
+
+    def __bool__(self):
+        return self.valid
+
+
+def verify(path):
+    """Checks a proof file with the independent checker, as `detach verify`
+    does; a file that cannot be read raises ValueError."""
+    return Verification(*_detach.verify(str(path)))

@@ -1,0 +1,326 @@
+//! `detach._detach`: the library's front door ([`detach::api`]) for Python.
+//! The pure-Python package (`python/detach/`) builds the numpy arrays,
+//! pictures and sympy scenes on top; every number comes from here.
+
+use detach::api::{
+    cell_named, verify as check_file, How, Label, Method, PaveRequest, Paved, Problem, Variant,
+    Verdict,
+};
+use detach::figures::Class;
+use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyBytes;
+use std::ops::ControlFlow;
+use std::path::PathBuf;
+
+/// One set's area: `(name, label, lower, upper, how)`.
+type AreaRow = (String, String, f64, f64, String);
+
+fn value_error(message: String) -> PyErr {
+    PyValueError::new_err(message)
+}
+
+/// A scene at given parameters in one reading of the paper.
+#[pyclass(module = "detach._detach", frozen)]
+struct Scene {
+    problem: Problem,
+}
+
+fn pairs(params: &[(String, String)]) -> Vec<(&str, &str)> {
+    params
+        .iter()
+        .map(|(n, v)| (n.as_str(), v.as_str()))
+        .collect()
+}
+
+#[pymethods]
+impl Scene {
+    /// A paper scene or a shipped scene file by name; `variant` is
+    /// `derived` or `printed`.
+    #[staticmethod]
+    fn load(name: &str, params: Vec<(String, String)>, variant: &str) -> PyResult<Scene> {
+        let variant: Variant = variant.parse().map_err(value_error)?;
+        let problem = Problem::load(name, &pairs(&params))
+            .and_then(|p| p.in_reading(variant))
+            .map_err(value_error)?;
+        Ok(Scene { problem })
+    }
+
+    #[staticmethod]
+    fn from_file(path: PathBuf, params: Vec<(String, String)>) -> PyResult<Scene> {
+        let problem = Problem::from_file(&path, &pairs(&params)).map_err(value_error)?;
+        Ok(Scene { problem })
+    }
+
+    #[staticmethod]
+    fn from_toml(text: &str, source: &str, params: Vec<(String, String)>) -> PyResult<Scene> {
+        let problem = Problem::from_toml(text, source, &pairs(&params)).map_err(value_error)?;
+        Ok(Scene { problem })
+    }
+
+    #[getter]
+    fn name(&self) -> String {
+        self.problem.scene.name().to_string()
+    }
+
+    #[getter]
+    fn title(&self) -> String {
+        self.problem.scene.title().to_string()
+    }
+
+    #[getter]
+    fn variant(&self) -> String {
+        self.problem.variant.to_string()
+    }
+
+    /// `(name, decimal text)` of every parameter.
+    #[getter]
+    fn params(&self) -> Vec<(String, String)> {
+        self.problem
+            .params
+            .texts()
+            .into_iter()
+            .map(|(n, t)| (n.to_string(), t))
+            .collect()
+    }
+
+    /// `[[θ lo, θ hi], [θ̇ lo, θ̇ hi]]` as text.
+    #[getter]
+    fn domain_text(&self) -> [[String; 2]; 2] {
+        self.problem.scene.domain_text()
+    }
+
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.problem.scene.warnings().to_vec()
+    }
+
+    /// Paves with the GIL released; Ctrl-C is seen between levels and stops
+    /// the paving there: `(paving, interrupted)`.
+    #[allow(clippy::too_many_arguments)]
+    fn pave(
+        &self,
+        py: Python<'_>,
+        eps: f64,
+        max_boxes: usize,
+        method: &str,
+        region: Option<&str>,
+        theta: Option<[String; 2]>,
+        theta_dot: Option<[String; 2]>,
+    ) -> PyResult<(Paving, bool)> {
+        let req = PaveRequest {
+            eps,
+            max_boxes,
+            method: method.parse::<Method>().map_err(value_error)?,
+            region: region.map(cell_named).transpose().map_err(value_error)?,
+            theta,
+            theta_dot,
+        };
+        let mut signal: Option<PyErr> = None;
+        let paved = py.detach(|| {
+            self.problem.pave_with_progress(&req, |_, _, _| {
+                if signal.is_none() {
+                    signal = Python::attach(|py| py.check_signals()).err();
+                }
+                match signal {
+                    Some(_) => ControlFlow::Break(()),
+                    None => ControlFlow::Continue(()),
+                }
+            })
+        });
+        let paved = paved.map_err(value_error)?;
+        match signal {
+            // Another exception raised by a signal handler goes on as it is.
+            Some(e) if !e.is_instance_of::<PyKeyboardInterrupt>(py) => Err(e),
+            s => Ok((Paving { paved }, s.is_some())),
+        }
+    }
+
+    /// Certified areas: `(name, label, lower, upper, how)` per set.
+    fn area(&self, py: Python<'_>, digits: i32) -> PyResult<Vec<AreaRow>> {
+        let areas = py
+            .detach(|| self.problem.area(digits))
+            .map_err(value_error)?;
+        Ok(areas
+            .into_iter()
+            .map(|a| {
+                (
+                    a.cell.name().to_string(),
+                    a.cell.label().to_string(),
+                    a.inner,
+                    a.outer,
+                    a.how.describe(),
+                )
+            })
+            .collect())
+    }
+}
+
+/// A finished (possibly coarser) paving.
+#[pyclass(module = "detach._detach", frozen)]
+struct Paving {
+    paved: Paved,
+}
+
+fn label_code(l: Label) -> u8 {
+    match l {
+        Label::ProvedIn => 0,
+        Label::ProvedOut => 1,
+        Label::Undecided => 2,
+        Label::Undefined => 3,
+    }
+}
+
+#[pymethods]
+impl Paving {
+    /// Leaf edges, `4 × leaves` doubles (θ lo, θ hi, θ̇ lo, θ̇ hi per leaf),
+    /// native byte order.
+    fn edges<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        let leaves = &self.paved.paving.leaves;
+        let mut bytes = Vec::with_capacity(leaves.len() * 32);
+        for l in leaves {
+            for x in [
+                l.bx.theta[0],
+                l.bx.theta[1],
+                l.bx.theta_dot[0],
+                l.bx.theta_dot[1],
+            ] {
+                bytes.extend_from_slice(&x.to_ne_bytes());
+            }
+        }
+        PyBytes::new(py, &bytes)
+    }
+
+    /// Per leaf, one label code per constraint (0 in, 1 out, 2 undecided,
+    /// 3 undefined), then the index of its class in `palette()`.
+    fn labels<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        let p = &self.paved.paving;
+        let n = p.names.len();
+        let mut bytes = Vec::with_capacity(p.leaves.len() * (n + 1));
+        for l in &p.leaves {
+            bytes.extend(l.labels[..n].iter().map(|&x| label_code(x)));
+            let class = Class::of_leaf(l);
+            bytes.push(Class::ALL.iter().position(|&c| c == class).unwrap_or(0) as u8);
+        }
+        PyBytes::new(py, &bytes)
+    }
+
+    /// The constraints' names (`omega`, `omega0`).
+    #[getter]
+    fn names(&self) -> Vec<String> {
+        self.paved.paving.names.clone()
+    }
+
+    /// `(name, label, inner, outer, how)` per set.
+    fn areas(&self) -> Vec<AreaRow> {
+        self.paved
+            .areas
+            .iter()
+            .map(|a| {
+                (
+                    a.cell.name().to_string(),
+                    a.cell.label().to_string(),
+                    a.inner,
+                    a.outer,
+                    match a.how {
+                        How::Empty(e) => e.describe().to_string(),
+                        _ => String::new(),
+                    },
+                )
+            })
+            .collect()
+    }
+
+    #[getter]
+    fn stop(&self) -> String {
+        self.paved.paving.stop.to_string()
+    }
+
+    #[getter]
+    fn stop_text(&self) -> String {
+        self.paved.paving.stop.describe().to_string()
+    }
+
+    #[getter]
+    fn complete(&self) -> bool {
+        self.paved.paving.complete
+    }
+
+    #[getter]
+    fn elapsed(&self) -> f64 {
+        self.paved.elapsed_s
+    }
+
+    #[getter]
+    fn eps(&self) -> f64 {
+        self.paved.paving.eps
+    }
+
+    /// The root box `((θ lo, θ hi), (θ̇ lo, θ̇ hi))`.
+    #[getter]
+    fn root(&self) -> ([f64; 2], [f64; 2]) {
+        let r = self.paved.paving.root;
+        (r.theta, r.theta_dot)
+    }
+
+    /// Writes the paving as a proof file, once the checker says VALID.
+    fn save_proof(&self, py: Python<'_>, scene: &Scene, path: PathBuf) -> PyResult<()> {
+        py.detach(|| self.paved.write_proof(&scene.problem, &path))
+            .map_err(value_error)
+    }
+}
+
+/// Checks a proof file: `(verdict, claim, why)` with verdict `VALID`,
+/// `INVALID` or `UNCHECKED`.
+#[pyfunction]
+fn verify(py: Python<'_>, path: PathBuf) -> PyResult<(String, String, String)> {
+    let report = py.detach(|| check_file(&path)).map_err(value_error)?;
+    let (verdict, why) = match report.verdict {
+        Verdict::Valid => ("VALID", String::new()),
+        Verdict::Invalid(why) => ("INVALID", why),
+        Verdict::Unchecked(why) => ("UNCHECKED", why),
+    };
+    Ok((verdict.to_string(), report.claim, why))
+}
+
+/// The atlas's classes as the CLI draws them: `(symbol, meaning, "#rrggbb")`,
+/// the four cells, then undecided and undefined.
+#[pyfunction]
+fn palette() -> Vec<(String, String, String)> {
+    Class::ALL
+        .iter()
+        .map(|c| {
+            let (r, g, b) = c.rgb();
+            (
+                c.symbol().to_string(),
+                c.meaning().to_string(),
+                format!("#{r:02x}{g:02x}{b:02x}"),
+            )
+        })
+        .collect()
+}
+
+/// The shipped scene names: the paper's, then the scene files.
+#[pyfunction]
+fn scene_names() -> Vec<String> {
+    detach::scene::SceneId::ALL
+        .iter()
+        .map(|id| id.name().to_string())
+        .chain(
+            detach::scene::file::SHIPPED
+                .iter()
+                .map(|(n, _)| n.to_string()),
+        )
+        .collect()
+}
+
+#[pymodule]
+fn _detach(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Scene>()?;
+    m.add_class::<Paving>()?;
+    m.add_function(wrap_pyfunction!(verify, m)?)?;
+    m.add_function(wrap_pyfunction!(palette, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_names, m)?)?;
+    m.add("VERSION", detach::LONG_VERSION)?;
+    Ok(())
+}

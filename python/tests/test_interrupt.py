@@ -1,0 +1,64 @@
+"""Ctrl-C stops a long paving between levels with a valid, coarser result."""
+
+import os
+import signal
+import threading
+import time
+
+import pytest
+
+import detach
+
+
+def sigint_after(seconds):
+    t = threading.Timer(seconds, lambda: os.kill(os.getpid(), signal.SIGINT))
+    t.start()
+    return t
+
+
+def test_ctrl_c_returns_the_partial_paving(tmp_path):
+    scene = detach.Scene.load("painleve-rod", mu="1.5")
+    # Far too fine to finish in a test: only an interruption ends it soon.
+    start = time.monotonic()
+    timer = sigint_after(0.3)
+    with pytest.raises(detach.Interrupted) as e:
+        scene.pave(eps=2.0**-30, max_boxes=20_000_000)
+    timer.join()
+    assert time.monotonic() - start < 60
+    partial = e.value.paving
+    assert isinstance(e.value, KeyboardInterrupt)
+    assert partial.stop == "interrupted" and not partial.complete
+    assert len(partial) > 0
+    # Valid: its bounds enclose those of a finished paving, and its proof
+    # is checked VALID.
+    fine = scene.pave(eps=1 / 256)
+    for name, a in partial.areas.items():
+        b = fine.areas[name]
+        assert a.inner <= b.outer and b.inner <= a.outer, name
+    path = tmp_path / "partial.json"
+    partial.save_proof(path)
+    assert detach.verify(path).valid
+
+
+def test_other_threads_run_while_paving():
+    """The GIL is released: a Python thread makes progress meanwhile."""
+    ticks = []
+    stop = threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            ticks.append(1)
+            time.sleep(0.001)
+
+    t = threading.Thread(target=tick)
+    scene = detach.Scene.load("ice-disc")
+    t.start()
+    try:
+        before = len(ticks)
+        p = scene.pave(eps=1 / 2048)
+        during = len(ticks) - before
+    finally:
+        stop.set()
+        t.join()
+    assert p.elapsed > 0.05, "the paving is too short to tell"
+    assert during >= 10

@@ -1,0 +1,546 @@
+//! The library in four steps, as the command line takes them: a scene
+//! ([`Problem`]), its paving ([`Problem::pave`]), certified areas
+//! ([`Problem::area`]), a proof file and its check ([`Paved::write_proof`],
+//! [`verify`]). The numbers are those of `detach pave`, `detach area` and
+//! `detach verify` on the same input. The paper's internals (its claims and
+//! figures, the paving engine's parts) stay in their modules.
+//!
+//! ```
+//! use detach::api::{PaveRequest, Problem};
+//!
+//! let rod = Problem::load("painleve-rod", &[("mu", "1.5")])?;
+//! let paved = rod.pave(&PaveRequest { eps: 1.0 / 64.0, ..PaveRequest::default() })?;
+//! for a in &paved.areas {
+//!     assert!(a.inner <= a.outer);
+//! }
+//! # Ok::<(), String>(())
+//! ```
+
+use crate::number::param::ParamSet;
+use crate::pave::{pave_scene_method, standard_cell_bounds, MethodOptions, PaveOptions};
+use crate::quadrature::{cell_area, check_target, AreaEnclosure, AreaError, AreaOptions, CELLS};
+use crate::scene::{Domain, SceneText};
+use std::path::Path;
+use std::time::Instant;
+
+pub use crate::check::{Report, Verdict};
+pub use crate::pave::{
+    Cell, Emptiness, Label, Leaf, LevelFlow, Method, Paving, PhaseBox, StopReason,
+};
+pub use crate::scene::{Scene, Variant};
+
+/// Most leaves one paving may be asked for (about 230 bytes each while
+/// paving), as `detach pave --max-boxes` allows.
+pub const MAX_LEAVES: usize = 20_000_000;
+
+/// A scene at given parameters in one reading of the paper: what is paved.
+pub struct Problem {
+    pub scene: Scene,
+    /// Every parameter's value, as decimal text and its enclosure.
+    pub params: ParamSet,
+    /// The reading of the paper (a scene file has one: `Derived`).
+    pub variant: Variant,
+}
+
+/// `name=value` pairs as owned strings.
+fn owned(params: &[(&str, &str)]) -> Vec<(String, String)> {
+    params
+        .iter()
+        .map(|(n, v)| (n.to_string(), v.to_string()))
+        .collect()
+}
+
+impl Problem {
+    /// A scene by name (`viscous-disc`, `smooth-disc`, `ice-disc`, or a
+    /// shipped scene file such as `painleve-rod`), its parameters given as
+    /// decimal text (`("mu", "1.5")`), in the derived reading.
+    ///
+    /// ```
+    /// let disc = detach::api::Problem::load("ice-disc", &[("c0", "1")])?;
+    /// assert_eq!(disc.scene.name(), "ice-disc");
+    /// assert!(detach::api::Problem::load("ice-disc", &[("c0", "one")]).is_err());
+    /// # Ok::<(), String>(())
+    /// ```
+    pub fn load(name: &str, params: &[(&str, &str)]) -> Result<Problem, String> {
+        let (scene, params) = Scene::by_name(name, &owned(params))?;
+        Ok(Problem {
+            scene,
+            params,
+            variant: Variant::Derived,
+        })
+    }
+
+    /// The same in another reading: `Printed` applies to the paper's scenes
+    /// only (the command line's message otherwise).
+    pub fn in_reading(mut self, variant: Variant) -> Result<Problem, String> {
+        if self.scene.id().is_none() && variant == Variant::Printed {
+            return Err("--variant printed applies to the paper's scenes; \
+                        a scene file has one reading"
+                .into());
+        }
+        self.variant = variant;
+        Ok(self)
+    }
+
+    /// A scene file (TOML, `docs/scene-files.md`).
+    pub fn from_file(path: &Path, params: &[(&str, &str)]) -> Result<Problem, String> {
+        let (scene, params) = Scene::from_file(path, &owned(params)).map_err(|e| e.to_string())?;
+        Ok(Problem {
+            scene,
+            params,
+            variant: Variant::Derived,
+        })
+    }
+
+    /// A scene file's text; `source` names it in messages.
+    ///
+    /// ```
+    /// let text = r#"
+    /// name = "ball"
+    /// [domain]
+    /// theta = ["0", "1"]
+    /// theta_dot = ["-1", "1"]
+    /// [parameters]
+    /// g = { value = "9.81" }
+    /// [regions]
+    /// omega = "theta_dot^2 - g"
+    /// "#;
+    /// let ball = detach::api::Problem::from_toml(text, "ball.toml", &[("g", "1")])?;
+    /// assert_eq!(ball.params.texts(), vec![("g", "1".to_string())]);
+    /// # Ok::<(), String>(())
+    /// ```
+    pub fn from_toml(text: &str, source: &str, params: &[(&str, &str)]) -> Result<Problem, String> {
+        let text = SceneText {
+            file: source.to_string(),
+            text: text.to_string().into(),
+        };
+        let f = text.compile(&owned(params)).map_err(|e| e.to_string())?;
+        let params = f.params.clone();
+        Ok(Problem {
+            scene: Scene::File(Box::new(f)),
+            params,
+            variant: Variant::Derived,
+        })
+    }
+
+    /// The domain, or the part of it in the windows (`[lo, hi]` as decimal
+    /// text, `pi`, `pi/N`), with the window ends clipped to the domain.
+    pub fn domain(
+        &self,
+        theta: Option<[&str; 2]>,
+        theta_dot: Option<[&str; 2]>,
+    ) -> Result<(Domain, Vec<String>), String> {
+        self.scene
+            .domain()
+            .window_clipped(theta, theta_dot)
+            .map_err(|e| e.to_string())
+    }
+
+    /// Paves Ω and Ω₀ as `detach pave` does.
+    pub fn pave(&self, req: &PaveRequest) -> Result<Paved, String> {
+        self.pave_with_progress(req, |_, _, _| {})
+    }
+
+    /// [`Problem::pave`], calling `progress(level, open boxes, leaves)` once
+    /// per level; a [`std::ops::ControlFlow::Break`] from it stops the
+    /// paving there with a valid, coarser result ([`StopReason::Interrupted`]).
+    ///
+    /// ```
+    /// use detach::api::{PaveRequest, Problem, StopReason};
+    /// use std::ops::ControlFlow;
+    ///
+    /// let rod = Problem::load("painleve-rod", &[])?;
+    /// let req = PaveRequest { eps: 1.0 / 4096.0, ..PaveRequest::default() };
+    /// let paved = rod.pave_with_progress(&req, |level, _, _| {
+    ///     if level < 6 { ControlFlow::Continue(()) } else { ControlFlow::Break(()) }
+    /// })?;
+    /// assert_eq!(paved.paving.stop, StopReason::Interrupted);
+    /// # Ok::<(), String>(())
+    /// ```
+    pub fn pave_with_progress<F: LevelFlow>(
+        &self,
+        req: &PaveRequest,
+        progress: impl FnMut(u32, usize, usize) -> F,
+    ) -> Result<Paved, String> {
+        let opts = req.options()?;
+        fn window(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
+            w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()])
+        }
+        let (domain, _) = self.domain(window(&req.theta), window(&req.theta_dot))?;
+        let mo = match req.region {
+            None => MethodOptions::new(req.method),
+            Some(cell) => MethodOptions::for_cell(req.method, &cell.spec()),
+        };
+        let start = Instant::now();
+        let paving = pave_scene_method(&self.scene, self.variant, &domain, opts, &mo, progress)
+            .map_err(|e| e.to_string())?;
+        let elapsed_s = start.elapsed().as_secs_f64();
+        let bounds = standard_cell_bounds(
+            &paving,
+            &self.scene,
+            self.variant,
+            domain.uncovered_area_sup(),
+        );
+        let areas = Cell::ALL
+            .into_iter()
+            .zip(bounds)
+            .map(|(cell, (b, empty))| SetArea {
+                cell,
+                inner: b.inner_area,
+                outer: b.outer_area,
+                how: match empty {
+                    Some(e) => How::Empty(e),
+                    None => How::Paving,
+                },
+            })
+            .collect();
+        let domain_text = self.scene.domain_text();
+        let text = |w: &Option<[String; 2]>, i: usize| w.clone().unwrap_or(domain_text[i].clone());
+        Ok(Paved {
+            domain_text: [text(&req.theta, 0), text(&req.theta_dot, 1)],
+            domain,
+            paving,
+            areas,
+            elapsed_s,
+        })
+    }
+
+    /// Certified areas of Ω, Ω₀ and the four cells to `digits` decimal
+    /// places, as `detach area` computes them: quadrature over θ where the
+    /// regions are of degree ≤ 2 in θ̇, intersected with a paving's bounds
+    /// (ε = 1/1024) where it missed its target; a paving's bounds alone
+    /// otherwise. Each says how it was obtained.
+    ///
+    /// ```
+    /// let disc = detach::api::Problem::load("viscous-disc", &[])?;
+    /// let areas = disc.area(6)?;
+    /// assert_eq!(areas.len(), 6);
+    /// assert!(areas[0].inner <= areas[0].outer);
+    /// # Ok::<(), String>(())
+    /// ```
+    pub fn area(&self, digits: i32) -> Result<Vec<SetArea>, String> {
+        if !(1..=15).contains(&digits) {
+            return Err(format!("--digits must be between 1 and 15, got {digits}"));
+        }
+        let tol = 10f64.powi(-digits);
+        let domain = self.scene.domain();
+        let refusal = |cell: Cell, e: AreaError| format!("{} ({}): {e}", cell.label(), cell.name());
+        let mut paving: Option<Paving> = None;
+        let pave_once = || -> Result<Paving, String> {
+            let opts = PaveOptions {
+                eps: AREA_PAVING_EPS,
+                ..PaveOptions::default()
+            };
+            let mo = MethodOptions::new(Method::default());
+            pave_scene_method(&self.scene, self.variant, &domain, opts, &mo, |_, _, _| {})
+                .map_err(|e| format!("paving failed: {e:?}"))
+        };
+        let by_paving = match &self.scene {
+            Scene::File(f) => f.not_quadratic().is_some(),
+            _ => false,
+        };
+        if by_paving {
+            paving = Some(pave_once()?);
+        } else {
+            let mut below = Vec::new();
+            let (mut floor, mut least) = (0f64, 0f64);
+            for cell in Cell::ALL {
+                match check_target(&self.scene, self.variant, &domain, CELLS[cell.index()], tol) {
+                    Ok(()) => {}
+                    Err(AreaError::BelowRounding {
+                        floor: f, least: l, ..
+                    }) => {
+                        below.push(format!("{} ({})", cell.label(), cell.name()));
+                        (floor, least) = (floor.max(f), least.max(l));
+                    }
+                    Err(e) => return Err(refusal(cell, e)),
+                }
+            }
+            if !below.is_empty() {
+                return Err(format!(
+                    "{}: a width of {tol:e} is below what binary64 arithmetic certifies \
+                     (rounding alone leaves up to about {floor:.1e}); ask for --digits {} or fewer",
+                    below.join(", "),
+                    (-least.log10()).floor() as i32
+                ));
+            }
+        }
+        let opts = AreaOptions {
+            tol,
+            max_pieces: 1 << 20,
+        };
+        let mut out = Vec::new();
+        for cell in Cell::ALL {
+            let of_paving = |p: &Paving| {
+                let b = p.area_bounds(&cell.spec(), domain.uncovered_area_sup());
+                AreaEnclosure::bounds(b.inner_area, b.outer_area, p.leaves.len())
+            };
+            let (e, how) = if by_paving {
+                (of_paving(paving.as_ref().expect("paved")), How::Paving)
+            } else {
+                let e = cell_area(
+                    &self.scene,
+                    self.variant,
+                    &domain,
+                    CELLS[cell.index()],
+                    opts,
+                )
+                .map_err(|e| refusal(cell, e))?;
+                if e.proved_empty {
+                    (e, How::Empty(Emptiness::Omega0IsOmega))
+                } else if e.width() <= tol || e.at_rounding_floor {
+                    (e, How::Quadrature)
+                } else {
+                    if paving.is_none() {
+                        paving = Some(pave_once()?);
+                    }
+                    let p = of_paving(paving.as_ref().expect("just paved"));
+                    (e.intersect(&p), How::QuadratureAndPaving)
+                }
+            };
+            out.push(SetArea {
+                cell,
+                inner: e.area.inf() + 0.0,
+                outer: e.area.sup() + 0.0,
+                how,
+            });
+        }
+        Ok(out)
+    }
+}
+
+/// Resolution of the paving whose bounds stand in for, or narrow, the
+/// quadrature's in [`Problem::area`] (as `detach area`).
+const AREA_PAVING_EPS: f64 = 1.0 / 1024.0;
+
+/// What to pave: `detach pave`'s options.
+#[derive(Clone, Debug)]
+pub struct PaveRequest {
+    /// Resolution relative to the domain, in (0, 1].
+    pub eps: f64,
+    /// Most leaves; when reached the result is coarser but valid.
+    pub max_boxes: usize,
+    pub method: Method,
+    /// Refine only for this region or cell.
+    pub region: Option<Cell>,
+    /// Windows `[lo, hi]` (decimal text, `pi`, `pi/N`) inside the domain.
+    pub theta: Option<[String; 2]>,
+    pub theta_dot: Option<[String; 2]>,
+}
+
+impl Default for PaveRequest {
+    fn default() -> Self {
+        let d = PaveOptions::default();
+        PaveRequest {
+            eps: d.eps,
+            max_boxes: d.max_boxes,
+            method: Method::default(),
+            region: None,
+            theta: None,
+            theta_dot: None,
+        }
+    }
+}
+
+impl PaveRequest {
+    /// The paving options, refused with the command line's messages.
+    pub fn options(&self) -> Result<PaveOptions, String> {
+        let (eps, max_boxes) = (self.eps, self.max_boxes);
+        if !(eps.is_finite() && eps > 0.0 && eps <= 1.0) {
+            return Err(format!(
+                "--eps must be a finite number in (0, 1], got {eps}"
+            ));
+        }
+        if max_boxes == 0 {
+            return Err("--max-boxes must be at least 1".into());
+        }
+        if max_boxes > MAX_LEAVES {
+            return Err(format!(
+                "--max-boxes {max_boxes} is over the memory budget of {MAX_LEAVES} leaves \
+                 (about 230 bytes each while paving, so {} GB)",
+                MAX_LEAVES * 230 / 1_000_000_000
+            ));
+        }
+        Ok(PaveOptions { eps, max_boxes })
+    }
+}
+
+/// A region or cell by its name in output files (`omega`, `omega0`,
+/// `omega_and_omega0`, …).
+///
+/// ```
+/// use detach::api::{cell_named, Cell};
+/// assert_eq!(cell_named("omega0"), Ok(Cell::Omega0));
+/// assert!(cell_named("omega1").unwrap_err().starts_with("unknown region `omega1`"));
+/// ```
+pub fn cell_named(name: &str) -> Result<Cell, String> {
+    Cell::ALL
+        .into_iter()
+        .find(|c| c.name() == name)
+        .ok_or_else(|| {
+            let known: Vec<&str> = Cell::ALL.iter().map(|c| c.name()).collect();
+            format!("unknown region `{name}` (known: {})", known.join(", "))
+        })
+}
+
+/// How a set's area bounds were obtained.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum How {
+    /// A paving's leaves proved inside (inner) and not proved outside (outer).
+    Paving,
+    /// Quadrature over θ.
+    Quadrature,
+    /// Quadrature, intersected with a paving's bounds where it missed its
+    /// target.
+    QuadratureAndPaving,
+    /// Empty by construction: both bounds are exactly 0.
+    Empty(Emptiness),
+}
+
+impl How {
+    /// `paving`, `quadrature`, `quadrature and paving`, or
+    /// `empty: omega0 = omega` (…).
+    pub fn describe(self) -> String {
+        match self {
+            How::Paving => "paving".into(),
+            How::Quadrature => "quadrature".into(),
+            How::QuadratureAndPaving => "quadrature and paving".into(),
+            How::Empty(e) => format!("empty: {}", e.describe()),
+        }
+    }
+}
+
+/// A set's certified area: `inner ≤ area ≤ outer`, both doubles rounded
+/// outward.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SetArea {
+    pub cell: Cell,
+    pub inner: f64,
+    pub outer: f64,
+    pub how: How,
+}
+
+/// A paving with what `detach pave` reports of it.
+pub struct Paved {
+    pub paving: Paving,
+    /// The domain paved (the windows applied) and its ends as text.
+    pub domain: Domain,
+    pub domain_text: [[String; 2]; 2],
+    /// Ω, Ω₀ and the four cells, in [`Cell::ALL`] order.
+    pub areas: Vec<SetArea>,
+    pub elapsed_s: f64,
+}
+
+impl Paved {
+    /// The paving as a proof file's JSON (`proofs/FORMAT.md`), as
+    /// `detach pave --proof` writes it.
+    pub fn proof(&self, problem: &Problem) -> serde_json::Value {
+        let scene = &problem.scene;
+        let variant = problem.variant;
+        crate::certificate::paving_proof(
+            &crate::certificate::PavingStatement {
+                scene,
+                variant,
+                params: &problem.params,
+                domain: &self.domain,
+                domain_text: self.domain_text.clone(),
+                title: match scene.id() {
+                    Some(id) => format!("Ω, Ω₀ and the four cells of the {id} ({variant})"),
+                    None => format!("Ω, Ω₀ and the four cells of {}", scene.title()),
+                },
+            },
+            &self.paving,
+        )
+    }
+
+    /// Writes [`Paved::proof`] to `path` once the checker says VALID.
+    ///
+    /// ```
+    /// use detach::api::{verify, PaveRequest, Problem, Verdict};
+    ///
+    /// let rod = Problem::load("painleve-rod", &[])?;
+    /// let paved = rod.pave(&PaveRequest { eps: 1.0 / 32.0, ..PaveRequest::default() })?;
+    /// let path = std::env::temp_dir().join("detach-api-doc-rod.json");
+    /// paved.write_proof(&rod, &path)?;
+    /// assert_eq!(verify(&path)?.verdict, Verdict::Valid);
+    /// # std::fs::remove_file(&path).ok();
+    /// # Ok::<(), String>(())
+    /// ```
+    pub fn write_proof(&self, problem: &Problem, path: &Path) -> Result<(), String> {
+        let bytes = crate::certificate::to_bytes(&self.proof(problem));
+        let shown = crate::files::shown(path);
+        let report = crate::check::check_bytes(&bytes)
+            .map_err(|e| format!("{shown}: the checker cannot read it: {e}"))?;
+        match &report.verdict {
+            Verdict::Valid => {}
+            Verdict::Invalid(why) => return Err(format!("{shown}: the checker rejects it: {why}")),
+            Verdict::Unchecked(why) => {
+                return Err(format!("{shown}: the checker cannot check it: {why}"))
+            }
+        }
+        crate::files::write_atomic(path, &bytes).map_err(|e| format!("cannot write {shown}: {e}"))
+    }
+}
+
+/// Checks a proof file with the independent checker ([`crate::check`]), as
+/// `detach verify FILE` does: `Err` when it cannot be read.
+pub fn verify(path: &Path) -> Result<Report, String> {
+    crate::check::check_file(path).map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::ops::ControlFlow;
+
+    /// A paving stopped by its callback at a level keeps the boxes it held
+    /// there as labelled leaves: its tree replays, its leaf count is what
+    /// the level held, and its area bounds bracket a finished paving's.
+    #[test]
+    fn a_stopped_paving_is_valid_and_coarser() {
+        let rod = Problem::load("painleve-rod", &[("mu", "1.5")]).unwrap();
+        for method in Method::ALL {
+            let req = PaveRequest {
+                eps: 1.0 / 256.0,
+                method,
+                ..PaveRequest::default()
+            };
+            let full = rod.pave(&req).unwrap();
+            let mut held = 0;
+            let stopped = rod
+                .pave_with_progress(&req, |level, open, leaves| {
+                    if level < 8 {
+                        return ControlFlow::Continue(());
+                    }
+                    held = held.max(open + leaves);
+                    ControlFlow::Break(())
+                })
+                .unwrap();
+            let p = &stopped.paving;
+            assert_eq!(p.stop, StopReason::Interrupted, "{method}");
+            assert!(!p.complete);
+            assert!(p.leaves.len() <= held && p.leaves.len() < full.paving.leaves.len());
+            assert_eq!(p.replay_boxes().unwrap().len(), p.leaves.len());
+            for (a, b) in stopped.areas.iter().zip(&full.areas) {
+                assert!(
+                    a.inner <= b.inner && b.outer <= a.outer,
+                    "{method} {:?}",
+                    a.cell
+                );
+            }
+        }
+    }
+
+    /// The callback returning `()` never stops a paving.
+    #[test]
+    fn a_plain_callback_goes_on() {
+        let rod = Problem::load("painleve-rod", &[]).unwrap();
+        let req = PaveRequest {
+            eps: 1.0 / 64.0,
+            ..PaveRequest::default()
+        };
+        let p = rod.pave_with_progress(&req, |_, _, _| ()).unwrap();
+        assert!(p.paving.complete);
+        assert_ne!(p.paving.stop, StopReason::Interrupted);
+    }
+}
