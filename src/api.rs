@@ -18,7 +18,8 @@
 
 use crate::number::param::ParamSet;
 use crate::pave::{pave_scene_method, standard_cell_bounds, MethodOptions, PaveOptions};
-use crate::quadrature::{cell_area, check_target, AreaEnclosure, AreaError, AreaOptions, CELLS};
+use crate::area::{certified_areas, Provenance};
+use crate::quadrature::AreaOptions;
 use crate::scene::{Domain, SceneText};
 use std::path::Path;
 use std::time::Instant;
@@ -222,96 +223,31 @@ impl Problem {
         if !(1..=15).contains(&digits) {
             return Err(format!("--digits must be between 1 and 15, got {digits}"));
         }
-        let tol = 10f64.powi(-digits);
-        let domain = self.scene.domain();
-        let refusal = |cell: Cell, e: AreaError| format!("{} ({}): {e}", cell.label(), cell.name());
-        let mut paving: Option<Paving> = None;
-        let pave_once = || -> Result<Paving, String> {
-            let opts = PaveOptions {
-                eps: AREA_PAVING_EPS,
-                ..PaveOptions::default()
-            };
-            let mo = MethodOptions::new(Method::default());
-            pave_scene_method(&self.scene, self.variant, &domain, opts, &mo, |_, _, _| {})
-                .map_err(|e| format!("paving failed: {e:?}"))
-        };
-        let by_paving = match &self.scene {
-            Scene::File(f) => f.not_quadratic().is_some(),
-            _ => false,
-        };
-        if by_paving {
-            paving = Some(pave_once()?);
-        } else {
-            let mut below = Vec::new();
-            let (mut floor, mut least) = (0f64, 0f64);
-            for cell in Cell::ALL {
-                match check_target(&self.scene, self.variant, &domain, CELLS[cell.index()], tol) {
-                    Ok(()) => {}
-                    Err(AreaError::BelowRounding {
-                        floor: f, least: l, ..
-                    }) => {
-                        below.push(format!("{} ({})", cell.label(), cell.name()));
-                        (floor, least) = (floor.max(f), least.max(l));
-                    }
-                    Err(e) => return Err(refusal(cell, e)),
-                }
-            }
-            if !below.is_empty() {
-                return Err(format!(
-                    "{}: a width of {tol:e} is below what binary64 arithmetic certifies \
-                     (rounding alone leaves up to about {floor:.1e}); ask for --digits {} or fewer",
-                    below.join(", "),
-                    (-least.log10()).floor() as i32
-                ));
-            }
-        }
         let opts = AreaOptions {
-            tol,
+            tol: 10f64.powi(-digits),
             max_pieces: 1 << 20,
         };
-        let mut out = Vec::new();
-        for cell in Cell::ALL {
-            let of_paving = |p: &Paving| {
-                let b = p.area_bounds(&cell.spec(), domain.uncovered_area_sup());
-                AreaEnclosure::bounds(b.inner_area, b.outer_area, p.leaves.len())
-            };
-            let (e, how) = if by_paving {
-                (of_paving(paving.as_ref().expect("paved")), How::Paving)
-            } else {
-                let e = cell_area(
-                    &self.scene,
-                    self.variant,
-                    &domain,
-                    CELLS[cell.index()],
-                    opts,
-                )
-                .map_err(|e| refusal(cell, e))?;
-                if e.proved_empty {
-                    (e, How::Empty(Emptiness::Omega0IsOmega))
-                } else if e.width() <= tol || e.at_rounding_floor {
-                    (e, How::Quadrature)
-                } else {
-                    if paving.is_none() {
-                        paving = Some(pave_once()?);
-                    }
-                    let p = of_paving(paving.as_ref().expect("just paved"));
-                    (e.intersect(&p), How::QuadratureAndPaving)
-                }
-            };
-            out.push(SetArea {
-                cell,
-                inner: e.area.inf() + 0.0,
-                outer: e.area.sup() + 0.0,
-                how,
-            });
-        }
+        let domain = self.scene.domain();
+        let areas = certified_areas(&self.scene, self.variant, &domain, &Cell::ALL, opts)
+            .map_err(|e| e.to_string())?;
+        let out = areas
+            .sets
+            .iter()
+            .map(|s| SetArea {
+                cell: s.cell,
+                inner: s.lower(),
+                outer: s.upper(),
+                how: match s.provenance {
+                    _ if s.enclosure.proved_empty => How::Empty(Emptiness::Omega0IsOmega),
+                    Provenance::Quadrature => How::Quadrature,
+                    Provenance::Paving => How::Paving,
+                    Provenance::Intersection => How::QuadratureAndPaving,
+                },
+            })
+            .collect();
         Ok(out)
     }
 }
-
-/// Resolution of the paving whose bounds stand in for, or narrow, the
-/// quadrature's in [`Problem::area`] (as `detach area`).
-const AREA_PAVING_EPS: f64 = 1.0 / 1024.0;
 
 /// What to pave: `detach pave`'s options.
 #[derive(Clone, Debug)]
