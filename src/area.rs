@@ -82,10 +82,21 @@ pub struct CertifiedAreas {
 /// Why no area was computed.
 #[derive(Debug, thiserror::Error)]
 pub enum AreasError {
-    /// The request cannot be met (a width below binary64's rounding, an
-    /// empty domain): bad input.
+    /// The request cannot be met (e.g. an empty domain): bad input.
     #[error("{0}")]
     Refused(String),
+    /// The width asked is below binary64's rounding for `sets`; every set
+    /// asked can reach `digits` decimal places.
+    #[error(
+        "{sets}: a width of {tol:e} is below what binary64 arithmetic certifies \
+         (rounding alone leaves up to about {floor:.1e})"
+    )]
+    BelowRounding {
+        sets: String,
+        tol: f64,
+        floor: f64,
+        digits: i32,
+    },
     /// The paving standing in for the quadrature failed.
     #[error("paving failed: {0}")]
     Paving(String),
@@ -161,13 +172,12 @@ pub fn certified_areas(
         }
     }
     if !below.is_empty() {
-        return Err(AreasError::Refused(format!(
-            "{}: a width of {:e} is below what binary64 arithmetic certifies \
-             (rounding alone leaves up to about {floor:.1e}); ask for {} decimal places or fewer",
-            below.join(", "),
-            opts.tol,
-            (-least.log10()).floor() as i32
-        )));
+        return Err(AreasError::BelowRounding {
+            sets: below.join(", "),
+            tol: opts.tol,
+            floor,
+            digits: (-least.log10()).floor() as i32,
+        });
     }
     let mut paving: Option<Paving> = None;
     let mut sets = Vec::new();

@@ -130,6 +130,9 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
     };
     let areas =
         certified_areas(&scene, args.variant, &domain, &wanted, opts).map_err(|e| match e {
+            AreasError::BelowRounding { digits, .. } => {
+                CliError::usage(format!("{e}; ask for --digits {digits} or fewer"))
+            }
             AreasError::Refused(_) => CliError::usage(e),
             AreasError::Paving(_) => CliError::runtime(e),
         })?;
