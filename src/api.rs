@@ -104,7 +104,7 @@ impl Problem {
     /// [parameters]
     /// g = { value = "9.81" }
     /// [regions]
-    /// omega = "theta_dot^2 - g"
+    /// omega = "theta_dot^2 < g"
     /// "#;
     /// let ball = detach::api::Problem::from_toml(text, "ball.toml", &[("g", "1")])?;
     /// assert_eq!(ball.params.texts(), vec![("g", "1".to_string())]);
