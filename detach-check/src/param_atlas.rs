@@ -475,7 +475,7 @@ fn verify(st: &mut Statement, checked: &mut u64) -> Result<(), String> {
     }
     if !stack.is_empty() {
         return Err(format!(
-            "the tree ends with {} boxes still to cover",
+            "the tree ends before every box has its leaf ({} left)",
             stack.len()
         ));
     }
