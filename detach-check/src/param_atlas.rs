@@ -17,13 +17,19 @@ enum Status {
     /// A witness phase box `[t0, t1] × [w0, w1]`.
     Nonempty([f64; 4]),
     /// A phase split tree from the phase box: its node count and bits.
-    Empty { nodes: u64, body: Vec<u8> },
+    Empty {
+        nodes: u64,
+        body: Vec<u8>,
+    },
     Undecided,
 }
 
 /// A node of the parameter split tree, in preorder.
 enum ParamNode {
-    Split { axis: usize, at: f64 },
+    Split {
+        axis: usize,
+        at: f64,
+    },
     /// One status per set.
     Leaf(Vec<Status>),
 }
@@ -357,10 +363,7 @@ fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
         )));
     }
     let scene = opt_str(st, "scene")?.unwrap_or("?");
-    let claim = format!(
-        "parameter-atlas {scene}: {leaf} boxes, {} sets",
-        sets.len()
-    );
+    let claim = format!("parameter-atlas {scene}: {leaf} boxes, {} sets", sets.len());
     Ok((
         Statement {
             prog,
@@ -670,7 +673,10 @@ mod tests {
         assert_eq!(factor_text("U/V", "U").as_deref(), Some("V"));
         assert_eq!(factor_text("U * V", "U").as_deref(), Some("V"));
         assert_eq!(factor_text("V*U", "U").as_deref(), Some("V"));
-        assert_eq!(factor_text("((U)/(1 + t))", "(U)").as_deref(), Some("( 1 + t )"));
+        assert_eq!(
+            factor_text("((U)/(1 + t))", "(U)").as_deref(),
+            Some("( 1 + t )")
+        );
         assert_eq!(
             factor_text("(w^2 - g)/cos(t)", "w^2-g").as_deref(),
             Some("cos ( t )")

@@ -384,7 +384,13 @@ pub(crate) fn monotone_bound(
 /// convex (concave) in `w` for every `t`, so its largest (smallest) value on
 /// the box lies on `t × {w0}` or `t × {w1}`; the label holds if it holds on
 /// both segments, each by its natural value or the monotone test.
-pub(crate) fn convex_holds(prog: &Program, root: u32, t: Interval, w: Interval, want_in: bool) -> bool {
+pub(crate) fn convex_holds(
+    prog: &Program,
+    root: u32,
+    t: Interval,
+    w: Interval,
+    want_in: bool,
+) -> bool {
     let td = DecInterval::new(t);
     let vars = [
         Num::constant(td),

@@ -28,13 +28,33 @@ pub struct ParamAtlasStatement<'a> {
     pub title: String,
 }
 
-/// The box every emptiness tree starts from: the smallest double box
-/// containing the domain (its ends' enclosures' outer ends), so that the
-/// leaves cover all of it. The prover paves emptiness from here.
+/// Doubles by which [`phase_root`] reaches beyond each end of the domain's
+/// enclosure: a checker whose rounding is looser (FORMAT.md, "Accuracy")
+/// encloses an end such as `pi/2` a few doubles wider, and the phase box
+/// must still contain it.
+pub const PHASE_ROOT_SLACK: u32 = 64;
+
+/// The box every emptiness tree starts from: the domain's enclosure (its
+/// ends' outer ends) widened by [`PHASE_ROOT_SLACK`] doubles at each end,
+/// so that the leaves cover the domain for any conforming checker. The
+/// prover paves emptiness from here (a leaf may reach a little outside the
+/// domain; its reason must hold there too).
 pub fn phase_root(domain: &Domain) -> PhaseBox {
+    let out = |mut x: f64, up: bool| {
+        for _ in 0..PHASE_ROOT_SLACK {
+            x = if up { x.next_up() } else { x.next_down() };
+        }
+        x
+    };
     PhaseBox {
-        theta: [domain.theta[0].inf(), domain.theta[1].sup()],
-        theta_dot: [domain.theta_dot[0].inf(), domain.theta_dot[1].sup()],
+        theta: [
+            out(domain.theta[0].inf(), false),
+            out(domain.theta[1].sup(), true),
+        ],
+        theta_dot: [
+            out(domain.theta_dot[0].inf(), false),
+            out(domain.theta_dot[1].sup(), true),
+        ],
     }
 }
 
