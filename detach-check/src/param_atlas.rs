@@ -494,7 +494,7 @@ fn witness(
     what: &str,
 ) -> Result<(), String> {
     for (axis, k) in [("t", 0), ("w", 2)] {
-        if !(w[k] < w[k + 1]) || w[k] < d[k].sup() || w[k + 1] > d[k + 1].inf() {
+        if w[k] >= w[k + 1] || w[k] < d[k].sup() || w[k + 1] > d[k + 1].inf() {
             return Err(format!(
                 "{what}: witness {} is not a box inside the domain along {axis}",
                 show_box(w)
