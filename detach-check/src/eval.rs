@@ -674,6 +674,21 @@ impl Program {
             .copied()
             .unwrap_or(T::constant(DecInterval::NAI))
     }
+
+    /// Gives the parameter `name` the enclosure `x`: one compiled statement
+    /// then serves every box of a parameter split tree.
+    pub(crate) fn set_parameter(&mut self, name: &str, x: Interval) -> Result<(), String> {
+        let s = self
+            .lookup(name)
+            .ok_or_else(|| format!("unknown parameter {name:?}"))?;
+        match self.ops.get_mut(s as usize) {
+            Some(op @ Op::Const(_)) => {
+                *op = Op::Const(DecInterval::new(x));
+                Ok(())
+            }
+            _ => Err(format!("{name:?} is not a parameter")),
+        }
+    }
 }
 
 /// True when the decorated value is defined on the whole argument (`≥ def`).

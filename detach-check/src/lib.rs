@@ -1,7 +1,8 @@
 //! Independent checker of `detach-proof/1` files (`proofs/FORMAT.md`).
 //!
 //! A proof file states one claim of detach — the areas of a paving, the
-//! roots of an equation, the bound κ₀, the critical band — and carries the
+//! roots of an equation, the bound κ₀, the critical band, where in a
+//! parameter box a set is empty or not — and carries the
 //! evidence for it. The checker confirms the claim by re-deriving every
 //! enclosure from the statement and the evidence with its own JSON access,
 //! expression parser, interval evaluator (forward-mode duals, nested for
@@ -62,6 +63,7 @@ mod files;
 mod json;
 mod kappa0;
 mod output;
+mod param_atlas;
 mod paving;
 mod pieces;
 mod roots;
@@ -236,6 +238,7 @@ fn check_value(text: &str) -> Result<Outcome, Unreadable> {
         "roots" => roots::check(obj)?,
         "kappa0" => kappa0::check(obj)?,
         "critical-band" => band::check(obj)?,
+        "parameter-atlas" => param_atlas::check(obj)?,
         other => return Err(Unreadable(format!("unknown claim {other:?}"))),
     };
     Ok(out)

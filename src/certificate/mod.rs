@@ -9,10 +9,12 @@
 pub mod band;
 pub mod catalog;
 pub mod numbers;
+pub mod params;
 pub mod paving;
 pub mod roots;
 
 pub use catalog::{prove_named, HEADLINE};
+pub use params::{param_atlas_proof, ParamAtlasStatement};
 pub use paving::{paving_proof, PavingStatement};
 pub use roots::{build_pieces, kappa0_proof, roots_proof, RootsStatement};
 
