@@ -16,9 +16,9 @@
 //! # Ok::<(), String>(())
 //! ```
 
+use crate::area::{certified_areas, Provenance};
 use crate::number::param::ParamSet;
 use crate::pave::{pave_scene_method, standard_cell_bounds, MethodOptions, PaveOptions};
-use crate::area::{certified_areas, Provenance};
 use crate::quadrature::AreaOptions;
 use crate::scene::{Domain, SceneText};
 use std::path::Path;

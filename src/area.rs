@@ -183,8 +183,7 @@ pub fn certified_areas(
     let mut sets = Vec::new();
     for &cell in cells {
         let start = Instant::now();
-        let q = cell_area(scene, variant, domain, cell, opts)
-            .map_err(|e| refusal(cell, e))?;
+        let q = cell_area(scene, variant, domain, cell, opts).map_err(|e| refusal(cell, e))?;
         // At its rounding floor the enclosure is already far narrower than
         // a paving's.
         let set = if q.width() <= opts.tol || q.at_rounding_floor {

@@ -12,8 +12,8 @@ use super::numbers::hex;
 use super::paving::{base64, BitWriter};
 use crate::number::param::ParamSet;
 use crate::params::model::{EmptyReason, ParamAtlas, ParamNode, SetStatus};
-use crate::pave::{standard_cells, Node, PhaseBox};
-use crate::scene::{Domain, Scene, Variant, REGION_NAMES};
+use crate::pave::{Node, PhaseBox};
+use crate::scene::{Cell, Domain, Scene, Variant};
 use serde_json::{json, Map, Value};
 
 /// What a parameter-atlas proof is about, besides the atlas itself.
@@ -128,12 +128,9 @@ fn formulas(scene: &Scene, variant: Variant) -> (Vec<(String, String)>, [String;
 
 /// The literals of a standard set by its proof-file name.
 fn literals(set: &str) -> Result<Value, String> {
-    let k = REGION_NAMES
-        .iter()
-        .position(|n| *n == set)
-        .ok_or_else(|| format!("unknown set `{set}` (known: {})", REGION_NAMES.join(", ")))?;
+    let cell = set.parse::<Cell>().map_err(|e| e.to_string())?;
     let mut lits = Map::new();
-    for (name, want) in ["omega", "omega0"].iter().zip(standard_cells()[k].0) {
+    for (name, want) in ["omega", "omega0"].iter().zip(cell.literals()) {
         if let Some(want_in) = want {
             let word = if want_in { "in" } else { "out" };
             lits.insert(name.to_string(), Value::String(word.into()));

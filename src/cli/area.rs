@@ -115,7 +115,9 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
     }
     let mut wanted = Vec::new();
     for r in &args.region {
-        let cell = r.parse::<Cell>().map_err(|e| CliError::usage(e.to_string()))?;
+        let cell = r
+            .parse::<Cell>()
+            .map_err(|e| CliError::usage(e.to_string()))?;
         if !wanted.contains(&cell) {
             wanted.push(cell);
         }

@@ -11,9 +11,9 @@ use detach::check::{check_bytes, with_looseness, Looseness, Verdict};
 use detach::number::param::ParamSet;
 use detach::params::model::{EmptyReason, ParamAtlas, ParamAxis, ParamLeaf, ParamNode, SetStatus};
 use detach::pave::{
-    pave_scene_method, standard_cells, CellSpec, Method, MethodOptions, Node, PaveOptions, PhaseBox,
+    pave_scene_method, CellSpec, Method, MethodOptions, Node, PaveOptions, PhaseBox,
 };
-use detach::scene::{Domain, Model, Scene, SceneId, Variant, ViscousDisc, REGION_NAMES};
+use detach::scene::{Domain, Model, Scene, SceneId, Variant, ViscousDisc};
 use inari::{const_interval, Interval};
 
 fn point(x: f64) -> Interval {
@@ -25,7 +25,7 @@ fn iv(a: f64, b: f64) -> Interval {
 }
 
 fn cell(name: &str) -> CellSpec {
-    standard_cells()[REGION_NAMES.iter().position(|n| *n == name).unwrap()]
+    name.parse::<detach::scene::Cell>().unwrap().spec()
 }
 
 /// The checker's verdict on a proof, exact and as loose as the slack rule
