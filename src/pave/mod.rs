@@ -10,6 +10,7 @@
 //! with [`Paving::nodes`] (bisection choices in preorder) and the leaf labels.
 
 pub mod area;
+mod budget;
 mod centred;
 mod certify;
 mod contract;
@@ -511,6 +512,10 @@ pub struct BudgetStop {
     /// An estimate, not a bound: the open boxes' growth over the last
     /// levels carried on down to the resolution.
     pub leaves_needed_estimate: f64,
+    /// The resolution the paving returned is complete at: the finest power
+    /// of two above ε whose paving fits ([`budget`]). `None`: not even
+    /// ε = 1 fits, and the paving is the domain's box alone.
+    pub complete_at_eps: Option<f64>,
 }
 
 /// The result of paving: the tree, its leaves, and whether it finished.
