@@ -407,6 +407,10 @@ fn print_table(r: &PaveReport) {
             b.leaves_needed_estimate,
             b.option
         );
+        match b.complete_at_eps {
+            Some(e) => outln!("  the result is the complete paving at eps {e:e}"),
+            None => outln!("  the result is the domain's box alone"),
+        }
     }
     outln!(
         "  {} {:>12} {:>12} {:>12} {:>12} {:>12} {:>12}",

@@ -3,8 +3,8 @@
 //! A level's open boxes are processed independently (in parallel), then the
 //! tree grows by one level in a fixed order, so the tree is the same whatever
 //! the thread count. One level is three steps: the θ-slabs its boxes share
-//! ([`share_slabs`]), which boxes the budget lets refine ([`schedule`]), and
-//! the level written into the tree ([`Tree::grow`]). What a method adds —
+//! ([`share_slabs`]), whether the budget takes the level's refinements
+//! ([`schedule`]), and the level written into the tree ([`Tree::grow`]). What a method adds —
 //! how it steers, which subtree it gives an undecided box — is behind
 //! [`Refine`].
 
@@ -64,6 +64,8 @@ pub(super) trait Refine<S: ConstraintSet>: Sync {
 /// What is left unrefined, hence why refinement stopped.
 #[derive(Default)]
 struct Left {
+    /// The caller asked to stop (the progress callback).
+    interrupted: bool,
     /// A refinement did not fit in the budget.
     budget: bool,
     /// An undecided box above the resolution could not be split.
@@ -74,7 +76,9 @@ struct Left {
 
 impl Left {
     fn stop(&self) -> StopReason {
-        if self.budget {
+        if self.interrupted {
+            StopReason::Interrupted
+        } else if self.budget {
             StopReason::Budget
         } else if self.ulp_limit {
             StopReason::DoublePrecisionLimit
@@ -88,71 +92,35 @@ impl Left {
 
 /// Paves `root` with `method`; arguments already checked.
 ///
-/// Under the budget a smaller ε must never give a worse result than a
-/// larger one: the levels are those of any ε until the budget stops one,
-/// and that level refines the boxes of largest area first ([`schedule`]).
-/// A box split before any interval work (a `slices` slab) would be left
-/// with no labels at all if the budget then stopped its children's
-/// contraction: such a run is started again with those splits stopped one
-/// level earlier (at most once per level: each try is cheaper), so every
-/// slab it keeps is labelled.
+/// A level whose refinements do not all fit in the budget ends the run:
+/// [`Overflow`] says what the asked ε needs, and [`super::budget`] finds a
+/// coarser resolution that fits. Only at the root is a paving kept: the
+/// root alone, the coarsest one there is.
 ///
-/// A `progress` that asks to stop lowers the budget to the leaves and open
-/// boxes held at that level: the level's boxes are labelled and kept.
+/// A `progress` that asks to stop ends the run at that level: its boxes are
+/// labelled and kept as leaves, a valid paving coarser than asked.
 pub(super) fn pave<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
     method: &R,
     root: PhaseBox,
     opts: PaveOptions,
     names: Vec<String>,
     mut progress: impl FnMut(u32, usize, usize) -> F,
-) -> Paving {
-    let mut opts = opts;
-    let mut interrupted = false;
-    let mut progress = |level: u32, open: usize, leaves: usize| {
-        if !progress(level, open, leaves).go_on() && !interrupted {
-            interrupted = true;
-            return Some(leaves + open);
-        }
-        None
-    };
-    let mut cap = u32::MAX;
-    let mut budget = None;
-    let mut abandoned = PaveStats::default();
-    let mut peak = 0usize;
-    let run = loop {
-        match grow_levels(method, root, &mut opts, cap, &mut progress) {
-            Err(again) => {
-                budget = budget.or(Some(again.budget));
-                abandoned.box_evaluations += again.stats.box_evaluations;
-                abandoned.slab_evaluations += again.stats.slab_evaluations;
-                peak = peak.max(again.peak);
-                cap = again.cap;
-            }
-            Ok(run) => break run,
-        }
-    };
+) -> Result<Paving, Overflow> {
     let Run {
         tree,
         mut stats,
         left,
-        peak: run_peak,
+        peak,
         bite,
-    } = run;
-    stats.box_evaluations += abandoned.box_evaluations;
-    stats.slab_evaluations += abandoned.slab_evaluations;
-    let stop = match left.stop() {
-        StopReason::Budget if interrupted => StopReason::Interrupted,
-        s => s,
-    };
-    let budget = budget.or(bite).filter(|_| stop == StopReason::Budget);
-
+    } = grow_levels(method, root, opts, &mut progress)?;
+    let stop = left.stop();
     let (nodes, leaves, assembly) = tree.into_preorder(root);
-    let peak = peak.max(run_peak).max(assembly);
+    let peak = peak.max(assembly);
     let bytes =
         nodes.capacity() * size_of::<super::Node>() + leaves.capacity() * size_of::<super::Leaf>();
     stats.bytes_per_leaf = bytes as f64 / leaves.len().max(1) as f64;
     stats.peak_bytes_per_leaf = peak as f64 / leaves.len().max(1) as f64;
-    Paving {
+    Ok(Paving {
         root,
         names,
         eps: opts.eps,
@@ -160,10 +128,10 @@ pub(super) fn pave<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         leaves,
         complete: !matches!(stop, StopReason::Budget | StopReason::Interrupted),
         stop,
-        budget,
+        budget: bite,
         same_as: method.scope().same_as.clone(),
         stats,
-    }
+    })
 }
 
 /// A finished run of the level loop.
@@ -172,30 +140,25 @@ struct Run {
     stats: PaveStats,
     left: Left,
     peak: usize,
-    /// What the asked ε needs, from the level the budget stopped.
+    /// What the asked ε needs, when the budget stopped the root's level.
     bite: Option<BudgetStop>,
 }
 
-/// A run given up: the budget stopped a level while boxes were still
-/// split unevaluated; the next run evaluates every fresh box from level
-/// `cap` on (the deepest level whose fresh boxes, contracted as the run's
-/// were, fit in the budget).
-struct Again {
-    cap: u32,
-    budget: BudgetStop,
-    stats: PaveStats,
-    peak: usize,
+/// A run the budget stopped below the root: what the asked ε needs, the
+/// work done and the most memory held.
+pub(super) struct Overflow {
+    pub budget: BudgetStop,
+    pub stats: PaveStats,
+    pub peak: usize,
 }
 
-/// The level loop: boxes split unevaluated only below level `cap`.
-/// `progress` returns a lower budget when the caller asks to stop.
-fn grow_levels<S: ConstraintSet, R: Refine<S>>(
+/// The level loop.
+fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
     method: &R,
     root: PhaseBox,
-    opts: &mut PaveOptions,
-    mut cap: u32,
-    progress: &mut impl FnMut(u32, usize, usize) -> Option<usize>,
-) -> Result<Run, Again> {
+    opts: PaveOptions,
+    progress: &mut impl FnMut(u32, usize, usize) -> F,
+) -> Result<Run, Overflow> {
     let set = method.scope().set;
     let mut tree = Tree::new();
     let mut frontier: Vec<Open<S::Slab>> = vec![Open {
@@ -207,14 +170,8 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>>(
     let mut left = Left::default();
     let mut level = 0u32;
     let mut peak = 0usize;
-    // Open boxes per level (for the estimate of what ε needs), the last
-    // level with a box split unevaluated, and what the budget stopped.
+    // Open boxes per level (for the estimate of what ε needs).
     let mut opens = Vec::new();
-    let mut unevaluated_at: Option<u32> = None;
-    // Per level, leaves if stopped there and fresh boxes; over the run,
-    // fresh boxes evaluated and the leaves and open boxes they asked for.
-    let (mut start, mut fresh) = (Vec::new(), Vec::new());
-    let mut evaluated = [0u64; 2];
     let mut bite = None;
     // Per-level buffers, reused (their pages are touched once): this
     // level's results and plan, and the next level's frontier (the buffer
@@ -222,11 +179,8 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>>(
     let (mut done, mut plan, mut next) = (Vec::new(), Vec::new(), Vec::new());
 
     while !frontier.is_empty() {
-        if let Some(budget) = progress(level, frontier.len(), tree.leaves()) {
-            opts.max_boxes = opts.max_boxes.min(budget);
-        }
+        let stop_here = !progress(level, frontier.len(), tree.leaves()).go_on();
         opens.push(frontier.len());
-        start.push(tree.leaves() + frontier.len());
         let shared = if R::SHARED_SLABS {
             share_slabs(set, &mut frontier)
         } else {
@@ -234,9 +188,8 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>>(
         };
         stats.slab_evaluations += shared as u64;
 
-        let may_skip = level < cap;
         refill(&mut done, frontier.len(), PAR_MIN_HEAVY, |k| {
-            visit(method, &frontier[k], may_skip)
+            visit(method, &frontier[k])
         });
         let work = |k: usize| {
             let d = &done[k];
@@ -244,96 +197,69 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>>(
                 Outcome::Tree(t) => t.capacity() * size_of::<Local>(),
                 _ => 0,
             };
-            let p = Plan::of(&d.outcome);
-            let fresh = frontier[k].fresh;
-            let evaluated = fresh && !d.unevaluated;
             [
                 d.work.evals,
                 d.work.slabs,
                 heap as u64,
                 d.slab.is_some() as u64,
-                d.unevaluated as u64,
-                fresh as u64,
-                evaluated as u64,
-                if evaluated {
-                    (p.leaves + p.opens) as u64
-                } else {
-                    0
-                },
             ]
         };
-        let add = |a: [u64; 8], b: [u64; 8]| std::array::from_fn(|i| a[i] + b[i]);
-        let [evals, slabs, heap, own_slabs, unevaluated, new, evals_fresh, made] =
-            par_fold(done.len(), [0; 8], work, add);
+        let add = |a: [u64; 4], b: [u64; 4]| std::array::from_fn(|i| a[i] + b[i]);
+        let [evals, slabs, heap, own_slabs] = par_fold(done.len(), [0; 4], work, add);
         stats.box_evaluations += evals;
         stats.slab_evaluations += slabs;
-        if unevaluated > 0 {
-            unevaluated_at = Some(level);
-        }
-        fresh.push(new as usize);
-        evaluated = [evaluated[0] + evals_fresh, evaluated[1] + made];
 
-        let demand = schedule(
-            method,
-            &frontier,
-            &done,
-            &tree,
-            opts.max_boxes,
-            &mut left,
-            &mut plan,
-        );
-        if let (Some(needed), None) = (demand, bite) {
-            let leaves = tree.leaves();
-            bite = Some(BudgetStop::new(*opts, level, &opens, leaves, needed));
-        }
+        let demand = if stop_here {
+            refill(&mut plan, done.len(), PAR_MIN, |_| Plan::LEAF);
+            left.interrupted = true;
+            None
+        } else {
+            schedule(
+                method,
+                &frontier,
+                &done,
+                &tree,
+                opts.max_boxes,
+                &mut left,
+                &mut plan,
+            )
+        };
         // Everything held at this point: the tree and its bookkeeping, both
         // frontiers, this level's results and plan, and the slabs computed
         // for it.
         let slabs_held = (shared + own_slabs as usize) * (size_of::<S::Slab>() + 16);
-        let held = |tree: &Tree, opens: [usize; 2], done: usize, plan: usize| {
+        let held = |tree: &Tree, opens: usize, done: usize, plan: usize| {
             tree.bytes()
-                + opens[0] * size_of::<Open<S::Slab>>()
+                + opens * size_of::<Open<S::Slab>>()
                 + done * size_of::<Done<S::Slab>>()
                 + heap as usize
                 + plan * size_of::<Plan>()
                 + slabs_held
         };
-        let sizes =
-            |f: &Vec<Open<S::Slab>>, n: &Vec<Open<S::Slab>>| [f.capacity() + n.capacity(), 0];
-        if demand.is_some() {
-            if let Some(u) = unevaluated_at.filter(|&u| u + 1 >= level) {
-                // The budget stopped this level, and boxes of it (or their
-                // parents) were split without labels: start again,
-                // evaluating every fresh box from a level where, at the
-                // run's leaves per evaluated fresh box, they fit.
-                let per_box = match evaluated {
-                    [0, _] => 8.0,
-                    [n, m] => m as f64 / n as f64,
-                };
-                let fits = |c: &usize| {
-                    start[*c] as f64 + fresh[*c] as f64 * (per_box - 1.0).max(0.0)
-                        <= opts.max_boxes as f64
-                };
-                let cap = (0..=u as usize).rev().find(fits).unwrap_or(0) as u32;
-                return Err(Again {
-                    cap,
-                    budget: bite.expect("set with the demand"),
+        if let Some(needed) = demand {
+            let budget = BudgetStop::new(opts, level, &opens, tree.leaves(), needed);
+            if level > 0 {
+                let held = held(
+                    &tree,
+                    frontier.capacity() + next.capacity(),
+                    done.capacity(),
+                    plan.capacity(),
+                );
+                return Err(Overflow {
+                    budget,
                     stats,
-                    peak: peak.max(held(
-                        &tree,
-                        sizes(&frontier, &next),
-                        done.capacity(),
-                        plan.capacity(),
-                    )),
+                    peak: peak.max(held),
                 });
             }
-            // Nothing more fits: no box is split unevaluated again.
-            cap = cap.min(level + 1);
+            // The root alone.
+            plan.fill(Plan::LEAF);
+            left.budget = true;
+            bite = Some(budget);
         }
         tree.grow(&mut frontier, &mut done, &plan, &mut next);
         peak = peak.max(held(
             &tree,
-            sizes(&frontier, &next),
+            frontier.capacity() + next.capacity(),
             done.capacity(),
             plan.capacity(),
         ));
@@ -387,6 +313,7 @@ impl BudgetStop {
             max_boxes: opts.max_boxes,
             leaves_needed_at_least: needed,
             leaves_needed_estimate: estimate.max(needed as f64).min(f64::MAX),
+            complete_at_eps: None,
         }
     }
 }
@@ -431,22 +358,17 @@ fn share_slabs<S: ConstraintSet>(set: &S, frontier: &mut [Open<S::Slab>]) -> usi
 
 /// Processes one open box: natural labels, then, while a relevant
 /// constraint is undecided, the method's subtree or a bisection.
-fn visit<S: ConstraintSet, R: Refine<S>>(
-    method: &R,
-    o: &Open<S::Slab>,
-    may_skip: bool,
-) -> Done<S::Slab> {
+fn visit<S: ConstraintSet, R: Refine<S>>(method: &R, o: &Open<S::Slab>) -> Done<S::Slab> {
     let scope = method.scope();
     let mut work = Work::default();
     // A fresh slab the method calls too coarse is split in θ without
-    // interval work (undecided as far as computed), where allowed.
-    if may_skip && o.fresh && method.split_unevaluated(&o.bx) {
+    // interval work (undecided as far as computed).
+    if o.fresh && method.split_unevaluated(&o.bx) {
         return Done {
             labels: [Label::Undecided; MAX_CONSTRAINTS],
             outcome: Outcome::Split(0),
             work,
             slab: None,
-            unevaluated: true,
         };
     }
     let (slab, ends, own) = match o.slab.as_ref() {
@@ -474,15 +396,12 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
         outcome,
         work,
         slab: own,
-        unevaluated: false,
     }
 }
 
-/// Which boxes of a level are refined: every one that asks when the budget
-/// takes them all, otherwise the boxes of largest area first (ties in
-/// frontier order, so the choice is the same whatever the thread count)
-/// while it does. Records what is left unrefined; returns the leaves the
-/// level asked for (open boxes counted) when the budget could not take them.
+/// Every box of a level that asks is refined when the budget takes them
+/// all: records what is left unrefined and returns `None`. Otherwise
+/// returns the leaves the level asked for (open boxes counted).
 fn schedule<S: ConstraintSet, R: Refine<S>>(
     method: &R,
     frontier: &[Open<S::Slab>],
@@ -493,7 +412,6 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
     plan: &mut Vec<Plan>,
 ) -> Option<usize> {
     let scope = method.scope();
-    // What each box asks for, then cut back to what the budget allows.
     refill(plan, done.len(), PAR_MIN, |k| Plan::of(&done[k].outcome));
     let counts = &plan[..];
     let want = |k: usize| match counts[k] {
@@ -504,73 +422,34 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
         [a[0] + b[0], a[1] + b[1]]
     });
     let room = (u32::MAX as usize).saturating_sub(tree.nodes() + 2 * frontier.len());
+    let needed = tree.leaves() + frontier.len() + want_leaves;
+    if needed > max_boxes || want_nodes > room {
+        return Some(needed);
+    }
     let undecided_leaf = |t: &[Local]| {
         t.iter()
             .any(|l| matches!(l, Local::Leaf(x) if scope.undecided(x)))
     };
-    if tree.leaves() + frontier.len() + want_leaves <= max_boxes && want_nodes <= room {
-        // Every refinement fits, so the order does not matter: each box
-        // gets what it asks for (a box not refined asks for one leaf), and
-        // what is left undecided is found in parallel, as the loop below
-        // would.
-        let left_by = |k: usize| -> [bool; 2] {
-            let d = &done[k];
-            if counts[k].refine {
-                // A subtree left undecided on a slab that cannot be split
-                // further stopped at the limit of double precision.
-                let undecided = matches!(&d.outcome, Outcome::Tree(t) if undecided_leaf(t));
-                [undecided, undecided && method.at_ulp_limit(&frontier[k].bx)]
-            } else if scope.undecided(&d.labels) {
-                [true, method.at_ulp_limit(&frontier[k].bx)]
-            } else {
-                [false, false]
-            }
-        };
-        let [undecided, ulp_limit] = par_fold(done.len(), [false, false], left_by, |a, b| {
-            [a[0] | b[0], a[1] | b[1]]
-        });
-        left.undecided |= undecided;
-        left.ulp_limit |= ulp_limit;
-        return None;
-    }
-    // Refining a box removes at most its own undecided area: the largest
-    // first (a stable sort keeps frontier order on ties).
-    let mut order: Vec<usize> = (0..frontier.len()).collect();
-    let area = |o: &Open<S::Slab>| {
-        (o.bx.theta[1] - o.bx.theta[0]) * (o.bx.theta_dot[1] - o.bx.theta_dot[0])
-    };
-    order.sort_by(|&a, &b| area(&frontier[b]).total_cmp(&area(&frontier[a])));
-    let mut leaves_if_stopped = tree.leaves() + frontier.len();
-    let mut nodes_planned = 0usize;
-    for &k in &order {
+    // What is left undecided, found in parallel.
+    let left_by = |k: usize| -> [bool; 2] {
         let d = &done[k];
-        let count = plan[k];
-        let extra = count.extra();
-        let fits =
-            leaves_if_stopped + extra <= max_boxes && nodes_planned + count.nodes as usize <= room;
-        if count.refine && fits {
-            leaves_if_stopped += extra;
-            nodes_planned += count.nodes as usize;
-            plan[k] = count;
-            if let Outcome::Tree(t) = &d.outcome {
-                if undecided_leaf(t) {
-                    left.undecided = true;
-                    left.ulp_limit |= method.at_ulp_limit(&frontier[k].bx);
-                }
-            }
+        if counts[k].refine {
+            // A subtree left undecided on a slab that cannot be split
+            // further stopped at the limit of double precision.
+            let undecided = matches!(&d.outcome, Outcome::Tree(t) if undecided_leaf(t));
+            [undecided, undecided && method.at_ulp_limit(&frontier[k].bx)]
+        } else if scope.undecided(&d.labels) {
+            [true, method.at_ulp_limit(&frontier[k].bx)]
         } else {
-            plan[k] = Plan::LEAF;
-            if count.refine {
-                left.budget = true;
-            } else if scope.undecided(&d.labels) {
-                left.undecided = true;
-                if method.at_ulp_limit(&frontier[k].bx) {
-                    left.ulp_limit = true;
-                }
-            }
+            [false, false]
         }
-    }
-    Some(tree.leaves() + frontier.len() + want_leaves)
+    };
+    let [undecided, ulp_limit] = par_fold(done.len(), [false, false], left_by, |a, b| {
+        [a[0] | b[0], a[1] | b[1]]
+    });
+    left.undecided |= undecided;
+    left.ulp_limit |= ulp_limit;
+    None
 }
 
 fn slab_key(b: &PhaseBox) -> (u64, u64) {

@@ -42,8 +42,6 @@ pub(super) struct Done<Sl> {
     pub outcome: Outcome,
     pub work: Work,
     pub slab: Option<Arc<Sl>>,
-    /// Split before any interval work: its labels are not computed.
-    pub unevaluated: bool,
 }
 
 /// Per-box work counters.

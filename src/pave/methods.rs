@@ -25,7 +25,7 @@ use super::labels::Scope;
 use super::natural::{Bisection, Natural};
 use super::slices::Slices;
 use super::{
-    engine, CellSpec, ConstraintSet, PaveError, PaveOptions, Paving, PhaseBox, StopReason,
+    budget, engine, CellSpec, ConstraintSet, PaveError, PaveOptions, Paving, PhaseBox, StopReason,
     MAX_CONSTRAINTS,
 };
 use serde::Serialize;
@@ -144,26 +144,30 @@ pub fn pave_with<S: ConstraintSet, F: super::LevelFlow>(
     if names.len() > MAX_CONSTRAINTS {
         return Err(PaveError::TooManyConstraints);
     }
-    let scope = scope(set, names.len(), mo.relevant);
-    let grid = Bisection::new(root, opts.eps);
-    Ok(match mo.method {
-        Method::Natural => engine::pave(&Natural { scope, grid }, root, opts, names, progress),
-        Method::Centred => engine::pave(&Centred { scope, grid }, root, opts, names, progress),
-        Method::Contract => engine::pave(&Contract { scope, grid }, root, opts, names, progress),
-        // Slices solve each θ-slab's quadratics in θ̇: a set without
-        // coefficients is bisected as `natural` does.
-        Method::Slices
-            if set
-                .steer_at(0.5 * (root.theta[0] + root.theta[1]))
-                .is_none() =>
-        {
-            engine::pave(&Natural { scope, grid }, root, opts, names, progress)
+    // Slices solve each θ-slab's quadratics in θ̇: a set without
+    // coefficients is bisected as `natural` does.
+    let solvable = set
+        .steer_at(0.5 * (root.theta[0] + root.theta[1]))
+        .is_some();
+    let mut progress = progress;
+    let run = |o: PaveOptions| {
+        let (scope, names) = (scope(set, names.len(), mo.relevant), names.clone());
+        let grid = Bisection::new(root, o.eps);
+        let p = &mut progress;
+        match mo.method {
+            Method::Natural => engine::pave(&Natural { scope, grid }, root, o, names, p),
+            Method::Centred => engine::pave(&Centred { scope, grid }, root, o, names, p),
+            Method::Contract => engine::pave(&Contract { scope, grid }, root, o, names, p),
+            Method::Slices if !solvable => {
+                engine::pave(&Natural { scope, grid }, root, o, names, p)
+            }
+            Method::Slices => {
+                let method = Slices::new(scope, root, o.eps);
+                engine::pave(&method, root, o, names, p)
+            }
         }
-        Method::Slices => {
-            let method = Slices::new(scope, root, opts.eps);
-            engine::pave(&method, root, opts, names, progress)
-        }
-    })
+    };
+    Ok(budget::within_budget(opts, run))
 }
 
 /// The `n` constraints of `set`, their copies, and those `relevant` asks

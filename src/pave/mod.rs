@@ -11,6 +11,7 @@
 
 pub mod area;
 mod bisection;
+mod budget;
 mod centred;
 mod certify;
 mod contract;
@@ -540,6 +541,10 @@ pub struct BudgetStop {
     /// An estimate, not a bound: the open boxes' growth over the last
     /// levels carried on down to the resolution.
     pub leaves_needed_estimate: f64,
+    /// The resolution the paving returned is complete at: the finest power
+    /// of two above ε whose paving fits ([`budget`]). `None`: not even
+    /// ε = 1 fits, and the paving is the domain's box alone.
+    pub complete_at_eps: Option<f64>,
 }
 
 /// The result of paving: the tree, its leaves, and whether it finished.

@@ -7,54 +7,75 @@ use crate::common::{detach, json};
 use detach::pave::{pave_scene_method, standard_cells, Method, MethodOptions, PaveOptions};
 use detach::scene::{Scene, SceneId, Variant};
 
-/// Undecided areas of Ω and Ω₀ (outer − inner, rounded up).
-fn undecided(id: SceneId, v: Variant, m: Method, eps: f64, max_boxes: usize) -> [f64; 2] {
-    let scene = Scene::default_of(id);
-    let domain = scene.domain();
-    let opts = PaveOptions { eps, max_boxes };
-    let p = pave_scene_method(
-        &scene,
-        v,
-        &domain,
-        opts,
-        &MethodOptions::new(m),
-        |_, _, _| {},
-    )
-    .unwrap();
-    assert!(p.leaves.len() <= max_boxes);
-    let cells = standard_cells();
-    let u = domain.uncovered_area_sup();
-    [0, 1].map(|i| p.area_bounds(&cells[i], u).undecided_area())
-}
-
-/// `natural` and `centred` refine the same boxes at a level whatever ε
-/// until a box reaches the coarser ε's resolution, so a finer ε only adds
-/// refinements. (`contract` and `slices` are not covered: their
-/// contraction and slab steering differ with ε, and on this grid a finer
-/// ε is up to 0.3 % (`contract`) and 4× (`slices`, small budgets) worse.)
-#[test]
-fn a_smaller_eps_is_never_worse_under_the_same_budget() {
-    // From a budget that stops the coarsest ε to one none of them reach.
-    let ladder = [1.0 / 16.0, 1.0 / 64.0, 1.0 / 256.0, 1.0 / 1024.0, 1e-5];
-    let scenes = [
+/// The paper's scenes and the Painlevé rod (a scene file).
+fn scenes() -> Vec<(String, Scene, Variant)> {
+    let mut out: Vec<_> = [
         (SceneId::IceDisc, Variant::Derived),
         (SceneId::ViscousDisc, Variant::Printed),
         (SceneId::SmoothDisc, Variant::Derived),
-    ];
-    for m in [Method::Natural, Method::Centred] {
-        for (id, v) in scenes {
-            for max in [300, 3_000, 30_000] {
-                let runs: Vec<[f64; 2]> = ladder
+    ]
+    .into_iter()
+    .map(|(id, v)| (format!("{id:?} {v}"), Scene::default_of(id), v))
+    .collect();
+    let rod = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/painleve-rod.toml");
+    let rod = Scene::from_file(std::path::Path::new(rod), &[]).unwrap().0;
+    out.push(("painleve-rod".into(), rod, Variant::Derived));
+    out
+}
+
+/// Undecided areas of the six regions and cells (outer − inner, rounded
+/// up), paving for `target` (an index into `standard_cells`; `None`: every
+/// constraint).
+fn undecided(
+    scene: &Scene,
+    v: Variant,
+    m: Method,
+    target: Option<usize>,
+    eps: f64,
+    max_boxes: usize,
+) -> [f64; 6] {
+    let domain = scene.domain();
+    let opts = PaveOptions { eps, max_boxes };
+    let cells = standard_cells();
+    let mo = match target {
+        Some(i) => MethodOptions::for_cell(m, &cells[i]),
+        None => MethodOptions::new(m),
+    };
+    let p = pave_scene_method(scene, v, &domain, opts, &mo, |_, _, _| {}).unwrap();
+    assert!(p.leaves.len() <= max_boxes);
+    let u = domain.uncovered_area_sup();
+    cells.map(|c| p.area_bounds(&c, u).undecided_area())
+}
+
+/// Every method, on every paper scene and the rod, for both regions, a
+/// cell and all constraints at once: under one budget a smaller ε never
+/// leaves more undecided area. (A stopped run returns the complete paving
+/// at the finest power of two above ε that fits; `natural`, `centred` and
+/// `contract` refine a coarser paving, `slices` improves as ε halves.)
+fn a_smaller_eps_is_never_worse(m: Method) {
+    // From a budget that stops the coarsest ε to one none but 1e-5 reach.
+    let ladder = [1.0 / 16.0, 1.0 / 64.0, 1.0 / 256.0, 1.0 / 1024.0, 1e-5];
+    // Ω alone, Ω₀ alone, the cell Ω ∩ Ω₀, every constraint.
+    let targets = [Some(0), Some(1), Some(2), None];
+    for (name, scene, v) in scenes() {
+        for max in [300, 3_000, 30_000] {
+            for target in targets {
+                let runs: Vec<[f64; 6]> = ladder
                     .iter()
-                    .map(|&e| undecided(id, v, m, e, max))
+                    .map(|&e| undecided(&scene, v, m, target, e, max))
                     .collect();
+                let compared = match target {
+                    Some(i) => i..i + 1,
+                    None => 0..6,
+                };
                 for (k, w) in runs.windows(2).enumerate() {
-                    for (i, (fine, coarse)) in w[1].iter().zip(w[0]).enumerate() {
+                    for i in compared.clone() {
+                        let (fine, coarse) = (w[1][i], w[0][i]);
                         // (equal trees sum their leaves alike: no slack)
                         assert!(
-                            *fine <= coarse,
-                            "{m} {id:?} {v} max {max}, constraint {i}: eps {} gives {fine} \
-                             but eps {} gives {coarse}",
+                            fine <= coarse,
+                            "{m} {name} max {max}, target {target:?}, cell {i}: eps {} gives \
+                             {fine} but eps {} gives {coarse}",
                             ladder[k + 1],
                             ladder[k],
                         );
@@ -63,6 +84,26 @@ fn a_smaller_eps_is_never_worse_under_the_same_budget() {
             }
         }
     }
+}
+
+#[test]
+fn a_smaller_eps_is_never_worse_under_the_same_budget_natural() {
+    a_smaller_eps_is_never_worse(Method::Natural);
+}
+
+#[test]
+fn a_smaller_eps_is_never_worse_under_the_same_budget_centred() {
+    a_smaller_eps_is_never_worse(Method::Centred);
+}
+
+#[test]
+fn a_smaller_eps_is_never_worse_under_the_same_budget_contract() {
+    a_smaller_eps_is_never_worse(Method::Contract);
+}
+
+#[test]
+fn a_smaller_eps_is_never_worse_under_the_same_budget_slices() {
+    a_smaller_eps_is_never_worse(Method::Slices);
 }
 
 #[test]
@@ -90,6 +131,14 @@ fn a_budget_stop_says_what_eps_needs_and_which_option_sets_it() {
     assert!(b.leaves_needed_at_least > 2_000);
     assert!(b.leaves_needed_at_least <= full.leaves.len());
     assert!(b.leaves_needed_estimate >= b.leaves_needed_at_least as f64);
+    // What is returned: the complete paving at the finest power of two
+    // above ε that fits, leaf for leaf; the next finer one does not fit.
+    let at = b.complete_at_eps.expect("a power of two fits");
+    assert!(at > 1.0 / 256.0 && at.log2().fract() == 0.0, "{at}");
+    let whole = run(at, 2_000);
+    assert!(whole.complete);
+    assert_eq!(whole.leaves, cut.leaves);
+    assert!(at / 2.0 == 1.0 / 256.0 || !run(at / 2.0, 2_000).complete);
 
     let v = json(&[
         "pave",
@@ -105,6 +154,7 @@ fn a_budget_stop_says_what_eps_needs_and_which_option_sets_it() {
     assert_eq!(s["max_boxes"], 100);
     assert!(s["leaves_needed_at_least"].as_u64().unwrap() > 100);
     assert!(s["leaves_needed_estimate"].as_f64().unwrap() > 100.0);
+    assert!(s["complete_at_eps"].as_f64().unwrap() > 1.0 / 1024.0);
     let v = json(&["pave", "--scene", "ice-disc", "--eps", "0.05", "--json"]);
     assert_eq!(v["stop_reason"]["reason"], "resolution");
     assert!(v["stop_reason"].get("option").is_none());
@@ -112,6 +162,10 @@ fn a_budget_stop_says_what_eps_needs_and_which_option_sets_it() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
         text.contains("--max-boxes 100 stopped refinement; eps 9.765625e-4 needs at least"),
+        "{text}"
+    );
+    assert!(
+        text.contains("the result is the complete paving at eps "),
         "{text}"
     );
 }

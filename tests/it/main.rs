@@ -18,6 +18,7 @@ mod findings;
 mod fuzz_cli;
 mod hardening;
 mod inclusion;
+mod loose_checker;
 mod mechanics;
 mod methods;
 mod param_proofs;
