@@ -6,11 +6,14 @@
 //! `theta_dot`. Each text is parsed to postfix steps, lowered into one
 //! hash-consed DAG (the same operation on the same operands is one node, and a
 //! definition is one node wherever it is named), and the nodes the outputs
-//! need are flattened into a tape evaluated over any [`Scalar`].
+//! need are flattened into a tape evaluated over any
+//! [`Scalar`](crate::number::scalar::Scalar) (`parse`, `graph`, `tape`).
 //!
-//! Nothing is rewritten or folded: every node is one operation of the text,
+//! Nothing is rewritten: every node is one operation of the text,
 //! left-associative, in the order written, so an interval evaluation of the
-//! tape gives the enclosure the checker computes for the same text.
+//! tape gives the enclosure the checker computes for the same text. The
+//! evaluation plan only does arithmetic on constants alone once, where that
+//! gives every scalar type the very value the operation would.
 
 mod graph;
 mod parse;

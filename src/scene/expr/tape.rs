@@ -5,7 +5,7 @@ use super::graph::Node;
 use super::parse::Func;
 use super::{THETA, THETA_DOT};
 use crate::number::scalar::{is_defined, Scalar};
-use inari::{DecInterval, Interval};
+use inari::{DecInterval, Decoration, Interval};
 use std::collections::HashMap;
 
 /// A compiled tape: each entry is one operation on earlier entries.
@@ -20,8 +20,8 @@ pub struct Program {
     /// Per entry: its degree in θ̇ when it is a polynomial in θ̇ with θ-only
     /// coefficients (written so: see [`Program::theta_dot_degree`]).
     pub(super) degree: Vec<Option<u32>>,
-    /// Per entry: whether it is half of a `sin`/`cos` pair on one operand.
-    fused: Vec<Fused>,
+    /// How the outputs are evaluated.
+    pub(super) plan: Plan,
 }
 
 /// `sin(a)` and `cos(a)` both on the tape: the first of the two computes
@@ -52,6 +52,246 @@ fn fuse_sin_cos(tape: &[Node]) -> Vec<Fused> {
         }
     }
     fused
+}
+
+/// How a [`Program`] is evaluated: slots `[θ, θ̇, constants…, results…]`,
+/// the constants lifted once per evaluation and one operation per result,
+/// in tape order (no dispatch on variables or constants, `sin`/`cos` pairs
+/// as one operation).
+#[derive(Clone, Debug)]
+pub(super) struct Plan {
+    /// Lifted into the slots after θ and θ̇.
+    pub(super) consts: Vec<Interval>,
+    pub(super) ops: Vec<Op>,
+    /// Per tape entry: its slot (`u32::MAX` when no output needs it).
+    pub(super) slot: Vec<u32>,
+    /// Per output: its slot.
+    pub(super) outputs: Vec<u32>,
+    /// Slots in all.
+    pub(super) len: usize,
+}
+
+/// One operation of a [`Plan`] on earlier slots; its result goes to the next
+/// slot (the pairs to the next two, `sin` first).
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Op {
+    Neg(u32),
+    Add(u32, u32),
+    Sub(u32, u32),
+    Mul(u32, u32),
+    Div(u32, u32),
+    Sqr(u32),
+    Pown(u32, u32),
+    Call(Func, u32),
+    Call2(Func, u32, u32),
+    /// `sin` and `cos` of one operand ([`Scalar::sin_cos`]: the same
+    /// enclosures, one kernel call, and duals reuse both).
+    SinCos(u32),
+    /// `sin θ`, `cos θ` or both: the caller's when it has them.
+    Trig {
+        sin: bool,
+        cos: bool,
+    },
+}
+
+/// An operation on constants alone done once, when every scalar evaluating
+/// the tape gets the same value from the result as from the operation:
+/// arithmetic only (the functions' kernels differ between scalar types),
+/// decorated `com` (bounded, defined: a constant lifts to `com`, and a
+/// dual's gradient of it is exactly 0), and the midpoint of the enclosure,
+/// which `f64` lifts, bit for bit the `f64` result. `x` holds each operand
+/// as (enclosure, its `f64` value).
+fn fold(node: Node, x: impl Fn(u32) -> Option<(Interval, f64)>) -> Option<(Interval, f64)> {
+    let d = |a: u32| x(a).map(|(i, _)| DecInterval::new(i));
+    let p = |a: u32| x(a).map(|(_, p)| p);
+    let (v, q) = match node {
+        Node::Neg(a) => (-d(a)?, -p(a)?),
+        Node::Add(a, b) => (d(a)? + d(b)?, p(a)? + p(b)?),
+        Node::Sub(a, b) => (d(a)? - d(b)?, p(a)? - p(b)?),
+        Node::Mul(a, b) => (d(a)? * d(b)?, p(a)? * p(b)?),
+        Node::Div(a, b) => (d(a)? / d(b)?, p(a)? / p(b)?),
+        Node::Sqr(a) => (Scalar::sqr(d(a)?), Scalar::sqr(p(a)?)),
+        Node::Pown(a, n) => (Scalar::pown(d(a)?, n), Scalar::pown(p(a)?, n)),
+        _ => return None,
+    };
+    let v = v.interval().filter(|_| v.decoration() == Decoration::Com)?;
+    (<f64 as Scalar>::lift(v).to_bits() == q.to_bits()).then_some((v, q))
+}
+
+impl Plan {
+    /// The plan of `tape` for `outputs`; with `fold`, operations on
+    /// constants alone are done here ([`fold`]) and only what the outputs
+    /// need is kept, else every entry gets its slot.
+    pub(super) fn new(tape: &[Node], consts: &[Interval], outputs: &[u32], fold: bool) -> Plan {
+        let fused = fuse_sin_cos(tape);
+        let mut known: Vec<Option<(Interval, f64)>> = Vec::with_capacity(tape.len());
+        for &node in tape {
+            known.push(match node {
+                Node::Const(k) => {
+                    let c = consts[k as usize];
+                    Some((c, <f64 as Scalar>::lift(c)))
+                }
+                n if fold => {
+                    let x = |a: u32| known[a as usize];
+                    self::fold(n, x)
+                }
+                _ => None,
+            });
+        }
+        let mut needed = vec![!fold; tape.len()];
+        for &o in outputs {
+            needed[o as usize] = true;
+        }
+        // Operands precede their users: one backward sweep marks them all.
+        for j in (0..tape.len()).rev() {
+            if needed[j] && known[j].is_none() {
+                for a in tape[j].operands().into_iter().flatten() {
+                    needed[a as usize] = true;
+                }
+            }
+        }
+        let mut slot = vec![u32::MAX; tape.len()];
+        let mut plan_consts = Vec::new();
+        for (j, k) in known.iter().enumerate() {
+            if let (true, Some((c, _))) = (needed[j], k) {
+                slot[j] = 2 + plan_consts.len() as u32;
+                plan_consts.push(*c);
+            }
+        }
+        let mut next = 2 + plan_consts.len() as u32;
+        let mut ops = Vec::new();
+        for (j, &node) in tape.iter().enumerate() {
+            if !needed[j] || known[j].is_some() {
+                continue;
+            }
+            let s = |a: u32| slot[a as usize];
+            let is_theta = |a: u32| tape[a as usize] == Node::Theta;
+            let (op, width) = match (fused[j], node) {
+                (Fused::Done, _) => continue,
+                (Fused::SinCos { a, sin, cos }, _) => {
+                    ops.push(match is_theta(a) {
+                        true => Op::Trig {
+                            sin: true,
+                            cos: true,
+                        },
+                        false => Op::SinCos(s(a)),
+                    });
+                    slot[sin as usize] = next;
+                    slot[cos as usize] = next + 1;
+                    next += 2;
+                    continue;
+                }
+                (_, Node::Theta) => {
+                    slot[j] = 0;
+                    continue;
+                }
+                (_, Node::ThetaDot) => {
+                    slot[j] = 1;
+                    continue;
+                }
+                (_, Node::Call(f @ (Func::Sin | Func::Cos), a)) if is_theta(a) => (
+                    Op::Trig {
+                        sin: f == Func::Sin,
+                        cos: f == Func::Cos,
+                    },
+                    1,
+                ),
+                (_, Node::Const(_)) => unreachable!("constants are known"),
+                (_, Node::Neg(a)) => (Op::Neg(s(a)), 1),
+                (_, Node::Add(a, b)) => (Op::Add(s(a), s(b)), 1),
+                (_, Node::Sub(a, b)) => (Op::Sub(s(a), s(b)), 1),
+                (_, Node::Mul(a, b)) => (Op::Mul(s(a), s(b)), 1),
+                (_, Node::Div(a, b)) => (Op::Div(s(a), s(b)), 1),
+                (_, Node::Sqr(a)) => (Op::Sqr(s(a)), 1),
+                (_, Node::Pown(a, n)) => (Op::Pown(s(a), n), 1),
+                (_, Node::Call(f, a)) => (Op::Call(f, s(a)), 1),
+                (_, Node::Call2(f, a, b)) => (Op::Call2(f, s(a), s(b)), 1),
+            };
+            slot[j] = next;
+            next += width;
+            ops.push(op);
+        }
+        Plan {
+            consts: plan_consts,
+            ops,
+            outputs: outputs.iter().map(|&o| slot[o as usize]).collect(),
+            slot,
+            len: next as usize,
+        }
+    }
+
+    /// Evaluates every slot (`slots.len()` is [`Plan::len`]).
+    pub(super) fn run<T: Scalar>(
+        &self,
+        theta: T,
+        trig: Option<(T, T)>,
+        theta_dot: T,
+        slots: &mut [T],
+    ) {
+        fn at<T: Copy>(slots: &[T], a: u32) -> T {
+            slots[a as usize]
+        }
+        slots[0] = theta;
+        slots[1] = theta_dot;
+        let mut n = 2;
+        for &c in &self.consts {
+            slots[n] = T::lift(c);
+            n += 1;
+        }
+        for &op in &self.ops {
+            let v = match op {
+                Op::Neg(a) => -at(slots, a),
+                Op::Add(a, b) => at(slots, a) + at(slots, b),
+                Op::Sub(a, b) => at(slots, a) - at(slots, b),
+                Op::Mul(a, b) => at(slots, a) * at(slots, b),
+                Op::Div(a, b) => at(slots, a) / at(slots, b),
+                Op::Sqr(a) => at(slots, a).sqr(),
+                Op::Pown(a, k) => at(slots, a).pown(k),
+                Op::Call(f, a) => {
+                    let x = at(slots, a);
+                    match f {
+                        Func::Sqrt => x.sqrt(),
+                        Func::Sin => x.sin(),
+                        Func::Cos => x.cos(),
+                        Func::Tan => x.tan(),
+                        Func::Ln => x.ln(),
+                        Func::Abs => x.abs(),
+                        Func::Atan => x.atan(),
+                        Func::Exp => x.exp(),
+                        Func::Sign => x.sign(),
+                        Func::Min | Func::Max => unreachable!("two arguments: Call2"),
+                    }
+                }
+                Op::Call2(Func::Min, a, b) => at(slots, a).min(at(slots, b)),
+                Op::Call2(_, a, b) => at(slots, a).max(at(slots, b)),
+                Op::SinCos(a) => {
+                    let (s, c) = at(slots, a).sin_cos();
+                    slots[n] = s;
+                    n += 1;
+                    c
+                }
+                Op::Trig { sin, cos } => match (trig, sin, cos) {
+                    (Some((s, c)), true, true) => {
+                        slots[n] = s;
+                        n += 1;
+                        c
+                    }
+                    (Some((s, _)), true, false) => s,
+                    (Some((_, c)), _, _) => c,
+                    (None, true, true) => {
+                        let (s, c) = theta.sin_cos();
+                        slots[n] = s;
+                        n += 1;
+                        c
+                    }
+                    (None, true, false) => theta.sin(),
+                    (None, _, _) => theta.cos(),
+                },
+            };
+            slots[n] = v;
+            n += 1;
+        }
+    }
 }
 
 impl Program {
@@ -85,15 +325,15 @@ impl Program {
             on_dot.push(o);
             degree.push(d);
         }
-        let fused = fuse_sin_cos(&tape);
+        let plan = Plan::new(&tape, &consts, &outputs, true);
         Program {
             tape,
             consts,
             const_text,
             outputs,
-            fused,
             on_dot,
             degree,
+            plan,
         }
     }
 
@@ -127,21 +367,28 @@ impl Program {
         theta_dot: T,
         out: &mut [T],
     ) {
-        // Small tapes (every shipped scene's) evaluate without allocating.
-        const STACK: usize = 96;
-        if self.tape.len() <= STACK {
-            let mut slots = [T::int(0); STACK];
-            self.eval_into(theta, trig, theta_dot, &mut slots[..self.tape.len()], out);
-        } else {
-            let mut slots = vec![T::int(0); self.tape.len()];
-            self.eval_into(theta, trig, theta_dot, &mut slots, out);
+        // Small plans (every shipped scene's) evaluate without allocating,
+        // on little more stack than they need.
+        match self.plan.len {
+            0..=24 => self.eval_on::<T, 24>(theta, trig, theta_dot, out),
+            25..=48 => self.eval_on::<T, 48>(theta, trig, theta_dot, out),
+            49..=96 => self.eval_on::<T, 96>(theta, trig, theta_dot, out),
+            n => self.eval_in(theta, trig, theta_dot, &mut vec![theta; n], out),
         }
     }
 
-    /// [`Program::eval`] into `slots` (one per tape entry). `sin` and `cos`
-    /// of the same operand are computed together ([`Scalar::sin_cos`]: the
-    /// same enclosures, one kernel call, and duals reuse both).
-    fn eval_into<T: Scalar>(
+    fn eval_on<T: Scalar, const N: usize>(
+        &self,
+        theta: T,
+        trig: Option<(T, T)>,
+        theta_dot: T,
+        out: &mut [T],
+    ) {
+        let mut slots = [theta; N];
+        self.eval_in(theta, trig, theta_dot, &mut slots[..self.plan.len], out);
+    }
+
+    fn eval_in<T: Scalar>(
         &self,
         theta: T,
         trig: Option<(T, T)>,
@@ -149,67 +396,9 @@ impl Program {
         slots: &mut [T],
         out: &mut [T],
     ) {
-        assert_eq!(out.len(), self.outputs.len(), "one slot per output");
-        for (j, &node) in self.tape.iter().enumerate() {
-            match self.fused[j] {
-                Fused::Alone => {}
-                Fused::Done => continue,
-                Fused::SinCos { a, sin, cos } => {
-                    let (sv, cv) = match (trig, self.tape[a as usize]) {
-                        (Some(sc), Node::Theta) => sc,
-                        _ => slots[a as usize].sin_cos(),
-                    };
-                    slots[sin as usize] = sv;
-                    slots[cos as usize] = cv;
-                    continue;
-                }
-            }
-            // Operands are earlier entries, already computed.
-            let s = |a: u32| slots[a as usize];
-            let v = match node {
-                Node::Const(k) => T::lift(self.consts[k as usize]),
-                Node::Theta => theta,
-                Node::ThetaDot => theta_dot,
-                Node::Neg(a) => -s(a),
-                Node::Add(a, b) => s(a) + s(b),
-                Node::Sub(a, b) => s(a) - s(b),
-                Node::Mul(a, b) => s(a) * s(b),
-                Node::Div(a, b) => s(a) / s(b),
-                Node::Sqr(a) => s(a).sqr(),
-                Node::Pown(a, n) => s(a).pown(n),
-                Node::Call(f @ (Func::Sin | Func::Cos), a)
-                    if trig.is_some() && self.tape[a as usize] == Node::Theta =>
-                {
-                    let (sv, cv) = trig.expect("checked");
-                    if f == Func::Sin {
-                        sv
-                    } else {
-                        cv
-                    }
-                }
-                Node::Call(f, a) => {
-                    let x = s(a);
-                    match f {
-                        Func::Sqrt => x.sqrt(),
-                        Func::Sin => x.sin(),
-                        Func::Cos => x.cos(),
-                        Func::Tan => x.tan(),
-                        Func::Ln => x.ln(),
-                        Func::Abs => x.abs(),
-                        Func::Atan => x.atan(),
-                        Func::Exp => x.exp(),
-                        Func::Sign => x.sign(),
-                        Func::Min | Func::Max => unreachable!("two arguments: Call2"),
-                    }
-                }
-                Node::Call2(f, a, b) => match f {
-                    Func::Min => s(a).min(s(b)),
-                    _ => s(a).max(s(b)),
-                },
-            };
-            slots[j] = v;
-        }
-        for (o, &i) in out.iter_mut().zip(&self.outputs) {
+        assert_eq!(out.len(), self.plan.outputs.len(), "one slot per output");
+        self.plan.run(theta, trig, theta_dot, slots);
+        for (o, &i) in out.iter_mut().zip(&self.plan.outputs) {
             *o = slots[i as usize];
         }
     }
@@ -293,10 +482,12 @@ impl Program {
     /// division by a parameter-only value that contains 0, only may be.
     /// Parameters are the constants whose text is a name other than `pi`.
     pub fn constant_issues(&self, theta: Interval, theta_dot: Interval) -> Vec<ConstantIssue> {
-        let mut slots = vec![DecInterval::ENTIRE; self.tape.len()];
-        let mut out = vec![DecInterval::ENTIRE; self.outputs.len()];
+        // Every entry, nothing folded.
+        let plan = Plan::new(&self.tape, &self.consts, &self.outputs, false);
         let (t, w) = (DecInterval::new(theta), DecInterval::new(theta_dot));
-        self.eval_into(t, None, w, &mut slots, &mut out);
+        let mut values = vec![t; plan.len];
+        plan.run(t, None, w, &mut values);
+        let slots: Vec<DecInterval> = plan.slot.iter().map(|&k| values[k as usize]).collect();
         let empty = |x: DecInterval| x.interval().is_none_or(|i| i.is_empty());
         let mut on_var = vec![false; self.tape.len()];
         let mut issues = Vec::new();

@@ -1,8 +1,10 @@
 use super::graph::Node;
 use super::parse::Func;
+use super::tape::Plan;
 use super::*;
+use crate::number::elementary::CrDec;
 use crate::number::param::enclose_decimal;
-use crate::number::scalar::{Dual, DualN, Scalar};
+use crate::number::scalar::{Dual, DualN, DualTheta, Scalar};
 use inari::Decoration;
 
 fn iv(a: f64, b: f64) -> Interval {
@@ -708,4 +710,69 @@ fn new_functions_have_derivatives_where_they_exist() {
         Dual::variable(iv(0.0, 0.0), 1),
     );
     assert_eq!(g.grad[0], iv(0.0, 0.0));
+}
+
+/// Every output of the folded plan against the plan with every entry
+/// evaluated as written.
+fn unfolded<T: Scalar>(p: &Program, t: T, w: T) -> Vec<T> {
+    let plan = Plan::new(&p.tape, &p.consts, &p.outputs, false);
+    let mut slots = vec![t; plan.len];
+    plan.run(t, None, w, &mut slots);
+    plan.outputs.iter().map(|&k| slots[k as usize]).collect()
+}
+
+/// Folding operations on constants changes no result of any scalar the
+/// tape is evaluated over: bit for bit in `f64` (steering), enclosure and
+/// decoration in intervals, value and derivative in duals (random texts,
+/// with divisions by 0 and powers of parameters among them).
+#[test]
+fn folded_constants_give_the_results_of_the_operations() {
+    let mut r = Rng(0x2545_f491_4f6c_dd1d);
+    let same = |a: DecInterval, b: DecInterval| same_dec(a, b);
+    let mut folded_some = 0;
+    for case in 0..400 {
+        let (a, _) = generate(&mut r, &[], 3);
+        let p = one(&[], &a);
+        if p.plan.ops.len() < unfolded_ops(&p) {
+            folded_some += 1;
+        }
+        let (t, w) = (iv(0.25, 0.5), iv(-1.5, 2.0));
+        let (td, wd) = (DecInterval::new(t), DecInterval::new(w));
+        assert!(
+            same(eval1(&p, td, wd), unfolded(&p, td, wd)[0]),
+            "case {case}: {a}"
+        );
+        let x = eval1(&p, 0.375, 0.25);
+        let y = unfolded(&p, 0.375, 0.25)[0];
+        assert!(x.to_bits() == y.to_bits(), "case {case}: {a}: {x} vs {y}");
+        let dt = DualTheta::variable(CrDec(td), 0);
+        let dw = DualTheta::constant(CrDec(wd));
+        let (x, y) = (eval1(&p, dt, dw), unfolded(&p, dt, dw)[0]);
+        assert!(
+            same(x.value.0, y.value.0) && same(x.grad[0].0, y.grad[0].0),
+            "case {case}: {a}: {x:?} vs {y:?}"
+        );
+    }
+    assert!(folded_some > 20, "only {folded_some} texts folded");
+}
+
+fn unfolded_ops(p: &Program) -> usize {
+    Plan::new(&p.tape, &p.consts, &p.outputs, false).ops.len()
+}
+
+/// Operations on parameters and literals alone are done once at compile
+/// time, functions of constants are not (their kernels differ between the
+/// scalar types), and constants only they used are not lifted.
+#[test]
+fn operations_on_constants_are_folded() {
+    // g*mu, -(g*mu) and 2*g folded; theta*..., + theta, sin(g) kept.
+    let p = one(&[], "-(g*mu)*theta + 2*g + sin(g)");
+    let ops: Vec<String> = p.plan.ops.iter().map(|o| format!("{o:?}")).collect();
+    assert_eq!(ops.len(), 4, "{ops:?}");
+    assert!(ops.iter().any(|o| o.starts_with("Call(Sin")), "{ops:?}");
+    // Constants lifted: -(g*mu), 2*g and g (for sin); not mu, nor 2.
+    assert_eq!(p.plan.consts.len(), 3);
+    // Each value as written.
+    let t = DecInterval::new(iv(0.5, 0.5));
+    assert!(same_dec(eval1(&p, t, t), unfolded(&p, t, t)[0]));
 }
