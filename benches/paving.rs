@@ -40,6 +40,10 @@ fn methods() {
         let (name, s, v, d, region) = (&p.key, &p.scene, p.variant, &p.domain, p.cell);
         for eps in [1e-3, 1e-4] {
             for m in Method::ALL {
+                let case = format!("{name}/{m}/{eps}");
+                if !g.wants(&case) {
+                    continue;
+                }
                 let t = Instant::now();
                 let paving = run(s, v, d, region, m, eps);
                 let secs = t.elapsed().as_secs_f64();
@@ -52,9 +56,7 @@ fn methods() {
                     paving.stats.box_evaluations,
                     paving.stats.slab_evaluations,
                 );
-                g.bench(&format!("{name}/{m}/{eps}"), || {
-                    run(s, v, d, region, m, eps)
-                });
+                g.bench(&case, || run(s, v, d, region, m, eps));
             }
         }
     }
@@ -115,10 +117,14 @@ fn one_box() {
 }
 
 /// Each paper scene paved from its built-in formulas and from its scene
-/// file (`scenes/`, compiled to a tape), per method, derived reading,
-/// ε = 1e-4: the ratio is the tape's cost.
+/// file (`scenes/`, compiled to a tape), per method, on one thread and on
+/// two, derived reading, ε = 1e-4: the ratio is the tape's cost. Ends with
+/// the table of `docs/performance/scene-files.md` and the load average.
 fn scene_files() {
     let g = Group::new("scene-file").samples(5);
+    let load = || std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    let load_before = load();
+    let mut rows = Vec::new();
     for id in SceneId::ALL {
         let path = format!("{}/scenes/{}.toml", env!("CARGO_MANIFEST_DIR"), id.name());
         let file = Scene::from_file(path.as_ref(), &[])
@@ -126,24 +132,50 @@ fn scene_files() {
             .0;
         let built_in = Scene::default_of(id);
         for m in Method::ALL {
-            for (source, s) in [("built-in", &built_in), ("file", &file)] {
-                let d = s.domain();
-                g.bench(&format!("{}/{m}/{source}", id.name()), || {
-                    pave_scene_method(
-                        s,
-                        Variant::Derived,
-                        &d,
-                        PaveOptions {
-                            eps: 1e-4,
-                            max_boxes: 10_000_000,
-                        },
-                        &MethodOptions::new(m),
-                        |_, _, _| {},
-                    )
-                    .unwrap()
+            for threads in [1, 2] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .expect("thread pool");
+                let [b, f] = [("built-in", &built_in), ("file", &file)].map(|(source, s)| {
+                    let d = s.domain();
+                    let case = format!("{}/{m}/threads={threads}/{source}", id.name());
+                    pool.install(|| {
+                        g.bench(&case, || {
+                            pave_scene_method(
+                                s,
+                                Variant::Derived,
+                                &d,
+                                PaveOptions {
+                                    eps: 1e-4,
+                                    max_boxes: 10_000_000,
+                                },
+                                &MethodOptions::new(m),
+                                |_, _, _| {},
+                            )
+                            .unwrap()
+                        })
+                    })
                 });
+                if let (Some(b), Some(f)) = (b, f) {
+                    rows.push(format!(
+                        "| {} | {m} | {threads} | {} | {} | {:.2} |",
+                        id.name(),
+                        timing::seconds(b),
+                        timing::seconds(f),
+                        f / b
+                    ));
+                }
             }
         }
+    }
+    if !rows.is_empty() {
+        println!("\n| scene | method | threads | built-in | file | file / built-in |");
+        println!("|---|---|---|---|---|---|");
+        for r in rows {
+            println!("{r}");
+        }
+        println!("\nload average before: {}after: {}", load_before, load());
     }
 }
 

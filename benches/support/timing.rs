@@ -40,16 +40,19 @@ impl Group {
         self
     }
 
-    /// Times `f` and prints one line: `group/case  median  [min … max]`.
-    pub fn bench<R>(&self, case: &str, mut f: impl FnMut() -> R) {
+    /// Whether the command line's filter selects `case`.
+    pub fn wants(&self, case: &str) -> bool {
         let id = format!("{}/{case}", self.name);
-        if self
-            .filter
-            .as_ref()
-            .is_some_and(|t| !id.contains(t.as_str()))
-        {
-            return;
+        self.filter.as_ref().is_none_or(|t| id.contains(t.as_str()))
+    }
+
+    /// Times `f` and prints one line: `group/case  median  [min … max]`;
+    /// returns the median seconds per call (`None`: filtered out).
+    pub fn bench<R>(&self, case: &str, mut f: impl FnMut() -> R) -> Option<f64> {
+        if !self.wants(case) {
+            return None;
         }
+        let id = format!("{}/{case}", self.name);
         let t = Instant::now();
         black_box(f());
         let once = t.elapsed().as_secs_f64().max(1e-9);
@@ -72,11 +75,12 @@ impl Group {
             seconds(per_call[0]),
             seconds(per_call[per_call.len() - 1])
         );
+        Some(median)
     }
 }
 
 /// `12.3 ns`, `4.56 µs`, `7.89 ms`, `1.23 s`.
-fn seconds(s: f64) -> String {
+pub fn seconds(s: f64) -> String {
     let (v, unit) = match s {
         s if s < 1e-6 => (s * 1e9, "ns"),
         s if s < 1e-3 => (s * 1e6, "µs"),
