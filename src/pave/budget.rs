@@ -116,7 +116,7 @@ pub(super) fn within_budget(
     p.stats = PaveStats {
         box_evaluations: work.stats.box_evaluations,
         slab_evaluations: work.stats.slab_evaluations,
-        peak_bytes_per_leaf: work.peak as f64 / leaves,
+        peak_bytes_per_leaf: work.peak / leaves,
         ..p.stats
     };
     p
