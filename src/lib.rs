@@ -73,7 +73,6 @@
 //! `docs/library.md` in the repository has the details and
 //! `examples/dependent/` a complete dependent crate.
 
-/// The library's front door: scene, paving, areas, proofs.
 pub mod api;
 pub mod area;
 pub mod certificate;
