@@ -61,6 +61,7 @@ mod expr;
 mod files;
 mod json;
 mod kappa0;
+mod ops;
 mod output;
 mod paving;
 mod pieces;
