@@ -8,9 +8,11 @@
 
 pub mod band;
 pub mod catalog;
+pub mod confirm;
 pub mod numbers;
 pub mod paving;
 pub mod roots;
+pub mod statement;
 
 pub use catalog::{prove_named, HEADLINE};
 pub use paving::{paving_proof, PavingStatement};
