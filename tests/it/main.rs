@@ -29,4 +29,5 @@ mod roots;
 mod scene_files;
 mod soundness;
 mod stability;
+mod statements;
 mod verify_files;
