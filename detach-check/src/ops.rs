@@ -71,4 +71,3 @@ pub fn is_name(s: &str) -> bool {
     matches!(c.next(), Some(f) if f.is_ascii_alphabetic())
         && c.all(|x| x.is_ascii_alphanumeric() || x == '_')
 }
-

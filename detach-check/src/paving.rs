@@ -311,7 +311,7 @@ fn iv(a: f64, b: f64) -> Interval {
 }
 
 /// The value `v` is defined and proves the label (in: `sup < 0`, out: `inf > 0`).
-fn holds(v: DecInterval, want_in: bool) -> bool {
+pub(crate) fn holds(v: DecInterval, want_in: bool) -> bool {
     defined(v)
         && v.interval().is_some_and(|i| {
             if want_in {
@@ -330,7 +330,7 @@ fn holds(v: DecInterval, want_in: bool) -> bool {
 /// (`≥ dac`), which makes the function differentiable on the box (the rules
 /// at non-differentiable points, `sqrt` and `abs` at 0, are undefined).
 /// Returns `NAI` when no variable can be fixed.
-fn monotone_bound(
+pub(crate) fn monotone_bound(
     prog: &Program,
     root: u32,
     t: Interval,
@@ -384,7 +384,13 @@ fn monotone_bound(
 /// convex (concave) in `w` for every `t`, so its largest (smallest) value on
 /// the box lies on `t × {w0}` or `t × {w1}`; the label holds if it holds on
 /// both segments, each by its natural value or the monotone test.
-fn convex_holds(prog: &Program, root: u32, t: Interval, w: Interval, want_in: bool) -> bool {
+pub(crate) fn convex_holds(
+    prog: &Program,
+    root: u32,
+    t: Interval,
+    w: Interval,
+    want_in: bool,
+) -> bool {
     let td = DecInterval::new(t);
     let vars = [
         Num::constant(td),
