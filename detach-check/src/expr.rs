@@ -1,5 +1,5 @@
 //! Lexer and recursive-descent parser of the expression language. The parser
-//! emits operations straight into a [`Program`], in the order written, so
+//! emits operations straight into a [`Program`](super::eval::Program), in the order written, so
 //! there is no syntax tree to walk (and no recursion beyond the nesting depth
 //! of the text itself, which is bounded).
 //!
@@ -16,7 +16,17 @@
 use inari::DecInterval;
 
 use super::encoding::{decimal_enclosure, is_decimal_text};
-use super::eval::{is_name, Op, Program, FUNCTIONS};
+use super::ops::{is_name, Op, FUNCTIONS};
+
+/// Where the parser writes what it reads: each operation as it completes
+/// (operands first, in the order written), and the slot a name refers to.
+/// [`super::eval::Program`] is the one implementation.
+pub trait Emit {
+    /// Appends an operation on earlier slots; returns its slot.
+    fn emit(&mut self, op: Op) -> Result<u32, String>;
+    /// The slot of a declared name (variable, parameter, definition, `pi`).
+    fn slot_of(&self, name: &str) -> Option<u32>;
+}
 
 /// Longest expression text accepted.
 pub const MAX_EXPR_LEN: usize = 10_000;
@@ -107,14 +117,14 @@ fn lex(s: &str) -> Result<Vec<Tok<'_>>, String> {
     Ok(out)
 }
 
-struct Parser<'p, 'a> {
+struct Parser<'p, 'a, E: Emit> {
     toks: Vec<Tok<'a>>,
     pos: usize,
     depth: usize,
-    prog: &'p mut Program,
+    prog: &'p mut E,
 }
 
-impl<'a> Parser<'_, 'a> {
+impl<'a, E: Emit> Parser<'_, 'a, E> {
     fn peek(&self) -> Option<&Tok<'a>> {
         self.toks.get(self.pos)
     }
@@ -143,7 +153,7 @@ impl<'a> Parser<'_, 'a> {
             };
             self.pos += 1;
             let r = self.term()?;
-            l = self.prog.push(if op == 0 {
+            l = self.prog.emit(if op == 0 {
                 Op::Add(l, r)
             } else {
                 Op::Sub(l, r)
@@ -161,7 +171,7 @@ impl<'a> Parser<'_, 'a> {
             };
             self.pos += 1;
             let r = self.unary()?;
-            l = self.prog.push(if op == 0 {
+            l = self.prog.emit(if op == 0 {
                 Op::Mul(l, r)
             } else {
                 Op::Div(l, r)
@@ -175,7 +185,7 @@ impl<'a> Parser<'_, 'a> {
             self.enter()?;
             let x = self.unary()?;
             self.depth -= 1;
-            return self.prog.push(Op::Neg(x));
+            return self.prog.emit(Op::Neg(x));
         }
         self.power()
     }
@@ -196,7 +206,7 @@ impl<'a> Parser<'_, 'a> {
             return Err("x^a^b is ambiguous; write (x^a)^b".into());
         }
         self.prog
-            .push(if n == 2 { Op::Sqr(x) } else { Op::Pown(x, n) })
+            .emit(if n == 2 { Op::Sqr(x) } else { Op::Pown(x, n) })
     }
 
     fn atom(&mut self) -> Result<u32, String> {
@@ -206,7 +216,7 @@ impl<'a> Parser<'_, 'a> {
                     return Err(format!("bad number {t:?}"));
                 }
                 let x = decimal_enclosure(t)?;
-                self.prog.push(Op::Const(DecInterval::new(x)))
+                self.prog.emit(Op::Const(DecInterval::new(x)))
             }
             Some(Tok::LParen) => {
                 self.enter()?;
@@ -250,14 +260,14 @@ impl<'a> Parser<'_, 'a> {
                         "max" => Op::Max(a, b),
                         _ => Op::Abs(a),
                     };
-                    return self.prog.push(op);
+                    return self.prog.emit(op);
                 }
                 if self.peek() == Some(&Tok::LParen) {
                     return Err(format!("{n} is not a function"));
                 }
                 debug_assert!(is_name(n));
                 self.prog
-                    .lookup(n)
+                    .slot_of(n)
                     .ok_or_else(|| format!("unknown name {n:?}"))
             }
             Some(t) => Err(format!("unexpected {t:?}")),
@@ -269,7 +279,7 @@ impl<'a> Parser<'_, 'a> {
 /// Parses `text` and appends its operations to `prog`; returns the slot of
 /// the value. On error `prog` may hold unused operations, which is harmless
 /// because the caller discards the statement.
-pub fn parse_into(prog: &mut Program, text: &str) -> Result<u32, String> {
+pub fn parse_into<E: Emit>(prog: &mut E, text: &str) -> Result<u32, String> {
     if text.len() > MAX_EXPR_LEN {
         return Err("expression too long".into());
     }

@@ -53,6 +53,8 @@
 //!   `detach-check` and `detach verify`.
 //! - [`eval_on_box`]: evaluate one expression of the language on a box, as
 //!   the checker does.
+//! - [`StatedConstraints`]: decide one paving leaf's label from a
+//!   statement's text, as the checker does.
 
 mod area;
 mod band;
@@ -62,6 +64,8 @@ mod expr;
 mod files;
 mod json;
 mod kappa0;
+mod leaf;
+mod ops;
 mod output;
 mod param_atlas;
 mod paving;
@@ -74,6 +78,7 @@ pub use self::files::{
     json_files, manifest_entries, read_regular, ManifestEntry, MANIFEST, MAX_MANIFEST_BYTES,
     MAX_PROOF_BYTES,
 };
+pub use self::leaf::StatedConstraints;
 pub use self::output::{
     check_and_print, check_paths, shown, shown_cut, FolderFailures, Status, Tally, MAX_SHOWN_CHARS,
 };

@@ -201,3 +201,44 @@ fn the_loose_stand_in_widens_what_it_says() {
         Interval::try_from((1.0, 1.0)).unwrap()
     );
 }
+
+/// The `derive-*` cases come in pairs that differ in one reading of the
+/// text (FORMAT.md, "What a checker evaluates") and get opposite verdicts:
+/// so each case can come out the other way, and a checker that reads the
+/// text the other way fails one of the two.
+#[test]
+fn derivation_cases_come_out_the_other_way_when_read_otherwise() {
+    let dir = suite().join("cases");
+    let pairs = [
+        (
+            "derive-definition-is-one-operand",
+            "derive-definition-substituted-text",
+        ),
+        ("derive-square-is-sqr", "derive-square-as-product"),
+        ("derive-minus-below-power", "derive-minus-above-power"),
+        ("derive-left-assoc", "derive-right-assoc"),
+        ("derive-pown-one-operation", "derive-pown-as-products"),
+        ("derive-rewritten-by-hand", "derive-no-rewriting"),
+        ("derive-rewritten-by-hand", "derive-no-rewriting-definition"),
+        (
+            "derive-parameters-equal-values-in",
+            "derive-parameters-keep-their-names",
+        ),
+    ];
+    let statement = |name: &str| -> Value {
+        let text = std::fs::read_to_string(dir.join(format!("{name}.json"))).unwrap();
+        serde_json::from_str::<Value>(&text).unwrap()["statement"].clone()
+    };
+    for (valid, invalid) in pairs {
+        assert_eq!(verdict_of(&dir.join(format!("{valid}.json"))).0, "VALID");
+        assert_eq!(
+            verdict_of(&dir.join(format!("{invalid}.json"))).0,
+            "INVALID"
+        );
+        // The two differ in the formulas or parameters only.
+        let (a, b) = (statement(valid), statement(invalid));
+        for key in ["domain", "root_box", "leaves", "areas"] {
+            assert_eq!(a[key], b[key], "{valid} / {invalid}: {key} differs");
+        }
+    }
+}

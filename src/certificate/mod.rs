@@ -8,10 +8,12 @@
 
 pub mod band;
 pub mod catalog;
+pub mod confirm;
 pub mod numbers;
 pub mod params;
 pub mod paving;
 pub mod roots;
+pub mod statement;
 
 pub use catalog::{prove_named, HEADLINE};
 pub use params::{param_atlas_proof, ParamAtlasStatement};

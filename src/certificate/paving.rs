@@ -2,7 +2,9 @@
 //! text, the constraints as expressions, the domain, the claimed areas) and
 //! the tree in the compact `tree/1` encoding.
 
+use super::confirm::confirm_labels;
 use super::numbers::{decimal, hex, Round};
+use super::statement::file_statement;
 use crate::number::param::ParamSet;
 use crate::pave::{Label, Node, Paving};
 use crate::scene::{Cell, Domain, Scene, SceneId, Variant};
@@ -112,9 +114,17 @@ fn literals(cell: Cell) -> Value {
     Value::Object(m)
 }
 
-/// The proof file of a paving of Ω and Ω₀ (and the four cells).
+/// The proof file of a paving of Ω and Ω₀ (and the four cells). A scene
+/// file's proof states the author's text, and only the labels that text
+/// confirms ([`confirm_labels`]); how many it leaves undecided is in
+/// `evidence.resolution.unconfirmed` (informational).
 pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
     let formulas = statement_formulas(st.scene, st.variant);
+    let confirmed = match st.scene {
+        Scene::File(f) => Some(confirm_labels(f, paving)),
+        _ => None,
+    };
+    let paving = confirmed.as_ref().map_or(paving, |c| &c.paving);
     let mut params = Map::new();
     for (name, text) in st.params.texts() {
         params.insert(name.to_string(), Value::String(text));
@@ -166,6 +176,9 @@ pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
             "body": base64(&encode_tree(paving)),
         },
     });
+    if let Some(c) = &confirmed {
+        proof["evidence"]["resolution"]["unconfirmed"] = json!(c.undecided);
+    }
     // A scene file has one reading and no place in the paper.
     if st.scene.id().is_none() {
         if let Some(s) = proof["statement"].as_object_mut() {
@@ -188,19 +201,14 @@ pub struct StatementFormulas {
 fn statement_formulas(scene: &Scene, variant: Variant) -> StatementFormulas {
     match scene {
         Scene::File(f) => {
-            let (definitions, [omega, omega0]) = f.proof_text();
-            let form = if f.is_quadratic() {
-                "scene file, as c₂θ̇² + c₁θ̇ + c₀"
-            } else {
-                "scene file"
-            };
+            let s = file_statement(f);
             StatementFormulas {
-                definitions,
-                omega,
-                omega0,
+                definitions: s.definitions,
+                omega: s.omega,
+                omega0: s.omega0,
                 meaning: [
-                    format!("Ω: {} ({form})", f.regions[0].inequality),
-                    format!("Ω₀: {} ({form})", f.regions[1].inequality),
+                    format!("Ω: {}", f.regions[0].inequality.trim()),
+                    format!("Ω₀: {}", f.regions[1].inequality.trim()),
                 ],
             }
         }

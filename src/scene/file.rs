@@ -478,36 +478,6 @@ impl FileScene {
         out
     }
 
-    /// Ω and Ω₀ as a proof file states them (`proofs/FORMAT.md`: variables
-    /// `t`, `w`): one definition per operation of the compiled program, and
-    /// each region as `c₂*w^2 + c₁*w + c₀` (as written, for regions of
-    /// another form) — the operations the paver performs, so a checker's
-    /// enclosures are at least as tight as the paver's. Returns the
-    /// definitions and the two expressions.
-    pub fn proof_text(&self) -> (Vec<(String, String)>, [String; 2]) {
-        let mut prefix = String::from("q");
-        while self
-            .params
-            .specs
-            .iter()
-            .any(|s| s.name.starts_with(&prefix))
-        {
-            prefix.push('q');
-        }
-        match &self.coefficients {
-            Some(q) => {
-                let (definitions, c) = q.render(&prefix);
-                let exprs = [0, 3].map(|k| format!("{}*w^2 + {}*w + {}", c[k], c[k + 1], c[k + 2]));
-                (definitions, exprs)
-            }
-            // The regions as written, evaluated as the paver does.
-            None => {
-                let (definitions, e) = self.program.render(&prefix);
-                (definitions, [e[0].clone(), e[1].clone()])
-            }
-        }
-    }
-
     /// True when the two regions are the same text: Ω₀ = Ω by construction.
     pub fn omega0_is_omega(&self) -> bool {
         self.regions[0].expr == self.regions[1].expr

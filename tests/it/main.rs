@@ -32,4 +32,5 @@ mod roots_request;
 mod scene_files;
 mod soundness;
 mod stability;
+mod statements;
 mod verify_files;
