@@ -80,6 +80,7 @@ pub mod claims;
 pub mod figures;
 pub mod files;
 pub mod number;
+pub mod params;
 pub mod pave;
 pub mod quadrature;
 pub mod roots;

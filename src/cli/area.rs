@@ -199,7 +199,10 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
         };
         let by_paving = not_quadratic.is_some();
         let mut elapsed = None;
+        let proved_empty =
+            detach::params::proved_empty(&scene, args.variant, detach::pave::Cell::ALL[i]);
         let e = match (&paving, by_paving) {
+            _ if proved_empty => AreaEnclosure::bounds(0.0, 0.0, 0),
             (Some((p, t)), true) => {
                 // One paving for every row: its own time.
                 elapsed = Some(*t);
@@ -234,7 +237,11 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
             at_rounding_floor: e.at_rounding_floor,
             pieces: e.pieces,
             undecided_pieces: (!by_paving).then_some(e.undecided_pieces),
-            empty: e.proved_empty.then_some("omega0 = omega"),
+            empty: if proved_empty {
+                Some("proved empty")
+            } else {
+                e.proved_empty.then_some("omega0 = omega")
+            },
             elapsed_s: elapsed.unwrap_or_else(|| start.elapsed().as_secs_f64()),
         });
     }

@@ -15,6 +15,7 @@
 mod canvas;
 pub mod chart;
 pub mod claims;
+pub mod params;
 mod palette;
 mod portrait;
 mod raster;

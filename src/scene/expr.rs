@@ -18,6 +18,9 @@ use inari::{DecInterval, Interval};
 use std::collections::{HashMap, HashSet};
 use std::fmt;
 
+mod factor;
+pub use factor::FactorOf;
+
 /// Longest expression text accepted (as in `proofs/FORMAT.md`).
 pub const MAX_EXPR_LEN: usize = 10_000;
 /// Deepest nesting of parentheses, calls and unary minus accepted.

@@ -20,6 +20,7 @@ mod hardening;
 mod inclusion;
 mod mechanics;
 mod methods;
+mod params;
 mod paving;
 mod peers;
 mod proof_mutations;

@@ -1,0 +1,381 @@
+//! One set on one parameter box: proved non-empty (a witness phase box),
+//! proved empty (a phase split tree, a reason per leaf), or undecided.
+//!
+//! Every label is the paver's ([`crate::pave::ConstraintSet`]): the same
+//! enclosures, with the same θ slack, that a paving proof states; the
+//! scene is evaluated with the varying parameters as intervals, so a label
+//! holds for every parameter of the box.
+
+use super::model::{EmptyReason, SetStatus};
+use crate::number::elementary::CrDec;
+use crate::pave::{
+    with_slack, CellSpec, ConstraintSet, FileRegions, Label, Node, PhaseBox, SceneConstraints,
+};
+use crate::scene::expr::Program;
+use crate::scene::{Domain, Scene, Variant};
+use inari::{DecInterval, Interval};
+
+/// Budgets of one decision.
+#[derive(Clone, Copy, Debug)]
+pub struct DecideOptions {
+    /// Most phase boxes evaluated while looking for a witness.
+    pub witness_boxes: usize,
+    /// Most leaves of an emptiness tree.
+    pub empty_leaves: usize,
+}
+
+impl Default for DecideOptions {
+    fn default() -> Self {
+        DecideOptions {
+            witness_boxes: 20_000,
+            empty_leaves: 200_000,
+        }
+    }
+}
+
+/// The box an emptiness tree starts from: the domain's hull (the outer
+/// ends of its ends' enclosures), which contains the domain for every
+/// parameter of the box.
+pub fn empty_root(domain: &Domain) -> PhaseBox {
+    PhaseBox {
+        theta: [domain.theta[0].inf(), domain.theta[1].sup()],
+        theta_dot: [domain.theta_dot[0].inf(), domain.theta_dot[1].sup()],
+    }
+}
+
+/// A scene's two constraints on phase boxes, and its factor rules.
+pub struct Regions<'a> {
+    scene: &'a Scene,
+    variant: Variant,
+    factors: Vec<Factor>,
+}
+
+/// Constraint `constraint` is constraint `other` times or divided by the
+/// θ̇-free `program`.
+struct Factor {
+    constraint: usize,
+    other: usize,
+    program: Program,
+}
+
+impl<'a> Regions<'a> {
+    pub fn new(scene: &'a Scene, variant: Variant) -> Regions<'a> {
+        let factors = match scene {
+            Scene::File(f) => f
+                .factors()
+                .into_iter()
+                .map(|f| Factor {
+                    constraint: f.output,
+                    other: f.other,
+                    program: f.factor,
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
+        Regions {
+            scene,
+            variant,
+            factors,
+        }
+    }
+
+    /// Ω's and Ω₀'s labels on a box, as the paver gives them.
+    pub fn labels(&self, b: &PhaseBox) -> [Label; 2] {
+        let (t, w) = (b.theta_interval(), b.theta_dot_interval());
+        let e = match self.scene {
+            Scene::File(file) if !file.is_quadratic() => {
+                let s = FileRegions { file };
+                s.enclose(&s.slab(t), w)
+            }
+            scene => {
+                let s = SceneConstraints {
+                    scene,
+                    variant: self.variant,
+                };
+                s.enclose(&s.slab(t), w)
+            }
+        };
+        [Label::from_enclosure(e[0]), Label::from_enclosure(e[1])]
+    }
+
+    /// The factor's sign on a θ-range, when proved: `Some(true)` positive.
+    fn factor_sign(&self, f: &Factor, theta: [f64; 2]) -> Option<bool> {
+        let t = Interval::try_from((theta[0], theta[1])).ok()?;
+        let t = CrDec(DecInterval::new(with_slack(t)));
+        let mut out = [CrDec(DecInterval::new(Interval::ENTIRE))];
+        let zero = CrDec(DecInterval::new(inari::const_interval!(0.0, 0.0)));
+        f.program.eval(t, zero, &mut out);
+        let v = out[0].0;
+        let x = v.interval().filter(|_| crate::number::scalar::is_defined(v))?;
+        if x.inf() > 0.0 {
+            Some(true)
+        } else if x.sup() < 0.0 {
+            Some(false)
+        } else {
+            None
+        }
+    }
+
+    /// The factor rules that could empty `want` on some leaf, with the
+    /// sign they need (`None`: either sign).
+    fn rules_for(&self, want: &[Option<bool>; 2]) -> Vec<(&Factor, Option<bool>)> {
+        self.factors
+            .iter()
+            .filter_map(|f| match (want[f.other], want[f.constraint]) {
+                // Asked opposite signs: a positive factor contradicts them.
+                (Some(a), Some(b)) if a != b => Some((f, Some(true))),
+                // Both asked negative: a negative factor contradicts them.
+                // (Both asked ≥ 0 is no contradiction: both vanish where
+                // `other` does.)
+                (Some(true), Some(true)) => Some((f, Some(false))),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Why the set `want` misses the box, if that can be proved.
+    fn reason(
+        &self,
+        b: &PhaseBox,
+        want: &[Option<bool>; 2],
+        rules: &[(&Factor, Option<bool>)],
+    ) -> Option<EmptyReason> {
+        let l = self.labels(b);
+        for c in 0..2 {
+            match (want[c], l[c]) {
+                (Some(true), Label::ProvedOut) | (Some(false), Label::ProvedIn) => {
+                    return Some(EmptyReason::Literal { constraint: c })
+                }
+                _ => {}
+            }
+        }
+        for (f, need) in rules {
+            if let Some(sign) = self.factor_sign(f, b.theta) {
+                if need.is_none_or(|n| n == sign) {
+                    return Some(EmptyReason::Factor {
+                        constraint: f.constraint,
+                        other: f.other,
+                        positive: sign,
+                    });
+                }
+            }
+        }
+        None
+    }
+
+    /// Every literal of `want` proved on the box.
+    fn proved_in(&self, b: &PhaseBox, want: &[Option<bool>; 2]) -> bool {
+        let l = self.labels(b);
+        (0..2).all(|c| match want[c] {
+            None => true,
+            Some(true) => l[c] == Label::ProvedIn,
+            Some(false) => l[c] == Label::ProvedOut,
+        })
+    }
+
+    /// A factor rule applies to the set but its sign is not proved on the
+    /// box's θ-range: splitting θ is what helps.
+    fn factor_open(&self, b: &PhaseBox, rules: &[(&Factor, Option<bool>)]) -> bool {
+        rules
+            .iter()
+            .any(|(f, _)| self.factor_sign(f, b.theta).is_none())
+    }
+}
+
+/// Decides one set on one parameter box: `at_box` is the scene with the
+/// box's parameters as intervals, `at_centre` at the box's centre (where a
+/// witness is looked for before it is proved over the whole box).
+pub fn decide(
+    at_box: &Scene,
+    at_centre: &Scene,
+    variant: Variant,
+    cell: CellSpec,
+    opts: DecideOptions,
+) -> SetStatus {
+    let want = [cell.0[0], cell.0[1]];
+    let over = Regions::new(at_box, variant);
+    let centre = Regions::new(at_centre, variant);
+    let why_not_nonempty = match witness(&over, &centre, &at_box.domain(), &want, opts) {
+        Ok(witness) => return SetStatus::Nonempty { witness },
+        Err(e) => e,
+    };
+    match prove_empty(&over, &at_box.domain(), &want, opts) {
+        Ok((tree, reasons)) => SetStatus::Empty { tree, reasons },
+        Err(why_not_empty) => SetStatus::Undecided {
+            reason: format!("{why_not_nonempty}; {why_not_empty}"),
+        },
+    }
+}
+
+/// Which axis to split: θ while a factor's sign is open there, else the
+/// wider one relative to `root`.
+fn split_axis(
+    r: &Regions,
+    b: &PhaseBox,
+    root: &PhaseBox,
+    rules: &[(&Factor, Option<bool>)],
+) -> usize {
+    if b.can_split(0) && r.factor_open(b, rules) {
+        return 0;
+    }
+    let rel = |x: [f64; 2], y: [f64; 2]| (x[1] - x[0]) / (y[1] - y[0]);
+    let axis = if rel(b.theta, root.theta) >= rel(b.theta_dot, root.theta_dot) {
+        0
+    } else {
+        1
+    };
+    if b.can_split(axis) {
+        axis
+    } else {
+        1 - axis
+    }
+}
+
+/// A phase box on which every literal of `want` is proved for the whole
+/// parameter box: leaves proved in the set at the centre parameters (a
+/// breadth-first search of the domain that drops boxes proved out of the
+/// set), each then proved over the box, shrunk about its centre until it
+/// is or its centre alone fails.
+fn witness(
+    over: &Regions,
+    centre: &Regions,
+    domain: &Domain,
+    want: &[Option<bool>; 2],
+    opts: DecideOptions,
+) -> Result<PhaseBox, String> {
+    if domain.is_empty() {
+        return Err("the domain is empty for some parameters of the box".into());
+    }
+    let inner = domain.inner_box();
+    let root = PhaseBox {
+        theta: inner[0],
+        theta_dot: inner[1],
+    };
+    let rules = centre.rules_for(want);
+    let mut level = vec![root];
+    let mut evaluated = 0;
+    let mut found_at_centre = 0;
+    while !level.is_empty() && evaluated < opts.witness_boxes {
+        let mut next = Vec::new();
+        for b in level {
+            evaluated += 1;
+            if centre.proved_in(&b, want) {
+                found_at_centre += 1;
+                if let Some(w) = prove_about(over, &b, want) {
+                    return Ok(w);
+                }
+                continue;
+            }
+            if centre.reason(&b, want, &rules).is_some() || !(b.can_split(0) || b.can_split(1)) {
+                continue;
+            }
+            let (lo, hi) = b.split(split_axis(centre, &b, &root, &rules));
+            next.push(lo);
+            next.push(hi);
+            if evaluated >= opts.witness_boxes {
+                break;
+            }
+        }
+        level = next;
+    }
+    Err(if found_at_centre == 0 {
+        "no witness at the centre of the box".into()
+    } else {
+        format!("{found_at_centre} witnesses at the centre, none for the whole box")
+    })
+}
+
+/// `b` (proved in the set at the centre) shrunk about its centre until the
+/// set's literals are proved on it for the whole parameter box.
+fn prove_about(over: &Regions, b: &PhaseBox, want: &[Option<bool>; 2]) -> Option<PhaseBox> {
+    let c = [b.midpoint(0), b.midpoint(1)];
+    let point = PhaseBox {
+        theta: [c[0], c[0]],
+        theta_dot: [c[1], c[1]],
+    };
+    // Every box about the centre contains it: nothing to shrink towards.
+    if !over.proved_in(&point, want) {
+        return None;
+    }
+    let mut h = [
+        0.5 * (b.theta[1] - b.theta[0]),
+        0.5 * (b.theta_dot[1] - b.theta_dot[0]),
+    ];
+    for _ in 0..64 {
+        let w = PhaseBox {
+            theta: [(c[0] - h[0]).max(b.theta[0]), (c[0] + h[0]).min(b.theta[1])],
+            theta_dot: [
+                (c[1] - h[1]).max(b.theta_dot[0]),
+                (c[1] + h[1]).min(b.theta_dot[1]),
+            ],
+        };
+        if w.theta[0] < w.theta[1] && w.theta_dot[0] < w.theta_dot[1] && over.proved_in(&w, want)
+        {
+            return Some(w);
+        }
+        h = [0.5 * h[0], 0.5 * h[1]];
+    }
+    None
+}
+
+/// A split tree of the domain's hull, each leaf with a reason the set
+/// misses it for every parameter of the box. Gives up at a leaf whose
+/// centre has no reason (no leaf containing that point ever will: the
+/// enclosures only widen with the box) or when the budget runs out.
+fn prove_empty(
+    over: &Regions,
+    domain: &Domain,
+    want: &[Option<bool>; 2],
+    opts: DecideOptions,
+) -> Result<(Vec<Node>, Vec<EmptyReason>), String> {
+    let root = empty_root(domain);
+    let rules = over.rules_for(want);
+    let mut nodes = Vec::new();
+    let mut reasons = Vec::new();
+    let mut stack = vec![root];
+    while let Some(b) = stack.pop() {
+        if let Some(r) = over.reason(&b, want, &rules) {
+            nodes.push(Node::Leaf(reasons.len() as u32));
+            reasons.push(r);
+            continue;
+        }
+        let c = [b.midpoint(0), b.midpoint(1)];
+        let point = PhaseBox {
+            theta: [c[0], c[0]],
+            theta_dot: [c[1], c[1]],
+        };
+        if over.reason(&point, want, &rules).is_none() {
+            return Err(format!(
+                "not empty at θ = {:.6}, θ̇ = {:.6} for some parameters of the box (no reason holds there)",
+                c[0], c[1]
+            ));
+        }
+        if reasons.len() + stack.len() >= opts.empty_leaves {
+            return Err(format!(
+                "emptiness not proved within {} leaves",
+                opts.empty_leaves
+            ));
+        }
+        if !(b.can_split(0) || b.can_split(1)) {
+            return Err("emptiness not proved down to one-ulp boxes".into());
+        }
+        let axis = split_axis(over, &b, &root, &rules);
+        let (lo, hi) = b.split(axis);
+        nodes.push(Node::Split(axis as u8));
+        stack.push(hi);
+        stack.push(lo);
+    }
+    Ok((nodes, reasons))
+}
+
+/// [`prove_empty`] over the scene's whole domain at its own parameters.
+pub fn empty_tree(
+    scene: &Scene,
+    variant: Variant,
+    cell: crate::pave::Cell,
+    opts: DecideOptions,
+) -> Option<(Vec<Node>, Vec<EmptyReason>)> {
+    let spec = cell.spec();
+    let want = [spec.0[0], spec.0[1]];
+    prove_empty(&Regions::new(scene, variant), &scene.domain(), &want, opts).ok()
+}
