@@ -37,8 +37,18 @@ fn undecided_share(f: &Family, r: &detach::params::AtlasRun) -> f64 {
     r.atlas
         .leaves
         .iter()
-        .filter(|l| l.sets.iter().any(|s| matches!(s, SetStatus::Undecided { .. })))
-        .map(|l| l.bounds.iter().zip(&w).map(|(b, w)| (b[1] - b[0]) / w).product::<f64>())
+        .filter(|l| {
+            l.sets
+                .iter()
+                .any(|s| matches!(s, SetStatus::Undecided { .. }))
+        })
+        .map(|l| {
+            l.bounds
+                .iter()
+                .zip(&w)
+                .map(|(b, w)| (b[1] - b[0]) / w)
+                .product::<f64>()
+        })
         .sum()
 }
 
@@ -51,7 +61,9 @@ fn main() {
         vec![axis("mu", "1", "2")],
     )
     .unwrap();
-    group.bench("rod_threshold_1e-9", || run(&rod, &PARADOXES, 2f64.powi(-34)));
+    group.bench("rod_threshold_1e-9", || {
+        run(&rod, &PARADOXES, 2f64.powi(-34))
+    });
     let ladder = Family::new(
         Source::File(
             SceneText::read(std::path::Path::new(concat!(
@@ -74,7 +86,11 @@ fn main() {
     .unwrap();
     for (name, f, cells) in [
         ("ladder_mu_r_256", &ladder, &PARADOXES[..]),
-        ("ice_disc_p_phi_p_psi_256", &ice, &[Cell::Omega0NotOmega][..]),
+        (
+            "ice_disc_p_phi_p_psi_256",
+            &ice,
+            &[Cell::Omega0NotOmega][..],
+        ),
     ] {
         let r = run(f, cells, 1.0 / 256.0);
         println!(

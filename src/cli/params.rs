@@ -4,7 +4,7 @@
 use super::{CliError, CliResult};
 use detach::number::param::parse_assignment;
 use detach::params::model::{ParamAtlas, ParamAxis, SetStatus};
-use detach::params::report::{atlas_json, merge, status_name};
+use detach::params::report::{atlas_json, merge};
 use detach::params::{search, DecideOptions, Family, SearchOptions, Shard, Source};
 use detach::pave::Cell;
 use detach::scene::{SceneText, Variant};
@@ -84,12 +84,15 @@ fn axis(flag: &str, text: &str) -> Result<ParamAxis, CliError> {
 fn cells(names: &[String]) -> Result<Vec<Cell>, CliError> {
     let mut out: Vec<Cell> = Vec::new();
     for n in names {
-        let c = Cell::ALL.into_iter().find(|c| c.name() == n).ok_or_else(|| {
-            CliError::usage(format!(
-                "--sets: unknown set `{n}` (known: {})",
-                Cell::ALL.map(|c| c.name()).join(", ")
-            ))
-        })?;
+        let c = Cell::ALL
+            .into_iter()
+            .find(|c| c.name() == n)
+            .ok_or_else(|| {
+                CliError::usage(format!(
+                    "--sets: unknown set `{n}` (known: {})",
+                    Cell::ALL.map(|c| c.name()).join(", ")
+                ))
+            })?;
         if !out.contains(&c) {
             out.push(c);
         }
@@ -118,9 +121,11 @@ pub fn run_params(args: &ParamsArgs) -> CliResult {
     let dims = axes.len();
     let family = Family::new(source, args.variant, overrides, axes).map_err(CliError::usage)?;
     let cells = cells(&args.sets)?;
-    let eps = args
-        .eps
-        .unwrap_or(if dims == 1 { 2f64.powi(-34) } else { 1.0 / 256.0 });
+    let eps = args.eps.unwrap_or(if dims == 1 {
+        2f64.powi(-34)
+    } else {
+        1.0 / 256.0
+    });
     let opts = SearchOptions {
         eps,
         max_boxes: args.max_boxes,
@@ -255,7 +260,6 @@ fn print_table(
             e[1].as_str().unwrap_or_default()
         );
     }
-    let _ = status_name;
 }
 
 pub fn run_merge(args: &MergeArgs) -> CliResult {
@@ -264,9 +268,8 @@ pub fn run_merge(args: &MergeArgs) -> CliResult {
         let bytes = std::fs::read(p).map_err(|e| {
             CliError::usage(format!("cannot read {}: {e}", detach::files::shown(p)))
         })?;
-        let v: serde_json::Value = serde_json::from_slice(&bytes).map_err(|e| {
-            CliError::usage(format!("{}: not JSON: {e}", detach::files::shown(p)))
-        })?;
+        let v: serde_json::Value = serde_json::from_slice(&bytes)
+            .map_err(|e| CliError::usage(format!("{}: not JSON: {e}", detach::files::shown(p))))?;
         parts.push(v);
     }
     let joined = merge(&parts).map_err(CliError::usage)?;

@@ -15,8 +15,8 @@
 mod canvas;
 pub mod chart;
 pub mod claims;
-pub mod params;
 mod palette;
+pub mod params;
 mod portrait;
 mod raster;
 mod regions;

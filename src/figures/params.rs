@@ -111,10 +111,16 @@ fn render(
             }
         };
         let (cx, cy) = (16 + 480 * (k as i32 % 2), 46 + 24 * (k as i32 / 2));
-        root.draw(&Rectangle::new([(cx, cy), (cx + 20, cy + 16)], colour(*c).filled()))
-            .map_err(draw_err)?;
-        root.draw(&Rectangle::new([(cx, cy), (cx + 20, cy + 16)], INK.stroke_width(1)))
-            .map_err(draw_err)?;
+        root.draw(&Rectangle::new(
+            [(cx, cy), (cx + 20, cy + 16)],
+            colour(*c).filled(),
+        ))
+        .map_err(draw_err)?;
+        root.draw(&Rectangle::new(
+            [(cx, cy), (cx + 20, cy + 16)],
+            INK.stroke_width(1),
+        ))
+        .map_err(draw_err)?;
         root.draw_text(&text, &small.color(&INK), (cx + 28, cy - 1))
             .map_err(draw_err)?;
     }
@@ -147,7 +153,10 @@ fn render(
         .filter(|l| !l.bounds.is_empty())
         .map(|l| {
             let (bx, by) = (l.bounds[0], l.bounds[1]);
-            Rectangle::new([(bx[0], by[1]), (bx[1], by[0])], colour(class(&l.sets)).filled())
+            Rectangle::new(
+                [(bx[0], by[1]), (bx[1], by[0])],
+                colour(class(&l.sets)).filled(),
+            )
         });
     chart.draw_series(rects).map_err(draw_err)?;
     // The scene's given point (`--param` or its defaults), when inside.

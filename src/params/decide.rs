@@ -8,10 +8,13 @@
 
 use super::model::{EmptyReason, SetStatus};
 use crate::number::elementary::CrDec;
+use crate::number::scalar::DualTheta;
 use crate::pave::{
-    with_slack, CellSpec, ConstraintSet, FileRegions, Label, Node, PhaseBox, SceneConstraints,
+    monotone_label, with_slack, CellSpec, ConstraintSet, FileRegions, Label, Node, PhaseBox,
+    SceneConstraints, SlabEnds,
 };
 use crate::scene::expr::Program;
+use crate::scene::Quadratic;
 use crate::scene::{Domain, Scene, Variant};
 use inari::{DecInterval, Interval};
 
@@ -27,7 +30,7 @@ pub struct DecideOptions {
 impl Default for DecideOptions {
     fn default() -> Self {
         DecideOptions {
-            witness_boxes: 20_000,
+            witness_boxes: 5_000,
             empty_leaves: 200_000,
         }
     }
@@ -99,21 +102,89 @@ impl<'a> Regions<'a> {
     }
 
     /// The factor's sign on a θ-range, when proved: `Some(true)` positive.
+    /// Its natural enclosure, else the checker's monotone test (the factor
+    /// as a constant in θ̇, with its θ-derivative and its values at the
+    /// range's ends, each with the paver's θ slack).
     fn factor_sign(&self, f: &Factor, theta: [f64; 2]) -> Option<bool> {
         let t = Interval::try_from((theta[0], theta[1])).ok()?;
-        let t = CrDec(DecInterval::new(with_slack(t)));
-        let mut out = [CrDec(DecInterval::new(Interval::ENTIRE))];
-        let zero = CrDec(DecInterval::new(inari::const_interval!(0.0, 0.0)));
-        f.program.eval(t, zero, &mut out);
-        let v = out[0].0;
-        let x = v.interval().filter(|_| crate::number::scalar::is_defined(v))?;
-        if x.inf() > 0.0 {
-            Some(true)
-        } else if x.sup() < 0.0 {
-            Some(false)
-        } else {
-            None
+        let at = |x: Interval| -> DecInterval {
+            let mut out = [CrDec(DecInterval::new(Interval::ENTIRE))];
+            f.program.eval(
+                CrDec(DecInterval::new(with_slack(x))),
+                CrDec(zero()),
+                &mut out,
+            );
+            out[0].0
+        };
+        let mut label = Label::from_enclosure(at(t));
+        if !label.is_decided() && theta[0] < theta[1] {
+            let mut out = [DualTheta::constant(CrDec(zero()))];
+            let v = DualTheta::variable(CrDec(DecInterval::new(with_slack(t))), 0);
+            f.program
+                .eval(v, DualTheta::constant(CrDec(zero())), &mut out);
+            let dual = DualTheta {
+                value: out[0].value.0,
+                grad: out[0].grad.map(|g| g.0),
+            };
+            let flat = DualTheta::constant(zero());
+            let constant = |c0| Quadratic {
+                c2: zero(),
+                c1: zero(),
+                c0,
+            };
+            let point = |x: f64| Interval::try_from((x, x)).unwrap_or(Interval::ENTIRE);
+            let ends = SlabEnds::new(
+                Quadratic {
+                    c2: flat,
+                    c1: flat,
+                    c0: dual,
+                },
+                [constant(at(point(theta[0]))), constant(at(point(theta[1])))],
+            );
+            let b = PhaseBox {
+                theta,
+                theta_dot: [0.0, 1.0],
+            };
+            label = monotone_label(&ends, &b);
         }
+        match label {
+            Label::ProvedOut => Some(true),
+            Label::ProvedIn => Some(false),
+            _ => None,
+        }
+    }
+
+    /// Every literal of `want` holds on the box at these parameters, by its
+    /// label or by a factor rule from another literal's label (a literal
+    /// `g_j` with `g_j = g_i·F` or `g_i/F` has the sign of `g_i` times
+    /// F's): where a witness is looked for, never a proof by itself.
+    fn implied_in(&self, b: &PhaseBox, want: &[Option<bool>; 2]) -> bool {
+        let l = self.labels(b);
+        let sign = |label: Label| match label {
+            Label::ProvedIn => Some(-1),
+            Label::ProvedOut => Some(1),
+            _ => None,
+        };
+        (0..2).all(|c| {
+            let Some(w) = want[c] else { return true };
+            let ok = |s: i32| if w { s < 0 } else { s > 0 };
+            if sign(l[c]).is_some_and(ok) {
+                return true;
+            }
+            self.factors.iter().any(|f| {
+                let other = if f.constraint == c {
+                    f.other
+                } else if f.other == c {
+                    f.constraint
+                } else {
+                    return false;
+                };
+                match (sign(l[other]), self.factor_sign(f, b.theta)) {
+                    (Some(s), Some(positive)) => ok(if positive { s } else { -s }),
+                    _ => false,
+                }
+            })
+        })
     }
 
     /// The factor rules that could empty `want` on some leaf, with the
@@ -232,10 +303,10 @@ fn split_axis(
 }
 
 /// A phase box on which every literal of `want` is proved for the whole
-/// parameter box: leaves proved in the set at the centre parameters (a
+/// parameter box: boxes in the set at the centre parameters (a
 /// breadth-first search of the domain that drops boxes proved out of the
-/// set), each then proved over the box, shrunk about its centre until it
-/// is or its centre alone fails.
+/// set, [`Regions::implied_in`]), each then proved over the parameter box,
+/// shrunk about its centre until it is or its centre alone fails.
 fn witness(
     over: &Regions,
     centre: &Regions,
@@ -259,7 +330,7 @@ fn witness(
         let mut next = Vec::new();
         for b in level {
             evaluated += 1;
-            if centre.proved_in(&b, want) {
+            if centre.implied_in(&b, want) {
                 found_at_centre += 1;
                 if let Some(w) = prove_about(over, &b, want) {
                     return Ok(w);
@@ -309,8 +380,7 @@ fn prove_about(over: &Regions, b: &PhaseBox, want: &[Option<bool>; 2]) -> Option
                 (c[1] + h[1]).min(b.theta_dot[1]),
             ],
         };
-        if w.theta[0] < w.theta[1] && w.theta_dot[0] < w.theta_dot[1] && over.proved_in(&w, want)
-        {
+        if w.theta[0] < w.theta[1] && w.theta_dot[0] < w.theta_dot[1] && over.proved_in(&w, want) {
             return Some(w);
         }
         h = [0.5 * h[0], 0.5 * h[1]];
@@ -378,4 +448,8 @@ pub fn empty_tree(
     let spec = cell.spec();
     let want = [spec.0[0], spec.0[1]];
     prove_empty(&Regions::new(scene, variant), &scene.domain(), &want, opts).ok()
+}
+
+fn zero() -> DecInterval {
+    DecInterval::new(inari::const_interval!(0.0, 0.0))
 }

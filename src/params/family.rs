@@ -66,15 +66,28 @@ impl Family {
         let (base, params) = build(&source, &overrides, &[])?;
         let mut root = Vec::new();
         for a in &axes {
-            let spec = params.specs.iter().find(|s| s.name == a.name).ok_or_else(|| {
-                format!(
-                    "unknown parameter `{}` for scene `{}` (known: {})",
-                    a.name,
-                    base.name(),
-                    params.specs.iter().map(|s| s.name).collect::<Vec<_>>().join(", ")
-                )
-            })?;
-            let end = |t: &str| Param::parse(spec, t).map(|p| p.value).map_err(|e| e.to_string());
+            let spec = params
+                .specs
+                .iter()
+                .find(|s| s.name == a.name)
+                .ok_or_else(|| {
+                    format!(
+                        "unknown parameter `{}` for scene `{}` (known: {})",
+                        a.name,
+                        base.name(),
+                        params
+                            .specs
+                            .iter()
+                            .map(|s| s.name)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )
+                })?;
+            let end = |t: &str| {
+                Param::parse(spec, t)
+                    .map(|p| p.value)
+                    .map_err(|e| e.to_string())
+            };
             let (lo, hi) = (end(&a.lo)?, end(&a.hi)?);
             if lo.sup() >= hi.inf() {
                 return Err(format!(

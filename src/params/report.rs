@@ -37,7 +37,12 @@ pub fn status_name(s: &SetStatus) -> &'static str {
 }
 
 /// The JSON of a run (of a shard: its boxes only, and `shard`).
-pub fn atlas_json(family: &Family, run: &AtlasRun, eps: f64, shard: Option<(usize, usize)>) -> Value {
+pub fn atlas_json(
+    family: &Family,
+    run: &AtlasRun,
+    eps: f64,
+    shard: Option<(usize, usize)>,
+) -> Value {
     let axes = &run.atlas.axes;
     let end = |axis: usize, k: usize, x: f64| -> String {
         if x == family.root[axis][k] {
@@ -199,7 +204,9 @@ pub fn merge(parts: &[Value]) -> Result<Value, String> {
                 i + 1
             ));
         }
-        let k = p["shard"]["k"].as_u64().ok_or(format!("part {} is not a shard", i + 1))?;
+        let k = p["shard"]["k"]
+            .as_u64()
+            .ok_or(format!("part {} is not a shard", i + 1))?;
         if p["shard"]["n"].as_u64() != Some(n as u64) || k as usize >= n {
             return Err(format!("part {} is not one of {n} shards", i + 1));
         }
@@ -214,13 +221,18 @@ pub fn merge(parts: &[Value]) -> Result<Value, String> {
     for p in parts {
         let list = p["boxes"].as_array().ok_or("a part without `boxes`")?;
         for (j, b) in list.iter().enumerate() {
-            boxes.push((b["base"].as_u64().ok_or("a box without `base`")?, j, b.clone()));
+            boxes.push((
+                b["base"].as_u64().ok_or("a box without `base`")?,
+                j,
+                b.clone(),
+            ));
         }
     }
     boxes.sort_by_key(|(base, j, _)| (*base, *j));
     let boxes: Vec<Value> = boxes.into_iter().map(|(_, _, b)| b).collect();
     let complete = parts.iter().all(|p| p["complete"].as_bool() == Some(true));
-    let sets: Vec<String> = serde_json::from_value(header["sets"].clone()).map_err(|e| e.to_string())?;
+    let sets: Vec<String> =
+        serde_json::from_value(header["sets"].clone()).map_err(|e| e.to_string())?;
     let axes = header["axes"].as_array().ok_or("no `axes`")?;
     let param = axes[0]["name"].as_str().ok_or("an axis without a name")?;
     let thresholds = thresholds(&boxes, axes.len(), &sets, param);

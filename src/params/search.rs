@@ -272,7 +272,9 @@ fn assemble(
         fixed(depth, at + 1, dims, hi, out);
     }
     let mut order: Vec<Option<(u8, f64)>> = Vec::new();
-    fixed(depth, 0, dims, family.root.clone(), &mut |s, _| order.push(s));
+    fixed(depth, 0, dims, family.root.clone(), &mut |s, _| {
+        order.push(s)
+    });
     for s in order {
         match s {
             Some((axis, at)) => tree.push(ParamNode::Split { axis, at }),
@@ -281,7 +283,8 @@ fn assemble(
                     emit(&mut all, i, &mut tree, &mut leaves, &mut base);
                 } else {
                     // A base box another shard refines: a placeholder leaf
-                    // with nothing decided.
+                    // without bounds or statuses, base `u32::MAX` (the JSON
+                    // and the picture leave it out).
                     tree.push(ParamNode::Leaf(leaves.len() as u32));
                     leaves.push(ParamLeaf {
                         bounds: Vec::new(),
@@ -293,9 +296,6 @@ fn assemble(
             }
         }
     }
-    let _ = cells;
-    // Drop a shard's placeholders from the leaves (the tree keeps them
-    // only for one run's shape; a shard's consumers read leaves and base).
     AtlasRun {
         atlas: ParamAtlas {
             axes: family.axes.clone(),

@@ -47,7 +47,12 @@ fn in_cell(cell: Cell, theta: f64, theta_dot: f64, mu: f64, r: f64) -> Option<bo
     }
     let (omega, omega0) = (u < 0.0, u / v < 0.0);
     let s = cell.spec().0;
-    Some([omega, omega0].iter().zip(s).all(|(x, want)| want.is_none_or(|w| w == *x)))
+    Some(
+        [omega, omega0]
+            .iter()
+            .zip(s)
+            .all(|(x, want)| want.is_none_or(|w| w == *x)),
+    )
 }
 
 /// Every status of an atlas of the rod (r = 3) or the ladder, checked by
@@ -88,7 +93,10 @@ fn check_by_sampling(f: &Family, cells: &[Cell], leaves: &[detach::params::model
 
 #[test]
 fn rod_threshold_encloses_four_thirds_to_1e_9() {
-    let f = family(Source::by_name("painleve-rod").unwrap(), vec![axis("mu", "1", "2")]);
+    let f = family(
+        Source::by_name("painleve-rod").unwrap(),
+        vec![axis("mu", "1", "2")],
+    );
     let run = search(&f, &PARADOXES, &opts(2f64.powi(-34)), |_, _, _| {}).unwrap();
     assert!(run.complete);
     let json = detach::params::report::atlas_json(&f, &run, 2f64.powi(-34), None);
@@ -113,7 +121,10 @@ fn rod_threshold_encloses_four_thirds_to_1e_9() {
 
 #[test]
 fn ladder_boxes_agree_with_the_closed_form() {
-    let f = family(ladder(), vec![axis("mu", "0.5", "4"), axis("r", "0.5", "4")]);
+    let f = family(
+        ladder(),
+        vec![axis("mu", "0.5", "4"), axis("r", "0.5", "4")],
+    );
     let run = search(&f, &PARADOXES, &opts(1.0 / 32.0), |_, _, _| {}).unwrap();
     let critical = |r: f64| 2.0 * (1.0 + r).sqrt() / r;
     let (mut empty, mut nonempty, mut undecided) = (0.0, 0.0, 0.0);
@@ -146,8 +157,8 @@ fn ladder_boxes_agree_with_the_closed_form() {
 fn rod_below_threshold_paradox_cells_are_proved_empty_at_a_point() {
     use detach::params::proved_empty;
     for (mu, empty) in [("1.2", true), ("1.3", true), ("1.5", false)] {
-        let (scene, _) = detach::scene::Scene::by_name("painleve-rod", &[("mu".into(), mu.into())])
-            .unwrap();
+        let (scene, _) =
+            detach::scene::Scene::by_name("painleve-rod", &[("mu".into(), mu.into())]).unwrap();
         for cell in PARADOXES {
             assert_eq!(
                 proved_empty(&scene, Variant::Derived, cell),
@@ -189,8 +200,16 @@ omega0 = "U/V < 0"
     let cells = [Cell::OmegaAndOmega0, Cell::NeitherOmegaNorOmega0];
     let run = search(&f, &cells, &opts(1.0 / 4.0), |_, _, _| {}).unwrap();
     for leaf in &run.atlas.leaves {
-        assert!(matches!(leaf.sets[0], SetStatus::Empty { .. }), "{:?}", leaf.sets[0]);
-        assert!(!matches!(leaf.sets[1], SetStatus::Empty { .. }), "{:?}", leaf.sets[1]);
+        assert!(
+            matches!(leaf.sets[0], SetStatus::Empty { .. }),
+            "{:?}",
+            leaf.sets[0]
+        );
+        assert!(
+            !matches!(leaf.sets[1], SetStatus::Empty { .. }),
+            "{:?}",
+            leaf.sets[1]
+        );
     }
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -198,7 +217,14 @@ omega0 = "U/V < 0"
 #[test]
 fn params_json_has_the_documented_keys() {
     let v = json(&[
-        "params", "--scene", "painleve-rod", "--x", "mu=1:2", "--eps", "1e-4", "--json",
+        "params",
+        "--scene",
+        "painleve-rod",
+        "--x",
+        "mu=1:2",
+        "--eps",
+        "1e-4",
+        "--json",
     ]);
     let b = &v["boxes"][0];
     assert!(b["params"]["mu"][0].is_string() && b["params"]["mu"][1].is_string());
@@ -224,11 +250,17 @@ fn params_refuses_bad_input() {
     assert_bad_input(&with(&["--x", "nu=1:2"]), "unknown parameter `nu`");
     assert_bad_input(&with(&["--x", "mu=1"]), "NAME=LO:HI");
     assert_bad_input(&with(&["--x", "mu=abc:2"]), "not a finite decimal");
-    assert_bad_input(&with(&["--x", "mu=1:2", "--sets", "omega,nope"]), "unknown set");
+    assert_bad_input(
+        &with(&["--x", "mu=1:2", "--sets", "omega,nope"]),
+        "unknown set",
+    );
     assert_bad_input(&with(&["--x", "mu=1:2", "--y", "mu=1:2"]), "two different");
     assert_bad_input(&with(&["--x", "mu=1:2", "--eps", "0"]), "eps");
     assert_bad_input(&with(&["--x", "mu=1:2", "--shard", "3/3", "--json"]), "K/N");
-    assert_bad_input(&with(&["--x", "mu=1:2", "--shard", "0/2"]), "--json or --out");
+    assert_bad_input(
+        &with(&["--x", "mu=1:2", "--shard", "0/2"]),
+        "--json or --out",
+    );
     assert_bad_input(&["merge", "/nonexistent/part.json"], "cannot read");
 }
 
@@ -237,7 +269,15 @@ fn sharded_runs_merge_byte_identical() {
     let dir = std::env::temp_dir().join(format!("detach-shards-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let args = [
-        "params", "--scene-file", LADDER, "--x", "mu=0.5:4", "--y", "r=0.5:4", "--eps", "0.0625",
+        "params",
+        "--scene-file",
+        LADDER,
+        "--x",
+        "mu=0.5:4",
+        "--y",
+        "r=0.5:4",
+        "--eps",
+        "0.0625",
         "--json",
     ];
     let whole = detach(&args);
@@ -248,7 +288,11 @@ fn sharded_runs_merge_byte_identical() {
         let mut a: Vec<&str> = args.to_vec();
         a.extend(["--shard", &shard]);
         let out = detach(&a);
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         let path = dir.join(format!("part{k}.json"));
         std::fs::write(&path, &out.stdout).unwrap();
         parts.push(path);
@@ -256,7 +300,11 @@ fn sharded_runs_merge_byte_identical() {
     // Any order of the parts.
     let p: Vec<&str> = parts.iter().rev().map(|p| p.to_str().unwrap()).collect();
     let merged = detach(&[&["merge"], p.as_slice()].concat());
-    assert!(merged.status.success(), "{}", String::from_utf8_lossy(&merged.stderr));
+    assert!(
+        merged.status.success(),
+        "{}",
+        String::from_utf8_lossy(&merged.stderr)
+    );
     assert_eq!(merged.stdout, whole.stdout);
     // A part missing or given twice is refused.
     assert_bad_input(&["merge", p[0], p[1]], "missing");
@@ -266,18 +314,53 @@ fn sharded_runs_merge_byte_identical() {
 
 #[test]
 fn pave_and_area_report_a_proved_empty_cell_as_exactly_empty() {
-    let pave = json(&["pave", "--scene", "painleve-rod", "--param", "mu=1.2", "--json"]);
-    let area = json(&["area", "--scene", "painleve-rod", "--param", "mu=1.2", "--json"]);
+    let pave = json(&[
+        "pave",
+        "--scene",
+        "painleve-rod",
+        "--param",
+        "mu=1.2",
+        "--json",
+    ]);
+    let area = json(&[
+        "area",
+        "--scene",
+        "painleve-rod",
+        "--param",
+        "mu=1.2",
+        "--json",
+    ]);
     for name in ["not_omega_and_omega0", "omega_and_not_omega0"] {
-        let r = pave["regions"].as_array().unwrap().iter().find(|r| r["name"] == name).unwrap();
+        let r = pave["regions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["name"] == name)
+            .unwrap();
         assert_eq!(r["outer_area"], 0.0, "{r}");
         assert_eq!(r["empty"], "proved empty", "{r}");
-        let a = area["regions"].as_array().unwrap().iter().find(|r| r["name"] == name).unwrap();
-        assert_eq!((a["lower"].as_f64(), a["upper"].as_f64()), (Some(0.0), Some(0.0)), "{a}");
+        let a = area["regions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["name"] == name)
+            .unwrap();
+        assert_eq!(
+            (a["lower"].as_f64(), a["upper"].as_f64()),
+            (Some(0.0), Some(0.0)),
+            "{a}"
+        );
         assert_eq!(a["empty"], "proved empty", "{a}");
     }
     // Above the threshold the cells are not empty.
-    let pave = json(&["pave", "--scene", "painleve-rod", "--param", "mu=1.5", "--json"]);
+    let pave = json(&[
+        "pave",
+        "--scene",
+        "painleve-rod",
+        "--param",
+        "mu=1.5",
+        "--json",
+    ]);
     for r in pave["regions"].as_array().unwrap() {
         assert!(r["empty"].is_null(), "{r}");
     }
@@ -290,10 +373,21 @@ fn paper_atlas(
     x: ParamAxis,
     cells: &[Cell],
 ) -> Vec<detach::params::model::ParamLeaf> {
-    let overrides = fixed.iter().map(|(n, v)| (n.to_string(), v.to_string())).collect();
-    let f = Family::new(Source::by_name(scene).unwrap(), Variant::Derived, overrides, vec![x])
-        .unwrap();
-    search(&f, cells, &opts(1.0 / 16.0), |_, _, _| {}).unwrap().atlas.leaves
+    let overrides = fixed
+        .iter()
+        .map(|(n, v)| (n.to_string(), v.to_string()))
+        .collect();
+    let f = Family::new(
+        Source::by_name(scene).unwrap(),
+        Variant::Derived,
+        overrides,
+        vec![x],
+    )
+    .unwrap();
+    search(&f, cells, &opts(1.0 / 16.0), |_, _, _| {})
+        .unwrap()
+        .atlas
+        .leaves
 }
 
 /// paper-checks S1.friction and S1.nonunique (confirmed, certified at
@@ -304,7 +398,11 @@ fn paper_example_1_paradoxes_exist_around_mu_0_8() {
     let leaves = paper_atlas("viscous-disc", &[], axis("mu", "0.5", "1"), &PARADOXES);
     for leaf in &leaves {
         for s in &leaf.sets {
-            assert!(matches!(s, SetStatus::Nonempty { .. }), "{:?}: {s:?}", leaf.bounds);
+            assert!(
+                matches!(s, SetStatus::Nonempty { .. }),
+                "{:?}: {s:?}",
+                leaf.bounds
+            );
         }
     }
 }
@@ -318,7 +416,10 @@ fn paper_ice_disc_omega0_inside_omega_and_its_failure() {
     let cell = [Cell::Omega0NotOmega];
     let zero = [("p_phi", "0"), ("p_psi", "0")];
     for leaf in paper_atlas("ice-disc", &zero, axis("c0", "-1", "1"), &cell) {
-        assert!(!matches!(leaf.sets[0], SetStatus::Nonempty { .. }), "{leaf:?}");
+        assert!(
+            !matches!(leaf.sets[0], SetStatus::Nonempty { .. }),
+            "{leaf:?}"
+        );
     }
     let two = [("p_phi", "2"), ("p_psi", "2")];
     let leaves = paper_atlas("ice-disc", &two, axis("c0", "-0.25", "0.25"), &cell);
@@ -328,6 +429,44 @@ fn paper_ice_disc_omega0_inside_omega_and_its_failure() {
         .collect();
     assert!(!at_zero.is_empty());
     for leaf in at_zero {
-        assert!(matches!(leaf.sets[0], SetStatus::Nonempty { .. }), "{leaf:?}");
+        assert!(
+            matches!(leaf.sets[0], SetStatus::Nonempty { .. }),
+            "{leaf:?}"
+        );
     }
+}
+
+#[test]
+fn two_parameters_draw_the_plane_and_mark_the_given_point() {
+    let dir = std::env::temp_dir().join(format!("detach-plane-{}", std::process::id()));
+    let out = detach(&[
+        "params",
+        "--scene-file",
+        LADDER,
+        "--x",
+        "mu=0.5:4",
+        "--y",
+        "r=0.5:4",
+        "--eps",
+        "0.125",
+        "--param",
+        "mu=3",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = std::fs::read_to_string(dir.join("params.svg")).unwrap();
+    // Both statuses appear in the legend, and the given point is circled.
+    assert!(svg.contains("proved non-empty"), "legend");
+    assert!(svg.contains("all proved empty"), "legend");
+    assert!(svg.contains("<circle"), "the --param point");
+    assert!(std::fs::metadata(dir.join("params.png")).unwrap().len() > 1000);
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("params.json")).unwrap()).unwrap();
+    assert_eq!(v["thresholds"].as_array().unwrap().len(), 0, "none in 2-D");
+    std::fs::remove_dir_all(&dir).ok();
 }

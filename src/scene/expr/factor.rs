@@ -85,7 +85,10 @@ mod tests {
         let one = Interval::try_from((1.5, 1.5)).unwrap();
         let defs = [
             ("U".to_string(), "theta_dot^2*sin(theta) - 9".to_string()),
-            ("V".to_string(), "1 + 3*cos(theta)^2 - 3*mu*sin(theta)*cos(theta)".to_string()),
+            (
+                "V".to_string(),
+                "1 + 3*cos(theta)^2 - 3*mu*sin(theta)*cos(theta)".to_string(),
+            ),
         ];
         let outs: Vec<(String, String)> = outputs
             .iter()
