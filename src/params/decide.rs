@@ -17,6 +17,8 @@ use crate::scene::expr::Program;
 use crate::scene::Quadratic;
 use crate::scene::{Domain, Scene, Variant};
 use inari::{DecInterval, Interval};
+use std::cell::RefCell;
+use std::collections::HashMap;
 
 /// Budgets of one decision.
 #[derive(Clone, Copy, Debug)]
@@ -30,7 +32,7 @@ pub struct DecideOptions {
 impl Default for DecideOptions {
     fn default() -> Self {
         DecideOptions {
-            witness_boxes: 5_000,
+            witness_boxes: 1_500,
             empty_leaves: 200_000,
         }
     }
@@ -51,6 +53,8 @@ pub struct Regions<'a> {
     scene: &'a Scene,
     variant: Variant,
     factors: Vec<Factor>,
+    /// Factor signs by (factor, θ-range): boxes of one θ-range share them.
+    signs: RefCell<HashMap<(usize, u64, u64), Option<bool>>>,
 }
 
 /// Constraint `constraint` is constraint `other` times or divided by the
@@ -79,6 +83,7 @@ impl<'a> Regions<'a> {
             scene,
             variant,
             factors,
+            signs: RefCell::new(HashMap::new()),
         }
     }
 
@@ -106,6 +111,19 @@ impl<'a> Regions<'a> {
     /// as a constant in θ̇, with its θ-derivative and its values at the
     /// range's ends, each with the paver's θ slack).
     fn factor_sign(&self, f: &Factor, theta: [f64; 2]) -> Option<bool> {
+        let index = self.factors.iter().position(|g| std::ptr::eq(f, g));
+        let key = index.map(|k| (k, theta[0].to_bits(), theta[1].to_bits()));
+        if let Some(s) = key.and_then(|k| self.signs.borrow().get(&k).copied()) {
+            return s;
+        }
+        let s = self.factor_sign_uncached(f, theta);
+        if let Some(k) = key {
+            self.signs.borrow_mut().insert(k, s);
+        }
+        s
+    }
+
+    fn factor_sign_uncached(&self, f: &Factor, theta: [f64; 2]) -> Option<bool> {
         let t = Interval::try_from((theta[0], theta[1])).ok()?;
         let at = |x: Interval| -> DecInterval {
             let mut out = [CrDec(DecInterval::new(Interval::ENTIRE))];
@@ -278,15 +296,21 @@ pub fn decide(
     }
 }
 
-/// Which axis to split: θ while a factor's sign is open there, else the
-/// wider one relative to `root`.
+/// Which axis to split: θ while a factor's sign is open on the box but
+/// proved at its middle θ (splitting θ then helps), else the wider one
+/// relative to `root`.
 fn split_axis(
     r: &Regions,
     b: &PhaseBox,
     root: &PhaseBox,
     rules: &[(&Factor, Option<bool>)],
 ) -> usize {
-    if b.can_split(0) && r.factor_open(b, rules) {
+    let m = b.midpoint(0);
+    let middle = PhaseBox {
+        theta: [m, m],
+        ..*b
+    };
+    if b.can_split(0) && r.factor_open(b, rules) && !r.factor_open(&middle, rules) {
         return 0;
     }
     let rel = |x: [f64; 2], y: [f64; 2]| (x[1] - x[0]) / (y[1] - y[0]);
@@ -326,7 +350,7 @@ fn witness(
     let mut level = vec![root];
     let mut evaluated = 0;
     let mut found_at_centre = 0;
-    while !level.is_empty() && evaluated < opts.witness_boxes {
+    while !level.is_empty() && evaluated < opts.witness_boxes && found_at_centre < MAX_CANDIDATES {
         let mut next = Vec::new();
         for b in level {
             evaluated += 1;
@@ -334,6 +358,9 @@ fn witness(
                 found_at_centre += 1;
                 if let Some(w) = prove_about(over, &b, want) {
                     return Ok(w);
+                }
+                if found_at_centre >= MAX_CANDIDATES {
+                    break;
                 }
                 continue;
             }
@@ -355,6 +382,9 @@ fn witness(
         format!("{found_at_centre} witnesses at the centre, none for the whole box")
     })
 }
+
+/// Most boxes in the set at the centre parameters tried as witnesses.
+const MAX_CANDIDATES: usize = 16;
 
 /// `b` (proved in the set at the centre) shrunk about its centre until the
 /// set's literals are proved on it for the whole parameter box.
