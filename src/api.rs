@@ -242,6 +242,7 @@ impl Problem {
                     Provenance::Quadrature => How::Quadrature,
                     Provenance::Paving => How::Paving,
                     Provenance::Intersection => How::QuadratureAndPaving,
+                    Provenance::ProvedEmpty => How::Empty(Emptiness::Proved),
                 },
             })
             .collect();

@@ -21,6 +21,8 @@ pub enum Source {
     Quadrature,
     /// The inner or outer area of a paving at [`FALLBACK_EPS`].
     Paving,
+    /// A proof that the set is empty ([`crate::params::proved_empty`]).
+    Emptiness,
 }
 
 impl std::fmt::Display for Source {
@@ -28,6 +30,7 @@ impl std::fmt::Display for Source {
         f.write_str(match self {
             Source::Quadrature => "quadrature",
             Source::Paving => "paving",
+            Source::Emptiness => "emptiness proof",
         })
     }
 }
@@ -44,6 +47,8 @@ pub enum Provenance {
     /// The quadrature's enclosure intersected with a paving's bounds (the
     /// quadrature missed its target).
     Intersection,
+    /// The set is proved empty on the scene's whole domain: both bounds 0.
+    ProvedEmpty,
 }
 
 /// The certified area of one set: the true area lies in
@@ -145,13 +150,15 @@ pub fn certified_areas(
         ));
         let sets = cells
             .iter()
-            .map(|&cell| SetArea {
-                cell,
-                enclosure: bounds(&p, cell),
-                provenance: Provenance::Paving,
-                lower_from: Source::Paving,
-                upper_from: Source::Paving,
-                elapsed_s: t,
+            .map(|&cell| {
+                proved_empty(scene, variant, cell).unwrap_or(SetArea {
+                    cell,
+                    enclosure: bounds(&p, cell),
+                    provenance: Provenance::Paving,
+                    lower_from: Source::Paving,
+                    upper_from: Source::Paving,
+                    elapsed_s: t,
+                })
             })
             .collect();
         return Ok(CertifiedAreas { sets, notes });
@@ -183,6 +190,13 @@ pub fn certified_areas(
     let mut sets = Vec::new();
     for &cell in cells {
         let start = Instant::now();
+        if let Some(set) = proved_empty(scene, variant, cell) {
+            sets.push(SetArea {
+                elapsed_s: start.elapsed().as_secs_f64(),
+                ..set
+            });
+            continue;
+        }
         let q = cell_area(scene, variant, domain, cell, opts).map_err(|e| refusal(cell, e))?;
         // At its rounding floor the enclosure is already far narrower than
         // a paving's.
@@ -211,6 +225,19 @@ pub fn certified_areas(
         });
     }
     Ok(CertifiedAreas { sets, notes })
+}
+
+/// The set's area as exactly 0 when it is proved empty on the scene's whole
+/// domain (so on any window of it).
+fn proved_empty(scene: &Scene, variant: Variant, cell: Cell) -> Option<SetArea> {
+    crate::params::proved_empty(scene, variant, cell).then(|| SetArea {
+        cell,
+        enclosure: AreaEnclosure::bounds(0.0, 0.0, 0),
+        provenance: Provenance::ProvedEmpty,
+        lower_from: Source::Emptiness,
+        upper_from: Source::Emptiness,
+        elapsed_s: 0.0,
+    })
 }
 
 /// `Ω (omega)`: a set as error messages name it.

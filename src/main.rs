@@ -45,6 +45,10 @@ enum Command {
     Verify(VerifyArgs),
     /// Recompute every checked claim of the paper and write paper-checks/.
     CheckPaper(cli::paper::CheckPaperArgs),
+    /// Certified parameter atlas: where each set is empty or not, thresholds.
+    Params(cli::params::ParamsArgs),
+    /// Join the JSON parts of a `detach params --shard` run.
+    Merge(cli::params::MergeArgs),
 }
 
 /// The command line; `detach` alone runs `detach atlas`.
@@ -71,6 +75,8 @@ fn run(command: Command) -> CliResult {
         Command::Prove(a) => cli::proofs::run_prove(&a),
         Command::Verify(a) => cli::proofs::run_verify(&a),
         Command::CheckPaper(a) => cli::paper::run_check_paper(&a),
+        Command::Params(a) => cli::params::run_params(&a),
+        Command::Merge(a) => cli::params::run_merge(&a),
     }
 }
 

@@ -157,7 +157,11 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
                 at_rounding_floor: e.at_rounding_floor,
                 pieces: e.pieces,
                 undecided_pieces: (!by_paving).then_some(e.undecided_pieces),
-                empty: e.proved_empty.then_some("omega0 = omega"),
+                empty: if s.provenance == Provenance::ProvedEmpty {
+                    Some("proved empty")
+                } else {
+                    e.proved_empty.then_some("omega0 = omega")
+                },
                 elapsed_s: s.elapsed_s,
             }
         })

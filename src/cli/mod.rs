@@ -12,6 +12,7 @@ macro_rules! outln {
 pub mod area;
 pub mod atlas;
 pub mod paper;
+pub mod params;
 pub mod proofs;
 pub mod roots;
 pub mod stability;

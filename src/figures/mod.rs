@@ -17,6 +17,7 @@ pub mod chart;
 pub mod claims;
 mod output;
 mod palette;
+pub mod params;
 mod portrait;
 mod raster;
 mod regions;

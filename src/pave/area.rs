@@ -211,6 +211,9 @@ pub enum Emptiness {
     Omega0IsOmega,
     /// Ω₀ ⊂ Ω is proved for these parameters.
     Omega0InsideOmega,
+    /// A paving of the whole domain proves it: every leaf has a literal of
+    /// the cell proved false, or a factor rule ([`crate::params`]).
+    Proved,
 }
 
 impl Emptiness {
@@ -218,6 +221,7 @@ impl Emptiness {
         match self {
             Emptiness::Omega0IsOmega => "omega0 = omega",
             Emptiness::Omega0InsideOmega => "omega0 inside omega",
+            Emptiness::Proved => "proved empty",
         }
     }
     /// The same in symbols, as pictures show it.
@@ -225,13 +229,15 @@ impl Emptiness {
         match self {
             Emptiness::Omega0IsOmega => "Ω₀ = Ω",
             Emptiness::Omega0InsideOmega => "Ω₀ ⊂ Ω",
+            Emptiness::Proved => "proved empty",
         }
     }
 }
 
 /// Which of Ω, Ω₀ and the four cells ([`Cell`] order) are empty whatever
-/// the leaves: those asking opposite signs of one function (Ω₀ ≡ Ω), and
-/// Ω̄∩Ω₀ when the scene proves Ω₀ ⊂ Ω.
+/// the leaves: those asking opposite signs of one function (Ω₀ ≡ Ω),
+/// Ω̄∩Ω₀ when the scene proves Ω₀ ⊂ Ω, and any proved empty on the scene's
+/// whole domain ([`crate::params::proved_empty`]).
 pub fn empty_cells(
     paving: &Paving,
     scene: &crate::scene::Scene,
@@ -244,6 +250,8 @@ pub fn empty_cells(
             Some(Emptiness::Omega0IsOmega)
         } else if inside && i == Cell::Omega0NotOmega.index() {
             Some(Emptiness::Omega0InsideOmega)
+        } else if crate::params::proved_empty(scene, variant, Cell::ALL[i]) {
+            Some(Emptiness::Proved)
         } else {
             None
         }
@@ -252,7 +260,8 @@ pub fn empty_cells(
 
 /// Area bounds of Ω, Ω₀ and the four cells ([`Cell`] order) of a scene's
 /// paving, with what the scene proves applied: a cell empty by construction
-/// has both bounds 0, and Ω̄∩Ω₀ has outer bound 0 when Ω₀ ⊂ Ω is proved.
+/// or proved empty has both bounds 0, and Ω̄∩Ω₀ has outer bound 0 when
+/// Ω₀ ⊂ Ω is proved.
 pub fn standard_cell_bounds(
     paving: &Paving,
     scene: &crate::scene::Scene,
@@ -272,6 +281,7 @@ pub fn standard_cell_bounds(
             },
             empty[i],
         ),
+        Some(Emptiness::Proved) => (Sums::ZERO.bounds(true, uncovered_sup), empty[i]),
         e => (bounds[i], e),
     })
 }

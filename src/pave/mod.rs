@@ -302,7 +302,7 @@ impl SlabEnds {
 pub const THETA_SLACK_ULPS: u32 = 8;
 
 /// `theta` widened by [`THETA_SLACK_ULPS`] at each end (a point too).
-fn with_slack(theta: Interval) -> Interval {
+pub(crate) fn with_slack(theta: Interval) -> Interval {
     let (mut lo, mut hi) = (theta.inf(), theta.sup());
     for _ in 0..THETA_SLACK_ULPS {
         lo = lo.next_down();

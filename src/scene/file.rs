@@ -327,6 +327,16 @@ impl FileScene {
 
     /// Compiles the text of a scene file (errors without the file name).
     pub fn parse(text: &str, overrides: &[(String, String)]) -> Result<FileScene, String> {
+        FileScene::parse_enclosed(text, overrides, &[])
+    }
+
+    /// [`FileScene::parse`] with some parameters given as enclosures (a
+    /// parameter box) instead of their text: `(name, enclosure)` pairs.
+    pub fn parse_enclosed(
+        text: &str,
+        overrides: &[(String, String)],
+        boxes: &[(String, Interval)],
+    ) -> Result<FileScene, String> {
         let table: toml::Table = toml::from_str(text).map_err(|e| toml_message(text, &e))?;
         for path in ["name", "domain.theta", "domain.theta_dot", "regions.omega"] {
             let mut at = Some(&table);
@@ -351,7 +361,12 @@ impl FileScene {
                 raw.name
             ));
         }
-        let params = parameters(&raw.name, &raw.parameters, text, overrides)?;
+        let mut params = parameters(&raw.name, &raw.parameters, text, overrides)?;
+        for (name, x) in boxes {
+            let i = params.specs.iter().position(|s| s.name == name);
+            let i = i.ok_or_else(|| format!("unknown parameter `{name}`"))?;
+            params.values[i].value = *x;
+        }
         let enclosed: Vec<(String, Interval)> = params
             .specs
             .iter()
@@ -476,6 +491,12 @@ impl FileScene {
         let mut out = [T::int(0); 2];
         self.program.eval(theta, theta_dot, &mut out);
         out
+    }
+
+    /// Ω or Ω₀ written as the other times or divided by a θ̇-free factor
+    /// ([`Program::factors`]; output 0 is Ω, 1 is Ω₀).
+    pub fn factors(&self) -> Vec<super::expr::FactorOf> {
+        self.program.factors()
     }
 
     /// True when the two regions are the same text: Ω₀ = Ω by construction.

@@ -22,6 +22,7 @@ mod loose_checker;
 mod mechanics;
 mod methods;
 mod param_proofs;
+mod params;
 mod paving;
 mod peers;
 mod proof_mutations;

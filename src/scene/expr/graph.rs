@@ -43,7 +43,7 @@ impl Node {
     }
 
     /// The same operation on renamed operands (constants left alone).
-    fn map(self, f: impl Fn(u32) -> u32) -> Node {
+    pub(super) fn map(self, f: impl Fn(u32) -> u32) -> Node {
         match self {
             Node::Const(_) | Node::Theta | Node::ThetaDot => self,
             Node::Neg(a) => Node::Neg(f(a)),

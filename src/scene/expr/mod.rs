@@ -15,12 +15,14 @@
 //! evaluation plan only does arithmetic on constants alone once, where that
 //! gives every scalar type the very value the operation would.
 
+mod factor;
 mod graph;
 mod parse;
 mod tape;
 #[cfg(test)]
 mod tests;
 
+pub use factor::FactorOf;
 pub use tape::{ConstantIssue, Program};
 
 use crate::number::scalar::is_defined;
