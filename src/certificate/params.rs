@@ -12,8 +12,8 @@ use super::numbers::hex;
 use super::paving::{base64, BitWriter};
 use crate::number::param::ParamSet;
 use crate::params::model::{EmptyReason, ParamAtlas, ParamNode, SetStatus};
-use crate::pave::{Node, PhaseBox};
-use crate::scene::{Cell, Domain, Scene, Variant};
+use crate::pave::Node;
+use crate::scene::{Cell, Scene, Variant};
 use serde_json::{json, Map, Value};
 
 /// What a parameter-atlas proof is about, besides the atlas itself.
@@ -28,35 +28,9 @@ pub struct ParamAtlasStatement<'a> {
     pub title: String,
 }
 
-/// Doubles by which [`phase_root`] reaches beyond each end of the domain's
-/// enclosure: a checker whose rounding is looser (FORMAT.md, "Accuracy")
-/// encloses an end such as `pi/2` a few doubles wider, and the phase box
-/// must still contain it.
-pub const PHASE_ROOT_SLACK: u32 = 64;
-
-/// The box every emptiness tree starts from: the domain's enclosure (its
-/// ends' outer ends) widened by [`PHASE_ROOT_SLACK`] doubles at each end,
-/// so that the leaves cover the domain for any conforming checker. The
-/// prover paves emptiness from here (a leaf may reach a little outside the
-/// domain; its reason must hold there too).
-pub fn phase_root(domain: &Domain) -> PhaseBox {
-    let out = |mut x: f64, up: bool| {
-        for _ in 0..PHASE_ROOT_SLACK {
-            x = if up { x.next_up() } else { x.next_down() };
-        }
-        x
-    };
-    PhaseBox {
-        theta: [
-            out(domain.theta[0].inf(), false),
-            out(domain.theta[1].sup(), true),
-        ],
-        theta_dot: [
-            out(domain.theta_dot[0].inf(), false),
-            out(domain.theta_dot[1].sup(), true),
-        ],
-    }
-}
+/// The box every emptiness tree starts from, as the prover paves it
+/// ([`crate::params::empty_root`]).
+pub use crate::params::empty_root as phase_root;
 
 /// `text` with the scene variables named as a proof names them (`theta` is
 /// `t`, `theta_dot` is `w`; a scene file reserves `t` and `w`), token by

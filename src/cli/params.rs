@@ -184,12 +184,27 @@ pub fn run_params(args: &ParamsArgs) -> CliResult {
     Ok(())
 }
 
-/// The proof file of an atlas.
-fn write_proof(path: &std::path::Path, _family: &Family, _atlas: &ParamAtlas) -> CliResult {
-    Err(CliError::usage(format!(
-        "--proof {}: proofs of parameter atlases are not available in this build yet",
-        detach::files::shown(path)
-    )))
+/// The proof file of an atlas, written once the checker accepts it.
+fn write_proof(path: &std::path::Path, family: &Family, atlas: &ParamAtlas) -> CliResult {
+    let statement = detach::certificate::params::ParamAtlasStatement {
+        scene: &family.base,
+        variant: family.variant,
+        params: &family.params,
+        title: format!(
+            "{}: parameter atlas over {}",
+            family.base.name(),
+            atlas
+                .axes
+                .iter()
+                .map(|a| format!("{} in [{}, {}]", a.name, a.lo, a.hi))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    };
+    let proof = detach::certificate::params::param_atlas_proof(&statement, atlas)
+        .map_err(CliError::runtime)?;
+    super::write_checked(path, &proof)?;
+    Ok(())
 }
 
 fn print_table(

@@ -38,13 +38,33 @@ impl Default for DecideOptions {
     }
 }
 
-/// The box an emptiness tree starts from: the domain's hull (the outer
-/// ends of its ends' enclosures), which contains the domain for every
-/// parameter of the box.
+/// Doubles by which [`empty_root`] reaches beyond each end of the domain's
+/// enclosure: a checker whose rounding is looser (FORMAT.md, "Accuracy")
+/// encloses an end such as `pi/2` a few doubles wider, and the proof's
+/// phase box must still contain it.
+pub const EMPTY_ROOT_SLACK: u32 = 64;
+
+/// The box an emptiness tree starts from: the domain's hull (the outer ends
+/// of its ends' enclosures, which contains the domain for every parameter
+/// of the box) widened by [`EMPTY_ROOT_SLACK`] doubles at each end, so that
+/// the leaves cover the domain for any conforming checker (a leaf may reach
+/// a little outside the domain; its reason must hold there too).
 pub fn empty_root(domain: &Domain) -> PhaseBox {
+    let out = |mut x: f64, up: bool| {
+        for _ in 0..EMPTY_ROOT_SLACK {
+            x = if up { x.next_up() } else { x.next_down() };
+        }
+        x
+    };
     PhaseBox {
-        theta: [domain.theta[0].inf(), domain.theta[1].sup()],
-        theta_dot: [domain.theta_dot[0].inf(), domain.theta_dot[1].sup()],
+        theta: [
+            out(domain.theta[0].inf(), false),
+            out(domain.theta[1].sup(), true),
+        ],
+        theta_dot: [
+            out(domain.theta_dot[0].inf(), false),
+            out(domain.theta_dot[1].sup(), true),
+        ],
     }
 }
 
