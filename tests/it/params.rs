@@ -470,3 +470,45 @@ fn two_parameters_draw_the_plane_and_mark_the_given_point() {
     assert_eq!(v["thresholds"].as_array().unwrap().len(), 0, "none in 2-D");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `params --proof` on the rod writes a parameter-atlas proof that the
+/// standalone checker accepts, exactly and as loose as the slack rule allows
+/// (FORMAT.md, "Accuracy"); with V's friction term changed from 3μ to 2μ
+/// (paradoxes then iff μ > 2, by the same closed form) the witnesses claimed
+/// for μ just above 4/3 no longer hold and the same file is INVALID.
+#[test]
+fn the_rods_parameter_atlas_proof_is_valid_and_a_changed_v_is_not() {
+    use detach::check::{check_bytes, with_looseness, Looseness, Verdict};
+    let dir = std::env::temp_dir().join(format!("detach-params-proof-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("rod.json");
+    let out = detach(&[
+        "params",
+        "--scene",
+        "painleve-rod",
+        "--x",
+        "mu=1:2",
+        "--proof",
+        path.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let bytes = std::fs::read(&path).unwrap();
+    let verdict = |b: &[u8]| check_bytes(b).unwrap().verdict;
+    assert_eq!(verdict(&bytes), Verdict::Valid);
+    let loose = Looseness {
+        basic: 2,
+        exact_too: true,
+        functions: 4,
+    };
+    assert_eq!(with_looseness(loose, || verdict(&bytes)), Verdict::Valid);
+    let text = String::from_utf8(bytes).unwrap();
+    let v = "1 + 3*cos(t)^2 - 3*mu*sin(t)*cos(t)";
+    assert_eq!(text.matches(v).count(), 1, "V is stated once, as written");
+    let changed = text.replace(v, "1 + 3*cos(t)^2 - 2*mu*sin(t)*cos(t)");
+    assert!(matches!(verdict(changed.as_bytes()), Verdict::Invalid(_)));
+    std::fs::remove_dir_all(&dir).ok();
+}
