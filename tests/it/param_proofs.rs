@@ -474,7 +474,7 @@ fn the_writer_refuses_an_atlas_that_does_not_fit() {
     a.sets[0] = "omega1".into();
     assert!(param_atlas_proof(&statement, &a)
         .unwrap_err()
-        .contains("unknown set"));
+        .contains("unknown region `omega1`"));
     let mut a = atlas;
     a.leaves[0].sets.pop();
     assert!(param_atlas_proof(&statement, &a).is_err());
