@@ -124,7 +124,10 @@ pub fn search(
     let root = family.root.clone();
     let bases = base_boxes(std::slice::from_ref(&root));
     for b in &bases {
-        if b.iter().any(|r| !(r[0] < r[1])) {
+        // NaN-safe: a range that is not strictly ordered cannot be split.
+        if b.iter()
+            .any(|r| r[0].partial_cmp(&r[1]) != Some(std::cmp::Ordering::Less))
+        {
             return Err("the parameter range is too narrow to split".into());
         }
     }
@@ -254,13 +257,9 @@ fn assemble(
     let by_base: std::collections::HashMap<u32, usize> =
         top.iter().map(|&i| (all[i].base, i)).collect();
     let mut next_base = 0u32;
-    fn fixed(
-        depth: usize,
-        at: usize,
-        dims: usize,
-        b: Vec<[f64; 2]>,
-        out: &mut dyn FnMut(Option<(u8, f64)>, Option<Vec<[f64; 2]>>),
-    ) {
+    /// One node of the fixed tree: a split (axis, point) or a base box.
+    type Visit<'a> = dyn FnMut(Option<(u8, f64)>, Option<Vec<[f64; 2]>>) + 'a;
+    fn fixed(depth: usize, at: usize, dims: usize, b: Vec<[f64; 2]>, out: &mut Visit) {
         if at == depth {
             out(None, Some(b));
             return;
