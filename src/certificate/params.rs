@@ -10,6 +10,7 @@
 
 use super::numbers::hex;
 use super::paving::{base64, BitWriter};
+use super::statement::in_proof_names;
 use crate::number::param::ParamSet;
 use crate::params::model::{EmptyReason, ParamAtlas, ParamNode, SetStatus};
 use crate::pave::Node;
@@ -32,60 +33,15 @@ pub struct ParamAtlasStatement<'a> {
 /// ([`crate::params::empty_root`]).
 pub use crate::params::empty_root as phase_root;
 
-/// `text` with the scene variables named as a proof names them (`theta` is
-/// `t`, `theta_dot` is `w`; a scene file reserves `t` and `w`), token by
-/// token, everything else as written.
-fn proof_names(text: &str) -> String {
-    let b = text.as_bytes();
-    let mut out = String::with_capacity(text.len());
-    let mut i = 0;
-    while i < b.len() {
-        let start = i;
-        if b[i].is_ascii_digit() || b[i] == b'.' {
-            // A number, with its exponent: `2e5` holds no name `e5`.
-            while i < b.len() && (b[i].is_ascii_digit() || b[i] == b'.') {
-                i += 1;
-            }
-            if i < b.len() && (b[i] == b'e' || b[i] == b'E') {
-                let mut j = i + 1;
-                if j < b.len() && (b[j] == b'+' || b[j] == b'-') {
-                    j += 1;
-                }
-                if j < b.len() && b[j].is_ascii_digit() {
-                    while j < b.len() && b[j].is_ascii_digit() {
-                        j += 1;
-                    }
-                    i = j;
-                }
-            }
-            out.push_str(&text[start..i]);
-        } else if b[i].is_ascii_alphabetic() {
-            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_') {
-                i += 1;
-            }
-            out.push_str(match &text[start..i] {
-                "theta" => "t",
-                "theta_dot" => "w",
-                name => name,
-            });
-        } else {
-            let c = text[i..].chars().next().unwrap_or(' ');
-            out.push(c);
-            i += c.len_utf8();
-        }
-    }
-    out
-}
-
 /// Definitions, Ω and Ω₀ as the statement gives them.
 fn formulas(scene: &Scene, variant: Variant) -> (Vec<(String, String)>, [String; 2]) {
     match scene {
         Scene::File(f) => (
             f.definitions
                 .iter()
-                .map(|(n, e)| (n.clone(), proof_names(e)))
+                .map(|(n, e)| (n.clone(), in_proof_names(e)))
                 .collect(),
-            [0, 1].map(|i| proof_names(&f.regions[i].expr)),
+            [0, 1].map(|i| in_proof_names(&f.regions[i].expr)),
         ),
         _ => {
             let f = scene.id().expect("a paper scene").formulas(variant);
@@ -256,7 +212,7 @@ pub fn param_atlas_proof(st: &ParamAtlasStatement, atlas: &ParamAtlas) -> Result
     let domain = st
         .scene
         .domain_text()
-        .map(|ends| ends.map(|e| proof_names(&e)));
+        .map(|ends| ends.map(|e| in_proof_names(&e)));
     let mut proof = json!({
         "format": "detach-proof/1",
         "claim": "parameter-atlas",
@@ -295,10 +251,10 @@ mod tests {
     #[test]
     fn scene_variables_are_renamed_token_by_token() {
         assert_eq!(
-            proof_names("l*sin(theta)*theta_dot^2 - 2e5*theta_dots + thetas"),
+            in_proof_names("l*sin(theta)*theta_dot^2 - 2e5*theta_dots + thetas"),
             "l*sin(t)*w^2 - 2e5*theta_dots + thetas"
         );
-        assert_eq!(proof_names("1e-3*theta"), "1e-3*t");
+        assert_eq!(in_proof_names("1e-3*theta"), "1e-3*t");
     }
 
     #[test]
