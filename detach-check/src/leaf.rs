@@ -37,6 +37,18 @@ impl StatedConstraints {
         Ok(StatedConstraints { prog, roots })
     }
 
+    /// The enclosure of an expression that depends on neither variable (a
+    /// domain end), as this checker computes it under the current rounding.
+    pub fn constant(&mut self, text: &str) -> Result<Interval, String> {
+        let s = self.prog.compile_constant(text)?;
+        let whole = DecInterval::new(Interval::ENTIRE);
+        let x = self.prog.value(&[whole, whole], s);
+        if x.decoration() < inari::Decoration::Def {
+            return Err(format!("{text:?} is not defined"));
+        }
+        Ok(x.interval().unwrap_or(Interval::ENTIRE))
+    }
+
     /// Whether constraint `c` is proved in (`want_in`) or out on the leaf
     /// `t × w` by one of the checker's three tests.
     pub fn label_holds(&self, c: usize, t: Interval, w: Interval, want_in: bool) -> bool {

@@ -8,6 +8,7 @@
 
 pub mod band;
 pub mod catalog;
+pub mod clip;
 pub mod confirm;
 pub mod numbers;
 pub mod params;

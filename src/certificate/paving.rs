@@ -2,7 +2,7 @@
 //! text, the constraints as expressions, the domain, the claimed areas) and
 //! the tree in the compact `tree/1` encoding.
 
-use super::confirm::confirm_labels;
+use super::confirm::{confirm_labels, StatedText};
 use super::numbers::{decimal, hex, Round};
 use super::statement::file_statement;
 use crate::number::param::ParamSet;
@@ -114,22 +114,35 @@ fn literals(cell: Cell) -> Value {
     Value::Object(m)
 }
 
-/// The proof file of a paving of Ω and Ω₀ (and the four cells). A scene
-/// file's proof states the author's text, and only the labels that text
-/// confirms ([`confirm_labels`]); how many it leaves undecided is in
-/// `evidence.resolution.unconfirmed` (informational).
+/// The proof file of a paving of Ω and Ω₀ (and the four cells). It states
+/// the paving as the loosest checker it must convince confirms it
+/// ([`confirm_labels`]): the root box inside that checker's domain, and only
+/// the labels it confirms on the stated text; how many labels that leaves
+/// undecided is in `evidence.resolution.unconfirmed` (informational).
 pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
     let formulas = statement_formulas(st.scene, st.variant);
-    let confirmed = match st.scene {
-        Scene::File(f) => Some(confirm_labels(f, paving)),
-        _ => None,
-    };
-    let paving = confirmed.as_ref().map_or(paving, |c| &c.paving);
     let mut params = Map::new();
     for (name, text) in st.params.texts() {
         params.insert(name.to_string(), Value::String(text));
     }
-    let uncovered = st.domain.uncovered_area_sup();
+    let confirmed = confirm_labels(
+        &StatedText {
+            parameters: st
+                .params
+                .texts()
+                .into_iter()
+                .map(|(n, t)| (n.to_string(), t))
+                .collect(),
+            definitions: &formulas.definitions,
+            constraints: [&formulas.omega, &formulas.omega0],
+            domain: &st.domain_text,
+        },
+        paving,
+    );
+    let paving = &confirmed.paving;
+    let uncovered = st
+        .domain
+        .area_outside([paving.root.theta, paving.root.theta_dot]);
     let areas: Vec<Value> = Cell::ALL
         .into_iter()
         .map(|cell| {
@@ -176,9 +189,7 @@ pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
             "body": base64(&encode_tree(paving)),
         },
     });
-    if let Some(c) = &confirmed {
-        proof["evidence"]["resolution"]["unconfirmed"] = json!(c.undecided);
-    }
+    proof["evidence"]["resolution"]["unconfirmed"] = json!(confirmed.undecided);
     // A scene file has one reading and no place in the paper.
     if st.scene.id().is_none() {
         if let Some(s) = proof["statement"].as_object_mut() {

@@ -150,7 +150,12 @@ impl Domain {
     /// Upper bound on the area of the true domain not covered by
     /// [`Domain::inner_box`] (non-zero when an endpoint such as π is not a double).
     pub fn uncovered_area_sup(&self) -> f64 {
-        let b = self.inner_box();
+        self.area_outside(self.inner_box())
+    }
+
+    /// Upper bound on the area of the true domain outside the box `b`
+    /// (`[[θ lo, θ hi], [θ̇ lo, θ̇ hi]]`, inside the domain).
+    pub fn area_outside(&self, b: [[f64; 2]; 2]) -> f64 {
         let iv = |lo: f64, hi: f64| Interval::try_from((lo, hi)).unwrap();
         let w_true = self.theta[1] - self.theta[0];
         let h_true = self.theta_dot[1] - self.theta_dot[0];
