@@ -2,7 +2,7 @@
 //! text, the constraints as expressions, the domain, the claimed areas) and
 //! the tree in the compact `tree/1` encoding.
 
-use super::confirm::{confirm_labels, StatedText};
+use super::confirm::{confirm_labels, Confirmed, StatedText};
 use super::numbers::{decimal, hex, Round};
 use super::statement::file_statement;
 use crate::number::param::ParamSet;
@@ -114,18 +114,12 @@ fn literals(cell: Cell) -> Value {
     Value::Object(m)
 }
 
-/// The proof file of a paving of Ω and Ω₀ (and the four cells). It states
-/// the paving as the loosest checker it must convince confirms it
-/// ([`confirm_labels`]): the root box inside that checker's domain, and only
-/// the labels it confirms on the stated text; how many labels that leaves
-/// undecided is in `evidence.resolution.unconfirmed` (informational).
-pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
+/// The paving a proof of `paving` states: cut to the root box the loosest
+/// checker it must convince finds inside the domain, with only the labels
+/// that checker confirms on the stated text ([`confirm_labels`]).
+pub fn stated_paving(st: &PavingStatement, paving: &Paving) -> Confirmed {
     let formulas = statement_formulas(st.scene, st.variant);
-    let mut params = Map::new();
-    for (name, text) in st.params.texts() {
-        params.insert(name.to_string(), Value::String(text));
-    }
-    let confirmed = confirm_labels(
+    confirm_labels(
         &StatedText {
             parameters: st
                 .params
@@ -138,7 +132,19 @@ pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
             domain: &st.domain_text,
         },
         paving,
-    );
+    )
+}
+
+/// The proof file of a paving of Ω and Ω₀ (and the four cells), as
+/// [`stated_paving`] gives it; how many labels that leaves undecided is in
+/// `evidence.resolution.unconfirmed` (informational).
+pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
+    let formulas = statement_formulas(st.scene, st.variant);
+    let mut params = Map::new();
+    for (name, text) in st.params.texts() {
+        params.insert(name.to_string(), Value::String(text));
+    }
+    let confirmed = stated_paving(st, paving);
     let paving = &confirmed.paving;
     let uncovered = st
         .domain
