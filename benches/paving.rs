@@ -6,6 +6,8 @@ mod problems;
 #[path = "support/timing.rs"]
 mod timing;
 
+use detach::number::elementary::CrDec;
+use detach::number::scalar::DualTheta;
 use detach::pave::{
     pave_scene, pave_scene_method, standard_cells, Method, MethodOptions, PaveOptions, Paving,
 };
@@ -116,6 +118,33 @@ fn one_box() {
     }
 }
 
+/// One evaluation of a paper scene's coefficients, built-in against file,
+/// in each scalar the pavers use: `f64` (steering), decorated intervals
+/// with the correctly rounded functions (slabs) and their θ-duals (slab
+/// ends, centred forms).
+fn tape() {
+    let g = Group::new("tape").samples(9).time(Duration::from_secs(1));
+    // θ-slab and sines outside the timing: both sources share them.
+    let th = Interval::try_from((1.1, 1.1 + 1e-3)).unwrap();
+    let slab = CrDec(DecInterval::new(th));
+    let dual = DualTheta::variable(slab, 0);
+    for id in SceneId::ALL {
+        let path = format!("{}/scenes/{}.toml", env!("CARGO_MANIFEST_DIR"), id.name());
+        let file = Scene::from_file(path.as_ref(), &[])
+            .expect("shipped file")
+            .0;
+        let built_in = Scene::default_of(id);
+        for (source, s) in [("built-in", &built_in), ("file", &file)] {
+            let v = Variant::Derived;
+            let name = format!("{}/{source}", id.name());
+            let (p, sl, du) = (Angle::new(1.1f64), Angle::new(slab), Angle::new(dual));
+            g.bench(&format!("f64/{name}"), || s.constraints(v, black_box(&p)));
+            g.bench(&format!("slab/{name}"), || s.constraints(v, black_box(&sl)));
+            g.bench(&format!("dual/{name}"), || s.constraints(v, black_box(&du)));
+        }
+    }
+}
+
 /// Each paper scene paved from its built-in formulas and from its scene
 /// file (`scenes/`, compiled to a tape), per method, on one thread and on
 /// two, derived reading, ε = 1e-4: the ratio is the tape's cost. Ends with
@@ -183,5 +212,6 @@ fn main() {
     paving();
     methods();
     one_box();
+    tape();
     scene_files();
 }

@@ -24,6 +24,12 @@ pub trait Scalar:
     /// A constant known as an enclosure. `f64` takes its midpoint (uncertified
     /// paths only); interval types keep the whole enclosure.
     fn lift(x: Interval) -> Self;
+    /// [`Scalar::lift`] of a constant whose `f64` lift is already known
+    /// (`mid` is `f64::lift(x)`): `f64` takes `mid` without computing it.
+    fn lift_known(x: Interval, mid: f64) -> Self {
+        let _ = mid;
+        Self::lift(x)
+    }
     /// A small integer, exact in every implementation.
     fn int(n: i32) -> Self;
     fn sqr(self) -> Self;
@@ -119,6 +125,9 @@ fn interval_sign_slope(x: Interval) -> Interval {
 impl Scalar for f64 {
     fn lift(x: Interval) -> Self {
         x.mid()
+    }
+    fn lift_known(_: Interval, mid: f64) -> Self {
+        mid
     }
     fn int(n: i32) -> Self {
         n as f64
@@ -436,6 +445,9 @@ impl<T: Scalar, const N: usize> Neg for DualN<T, N> {
 impl<T: Scalar, const N: usize> Scalar for DualN<T, N> {
     fn lift(x: Interval) -> Self {
         Self::constant(T::lift(x))
+    }
+    fn lift_known(x: Interval, mid: f64) -> Self {
+        Self::constant(T::lift_known(x, mid))
     }
     fn int(n: i32) -> Self {
         Self::constant(T::int(n))

@@ -33,16 +33,17 @@ enum Fused {
     Done,
 }
 
-fn fuse_sin_cos(tape: &[Node]) -> Vec<Fused> {
+/// The `sin`/`cos` pairs among the entries `needed`.
+fn fuse_sin_cos(tape: &[Node], needed: &[bool]) -> Vec<Fused> {
     let mut fused = vec![Fused::Alone; tape.len()];
     let mut sin_of: HashMap<u32, u32> = HashMap::new();
     for (j, node) in tape.iter().enumerate() {
-        if let Node::Call(Func::Sin, a) = *node {
+        if let (true, Node::Call(Func::Sin, a)) = (needed[j], *node) {
             sin_of.insert(a, j as u32);
         }
     }
     for (j, node) in tape.iter().enumerate() {
-        if let Node::Call(Func::Cos, a) = *node {
+        if let (true, Node::Call(Func::Cos, a)) = (needed[j], *node) {
             if let Some(&sin) = sin_of.get(&a) {
                 let cos = j as u32;
                 let (first, second) = (sin.min(cos), sin.max(cos));
@@ -54,16 +55,30 @@ fn fuse_sin_cos(tape: &[Node]) -> Vec<Fused> {
     fused
 }
 
-/// How a [`Program`] is evaluated: slots `[θ, θ̇, constants…, results…]`,
-/// the constants lifted once per evaluation and one operation per result,
-/// in tape order (no dispatch on variables or constants, `sin`/`cos` pairs
-/// as one operation).
+/// Slots of θ, θ̇, `sin θ` and `cos θ`; the constants follow.
+const THETA_SLOT: u32 = 0;
+const THETA_DOT_SLOT: u32 = 1;
+const SIN_SLOT: u32 = 2;
+const COS_SLOT: u32 = 3;
+const FIRST_CONST: u32 = 4;
+
+/// How a [`Program`] is evaluated: slots `[θ, θ̇, sin θ, cos θ, constants…,
+/// results…]`, the constants lifted once per evaluation, `sin θ` and `cos θ`
+/// taken from the caller or computed once, and one operation per result in
+/// tape order (no dispatch on variables or constants, `sin`/`cos` pairs as
+/// one operation). In an evaluation plan a result's slot is reused once the
+/// last operation reading it is done, so the slot array stays small (filling
+/// it is part of every evaluation).
 #[derive(Clone, Debug)]
 pub(super) struct Plan {
-    /// Lifted into the slots after θ and θ̇.
-    pub(super) consts: Vec<Interval>,
-    pub(super) ops: Vec<Op>,
-    /// Per tape entry: its slot (`u32::MAX` when no output needs it).
+    /// Lifted into the slots from [`FIRST_CONST`] on: each enclosure with
+    /// its `f64` lift ([`Scalar::lift_known`]).
+    pub(super) consts: Vec<(Interval, f64)>,
+    pub(super) ops: Vec<Step>,
+    /// Whether `sin θ` and `cos θ` are read.
+    trig: [bool; 2],
+    /// Per tape entry: its slot (`u32::MAX` when no output needs it); in a
+    /// plan that reuses slots, only where the entry was computed.
     pub(super) slot: Vec<u32>,
     /// Per output: its slot.
     pub(super) outputs: Vec<u32>,
@@ -71,8 +86,15 @@ pub(super) struct Plan {
     pub(super) len: usize,
 }
 
-/// One operation of a [`Plan`] on earlier slots; its result goes to the next
-/// slot (the pairs to the next two, `sin` first).
+/// One operation of a [`Plan`] on earlier slots, its result in slot `to`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Step {
+    pub(super) op: Op,
+    to: u32,
+}
+
+/// An operation on slots; one variant per function, so that evaluating
+/// it is one dispatch.
 #[derive(Clone, Copy, Debug)]
 pub(super) enum Op {
     Neg(u32),
@@ -82,16 +104,111 @@ pub(super) enum Op {
     Div(u32, u32),
     Sqr(u32),
     Pown(u32, u32),
-    Call(Func, u32),
-    Call2(Func, u32, u32),
+    Sqrt(u32),
+    Sin(u32),
+    Cos(u32),
+    Tan(u32),
+    Ln(u32),
+    Abs(u32),
+    Atan(u32),
+    Exp(u32),
+    Sign(u32),
+    Min(u32, u32),
+    Max(u32, u32),
     /// `sin` and `cos` of one operand ([`Scalar::sin_cos`]: the same
-    /// enclosures, one kernel call, and duals reuse both).
-    SinCos(u32),
-    /// `sin θ`, `cos θ` or both: the caller's when it has them.
-    Trig {
-        sin: bool,
-        cos: bool,
+    /// enclosures, one kernel call, and duals reuse both): `sin` to the
+    /// step's slot, `cos` to this one.
+    SinCos {
+        x: u32,
+        cos: u32,
     },
+}
+
+impl Op {
+    fn of(node: Node, s: impl Fn(u32) -> u32) -> Op {
+        match node {
+            Node::Neg(a) => Op::Neg(s(a)),
+            Node::Add(a, b) => Op::Add(s(a), s(b)),
+            Node::Sub(a, b) => Op::Sub(s(a), s(b)),
+            Node::Mul(a, b) => Op::Mul(s(a), s(b)),
+            Node::Div(a, b) => Op::Div(s(a), s(b)),
+            Node::Sqr(a) => Op::Sqr(s(a)),
+            Node::Pown(a, n) => Op::Pown(s(a), n),
+            Node::Call(f, a) => {
+                let a = s(a);
+                match f {
+                    Func::Sqrt => Op::Sqrt(a),
+                    Func::Sin => Op::Sin(a),
+                    Func::Cos => Op::Cos(a),
+                    Func::Tan => Op::Tan(a),
+                    Func::Ln => Op::Ln(a),
+                    Func::Abs => Op::Abs(a),
+                    Func::Atan => Op::Atan(a),
+                    Func::Exp => Op::Exp(a),
+                    Func::Sign => Op::Sign(a),
+                    Func::Min | Func::Max => unreachable!("two arguments: Call2"),
+                }
+            }
+            Node::Call2(Func::Min, a, b) => Op::Min(s(a), s(b)),
+            Node::Call2(_, a, b) => Op::Max(s(a), s(b)),
+            Node::Const(_) | Node::Theta | Node::ThetaDot => {
+                unreachable!("variables and constants have their slots")
+            }
+        }
+    }
+
+    /// The slots read.
+    fn reads(self) -> [Option<u32>; 2] {
+        match self {
+            Op::Add(a, b)
+            | Op::Sub(a, b)
+            | Op::Mul(a, b)
+            | Op::Div(a, b)
+            | Op::Min(a, b)
+            | Op::Max(a, b) => [Some(a), Some(b)],
+            Op::Neg(a)
+            | Op::Sqr(a)
+            | Op::Pown(a, _)
+            | Op::Sqrt(a)
+            | Op::Sin(a)
+            | Op::Cos(a)
+            | Op::Tan(a)
+            | Op::Ln(a)
+            | Op::Abs(a)
+            | Op::Atan(a)
+            | Op::Exp(a)
+            | Op::Sign(a)
+            | Op::SinCos { x: a, .. } => [Some(a), None],
+        }
+    }
+
+    /// The same operation on renamed slots.
+    fn map(self, f: impl Fn(u32) -> u32) -> Op {
+        match self {
+            Op::Neg(a) => Op::Neg(f(a)),
+            Op::Add(a, b) => Op::Add(f(a), f(b)),
+            Op::Sub(a, b) => Op::Sub(f(a), f(b)),
+            Op::Mul(a, b) => Op::Mul(f(a), f(b)),
+            Op::Div(a, b) => Op::Div(f(a), f(b)),
+            Op::Min(a, b) => Op::Min(f(a), f(b)),
+            Op::Max(a, b) => Op::Max(f(a), f(b)),
+            Op::Sqr(a) => Op::Sqr(f(a)),
+            Op::Pown(a, n) => Op::Pown(f(a), n),
+            Op::Sqrt(a) => Op::Sqrt(f(a)),
+            Op::Sin(a) => Op::Sin(f(a)),
+            Op::Cos(a) => Op::Cos(f(a)),
+            Op::Tan(a) => Op::Tan(f(a)),
+            Op::Ln(a) => Op::Ln(f(a)),
+            Op::Abs(a) => Op::Abs(f(a)),
+            Op::Atan(a) => Op::Atan(f(a)),
+            Op::Exp(a) => Op::Exp(f(a)),
+            Op::Sign(a) => Op::Sign(f(a)),
+            Op::SinCos { x, cos } => Op::SinCos {
+                x: f(x),
+                cos: f(cos),
+            },
+        }
+    }
 }
 
 /// An operation on constants alone done once, when every scalar evaluating
@@ -119,11 +236,11 @@ fn fold(node: Node, x: impl Fn(u32) -> Option<(Interval, f64)>) -> Option<(Inter
 }
 
 impl Plan {
-    /// The plan of `tape` for `outputs`; with `fold`, operations on
-    /// constants alone are done here ([`fold`]) and only what the outputs
-    /// need is kept, else every entry gets its slot.
+    /// The plan of `tape` for `outputs`. An evaluation plan (`fold`) does
+    /// operations on constants alone here ([`fold`]), keeps only what the
+    /// outputs need and reuses slots; otherwise every entry gets its own
+    /// slot and keeps its value to the end.
     pub(super) fn new(tape: &[Node], consts: &[Interval], outputs: &[u32], fold: bool) -> Plan {
-        let fused = fuse_sin_cos(tape);
         let mut known: Vec<Option<(Interval, f64)>> = Vec::with_capacity(tape.len());
         for &node in tape {
             known.push(match node {
@@ -150,73 +267,117 @@ impl Plan {
                 }
             }
         }
+        let fused = fuse_sin_cos(tape, &needed);
         let mut slot = vec![u32::MAX; tape.len()];
         let mut plan_consts = Vec::new();
         for (j, k) in known.iter().enumerate() {
-            if let (true, Some((c, _))) = (needed[j], k) {
-                slot[j] = 2 + plan_consts.len() as u32;
+            if let (true, Some(c)) = (needed[j], k) {
+                slot[j] = FIRST_CONST + plan_consts.len() as u32;
                 plan_consts.push(*c);
             }
         }
-        let mut next = 2 + plan_consts.len() as u32;
+        let mut next = FIRST_CONST + plan_consts.len() as u32;
+        let mut trig = [false; 2];
         let mut ops = Vec::new();
         for (j, &node) in tape.iter().enumerate() {
             if !needed[j] || known[j].is_some() {
                 continue;
             }
-            let s = |a: u32| slot[a as usize];
             let is_theta = |a: u32| tape[a as usize] == Node::Theta;
-            let (op, width) = match (fused[j], node) {
-                (Fused::Done, _) => continue,
+            match (fused[j], node) {
+                (Fused::Done, _) => {}
+                (Fused::SinCos { a, sin, cos }, _) if is_theta(a) => {
+                    trig = [true, true];
+                    slot[sin as usize] = SIN_SLOT;
+                    slot[cos as usize] = COS_SLOT;
+                }
                 (Fused::SinCos { a, sin, cos }, _) => {
-                    ops.push(match is_theta(a) {
-                        true => Op::Trig {
-                            sin: true,
-                            cos: true,
-                        },
-                        false => Op::SinCos(s(a)),
-                    });
                     slot[sin as usize] = next;
                     slot[cos as usize] = next + 1;
+                    let (x, cos) = (slot[a as usize], next + 1);
+                    ops.push(Step {
+                        op: Op::SinCos { x, cos },
+                        to: next,
+                    });
                     next += 2;
-                    continue;
                 }
-                (_, Node::Theta) => {
-                    slot[j] = 0;
-                    continue;
+                (_, Node::Theta) => slot[j] = THETA_SLOT,
+                (_, Node::ThetaDot) => slot[j] = THETA_DOT_SLOT,
+                (_, Node::Call(f @ (Func::Sin | Func::Cos), a)) if is_theta(a) => {
+                    let k = usize::from(f == Func::Cos);
+                    trig[k] = true;
+                    slot[j] = [SIN_SLOT, COS_SLOT][k];
                 }
-                (_, Node::ThetaDot) => {
-                    slot[j] = 1;
-                    continue;
+                (_, node) => {
+                    let op = Op::of(node, |a| slot[a as usize]);
+                    slot[j] = next;
+                    ops.push(Step { op, to: next });
+                    next += 1;
                 }
-                (_, Node::Call(f @ (Func::Sin | Func::Cos), a)) if is_theta(a) => (
-                    Op::Trig {
-                        sin: f == Func::Sin,
-                        cos: f == Func::Cos,
-                    },
-                    1,
-                ),
-                (_, Node::Const(_)) => unreachable!("constants are known"),
-                (_, Node::Neg(a)) => (Op::Neg(s(a)), 1),
-                (_, Node::Add(a, b)) => (Op::Add(s(a), s(b)), 1),
-                (_, Node::Sub(a, b)) => (Op::Sub(s(a), s(b)), 1),
-                (_, Node::Mul(a, b)) => (Op::Mul(s(a), s(b)), 1),
-                (_, Node::Div(a, b)) => (Op::Div(s(a), s(b)), 1),
-                (_, Node::Sqr(a)) => (Op::Sqr(s(a)), 1),
-                (_, Node::Pown(a, n)) => (Op::Pown(s(a), n), 1),
-                (_, Node::Call(f, a)) => (Op::Call(f, s(a)), 1),
-                (_, Node::Call2(f, a, b)) => (Op::Call2(f, s(a), s(b)), 1),
-            };
-            slot[j] = next;
-            next += width;
-            ops.push(op);
+            }
         }
-        Plan {
+        let mut plan = Plan {
             consts: plan_consts,
             ops,
+            trig,
             outputs: outputs.iter().map(|&o| slot[o as usize]).collect(),
             slot,
             len: next as usize,
+        };
+        if fold {
+            plan.reuse_slots();
+        }
+        plan
+    }
+
+    /// Gives each result a slot freed by a result no later operation reads
+    /// (the outputs keep theirs): the values computed are the same, the
+    /// slot array is as long as the most results alive at once.
+    fn reuse_slots(&mut self) {
+        let first = FIRST_CONST + self.consts.len() as u32;
+        let index = |a: u32| (a >= first).then(|| (a - first) as usize);
+        let results = self.len - first as usize;
+        // Per result: the last step reading it (outputs: past every step).
+        let mut last = vec![None; results];
+        for (i, step) in self.ops.iter().enumerate() {
+            for r in step.op.reads().into_iter().flatten().filter_map(index) {
+                last[r] = Some(i);
+            }
+        }
+        for r in self.outputs.iter().filter_map(|&o| index(o)) {
+            last[r] = Some(usize::MAX);
+        }
+        let mut to = vec![u32::MAX; results];
+        let mut free: Vec<u32> = Vec::new();
+        let mut len = first;
+        for (i, step) in self.ops.iter_mut().enumerate() {
+            let old = *step;
+            step.op = old.op.map(|a| index(a).map_or(a, |r| to[r]));
+            // An operation reads before it writes: the slots of operands
+            // read for the last time take its results.
+            for r in old.op.reads().into_iter().flatten().filter_map(index) {
+                if last[r] == Some(i) && !free.contains(&to[r]) {
+                    free.push(to[r]);
+                }
+            }
+            let mut take = |r: usize| {
+                let s = free.pop().unwrap_or_else(|| {
+                    len += 1;
+                    len - 1
+                });
+                to[r] = s;
+                s
+            };
+            step.to = take((old.to - first) as usize);
+            if let (Op::SinCos { cos, .. }, Op::SinCos { cos: new, .. }) = (old.op, &mut step.op) {
+                *new = take((cos - first) as usize);
+            }
+        }
+        self.len = len as usize;
+        for o in &mut self.outputs {
+            if let Some(r) = index(*o) {
+                *o = to[r];
+            }
         }
     }
 
@@ -228,68 +389,53 @@ impl Plan {
         theta_dot: T,
         slots: &mut [T],
     ) {
-        fn at<T: Copy>(slots: &[T], a: u32) -> T {
-            slots[a as usize]
+        slots[THETA_SLOT as usize] = theta;
+        slots[THETA_DOT_SLOT as usize] = theta_dot;
+        match (trig, self.trig) {
+            (_, [false, false]) => {}
+            (Some((s, c)), _) => {
+                slots[SIN_SLOT as usize] = s;
+                slots[COS_SLOT as usize] = c;
+            }
+            (None, [true, true]) => {
+                let (s, c) = theta.sin_cos();
+                slots[SIN_SLOT as usize] = s;
+                slots[COS_SLOT as usize] = c;
+            }
+            (None, [true, false]) => slots[SIN_SLOT as usize] = theta.sin(),
+            (None, _) => slots[COS_SLOT as usize] = theta.cos(),
         }
-        slots[0] = theta;
-        slots[1] = theta_dot;
-        let mut n = 2;
-        for &c in &self.consts {
-            slots[n] = T::lift(c);
-            n += 1;
+        for (s, &(c, mid)) in slots[FIRST_CONST as usize..].iter_mut().zip(&self.consts) {
+            *s = T::lift_known(c, mid);
         }
-        for &op in &self.ops {
-            let v = match op {
-                Op::Neg(a) => -at(slots, a),
-                Op::Add(a, b) => at(slots, a) + at(slots, b),
-                Op::Sub(a, b) => at(slots, a) - at(slots, b),
-                Op::Mul(a, b) => at(slots, a) * at(slots, b),
-                Op::Div(a, b) => at(slots, a) / at(slots, b),
-                Op::Sqr(a) => at(slots, a).sqr(),
-                Op::Pown(a, k) => at(slots, a).pown(k),
-                Op::Call(f, a) => {
-                    let x = at(slots, a);
-                    match f {
-                        Func::Sqrt => x.sqrt(),
-                        Func::Sin => x.sin(),
-                        Func::Cos => x.cos(),
-                        Func::Tan => x.tan(),
-                        Func::Ln => x.ln(),
-                        Func::Abs => x.abs(),
-                        Func::Atan => x.atan(),
-                        Func::Exp => x.exp(),
-                        Func::Sign => x.sign(),
-                        Func::Min | Func::Max => unreachable!("two arguments: Call2"),
-                    }
+        for step in &self.ops {
+            let x = |a: u32| slots[a as usize];
+            let v = match step.op {
+                Op::Neg(a) => -x(a),
+                Op::Add(a, b) => x(a) + x(b),
+                Op::Sub(a, b) => x(a) - x(b),
+                Op::Mul(a, b) => x(a) * x(b),
+                Op::Div(a, b) => x(a) / x(b),
+                Op::Sqr(a) => x(a).sqr(),
+                Op::Pown(a, k) => x(a).pown(k),
+                Op::Sqrt(a) => x(a).sqrt(),
+                Op::Sin(a) => x(a).sin(),
+                Op::Cos(a) => x(a).cos(),
+                Op::Tan(a) => x(a).tan(),
+                Op::Ln(a) => x(a).ln(),
+                Op::Abs(a) => x(a).abs(),
+                Op::Atan(a) => x(a).atan(),
+                Op::Exp(a) => x(a).exp(),
+                Op::Sign(a) => x(a).sign(),
+                Op::Min(a, b) => x(a).min(x(b)),
+                Op::Max(a, b) => x(a).max(x(b)),
+                Op::SinCos { x: a, cos } => {
+                    let (s, c) = x(a).sin_cos();
+                    slots[cos as usize] = c;
+                    s
                 }
-                Op::Call2(Func::Min, a, b) => at(slots, a).min(at(slots, b)),
-                Op::Call2(_, a, b) => at(slots, a).max(at(slots, b)),
-                Op::SinCos(a) => {
-                    let (s, c) = at(slots, a).sin_cos();
-                    slots[n] = s;
-                    n += 1;
-                    c
-                }
-                Op::Trig { sin, cos } => match (trig, sin, cos) {
-                    (Some((s, c)), true, true) => {
-                        slots[n] = s;
-                        n += 1;
-                        c
-                    }
-                    (Some((s, _)), true, false) => s,
-                    (Some((_, c)), _, _) => c,
-                    (None, true, true) => {
-                        let (s, c) = theta.sin_cos();
-                        slots[n] = s;
-                        n += 1;
-                        c
-                    }
-                    (None, true, false) => theta.sin(),
-                    (None, _, _) => theta.cos(),
-                },
             };
-            slots[n] = v;
-            n += 1;
+            slots[step.to as usize] = v;
         }
     }
 }
@@ -368,10 +514,15 @@ impl Program {
         out: &mut [T],
     ) {
         // Small plans (every shipped scene's) evaluate without allocating,
-        // on little more stack than they need.
+        // on little more stack than they need: the slots are filled at
+        // each evaluation.
         match self.plan.len {
-            0..=24 => self.eval_on::<T, 24>(theta, trig, theta_dot, out),
-            25..=48 => self.eval_on::<T, 48>(theta, trig, theta_dot, out),
+            0..=12 => self.eval_on::<T, 12>(theta, trig, theta_dot, out),
+            13..=16 => self.eval_on::<T, 16>(theta, trig, theta_dot, out),
+            17..=20 => self.eval_on::<T, 20>(theta, trig, theta_dot, out),
+            21..=24 => self.eval_on::<T, 24>(theta, trig, theta_dot, out),
+            25..=32 => self.eval_on::<T, 32>(theta, trig, theta_dot, out),
+            33..=48 => self.eval_on::<T, 48>(theta, trig, theta_dot, out),
             49..=96 => self.eval_on::<T, 96>(theta, trig, theta_dot, out),
             n => self.eval_in(theta, trig, theta_dot, &mut vec![theta; n], out),
         }
