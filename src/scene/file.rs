@@ -10,15 +10,42 @@
 use super::expr::{enclose_constant, ExprError, Program};
 use super::{Angle, Domain, Quadratic};
 use crate::number::param::{
-    enclose_decimal, enclose_window_end, ParamError, ParamSet, ParamSpec, Sign,
+    enclose_decimal, enclose_window_end, short_num, ParamError, ParamSet, ParamSpec, Sign,
 };
+use crate::number::scalar::Scalar;
 use inari::Interval;
 use serde::Deserialize;
 use std::path::Path;
 use toml::Spanned;
 
-/// Scene files built into the binary (`scenes/`), by name: `--scene NAME`
-/// reads them like the paper's scenes.
+/// Every scene file of `scenes/`, built into the library, by name: the
+/// paper's scenes in both readings (`NAME` derived, `NAME-printed`) and the
+/// others ([`FileScene::shipped`] loads any of them).
+pub const EMBEDDED: [(&str, &str); 7] = [
+    (
+        "viscous-disc",
+        include_str!("../../scenes/viscous-disc.toml"),
+    ),
+    (
+        "viscous-disc-printed",
+        include_str!("../../scenes/viscous-disc-printed.toml"),
+    ),
+    ("smooth-disc", include_str!("../../scenes/smooth-disc.toml")),
+    (
+        "smooth-disc-printed",
+        include_str!("../../scenes/smooth-disc-printed.toml"),
+    ),
+    ("ice-disc", include_str!("../../scenes/ice-disc.toml")),
+    (
+        "ice-disc-printed",
+        include_str!("../../scenes/ice-disc-printed.toml"),
+    ),
+    SHIPPED[0],
+];
+
+/// The embedded files `--scene NAME` reads as files: those that are not the
+/// file form of a paper scene (`--scene viscous-disc` runs the built-in
+/// scene; [`super::Scene::file_of`] gives its file).
 pub const SHIPPED: [(&str, &str); 1] = [(
     "painleve-rod",
     include_str!("../../scenes/painleve-rod.toml"),
@@ -65,6 +92,10 @@ struct Raw {
     definitions: toml::Table,
     regions: RawRegions,
     dynamics: Option<RawDynamics>,
+    #[serde(default)]
+    conditions: Ordered<String>,
+    #[serde(default)]
+    functions: Ordered<String>,
 }
 
 #[derive(Deserialize)]
@@ -85,6 +116,7 @@ struct RawRegions {
 #[serde(deny_unknown_fields)]
 struct RawDynamics {
     theta_ddot: String,
+    energy: Option<String>,
 }
 
 /// A number or expression written in quotes, or a bare TOML number. A bare
@@ -197,29 +229,38 @@ impl RawParam {
     }
 }
 
-/// `[parameters]` in the order written.
-#[derive(Default)]
-struct ParamTable(Vec<(String, Spanned<RawParam>)>);
+/// A table in the order written (`[parameters]`, `[conditions]`,
+/// `[functions]`).
+struct Ordered<V>(Vec<(String, V)>);
 
-struct ParamTableVisitor;
-
-impl<'de> serde::de::Visitor<'de> for ParamTableVisitor {
-    type Value = ParamTable;
-    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-        f.write_str("a table of parameters")
+impl<V> Default for Ordered<V> {
+    fn default() -> Self {
+        Ordered(Vec::new())
     }
-    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<ParamTable, A::Error> {
+}
+
+/// `[parameters]` in the order written.
+type ParamTable = Ordered<Spanned<RawParam>>;
+
+struct OrderedVisitor<V>(std::marker::PhantomData<V>);
+
+impl<'de, V: Deserialize<'de>> serde::de::Visitor<'de> for OrderedVisitor<V> {
+    type Value = Ordered<V>;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a table")
+    }
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Ordered<V>, A::Error> {
         let mut out = Vec::new();
         while let Some((k, v)) = map.next_entry()? {
             out.push((k, v));
         }
-        Ok(ParamTable(out))
+        Ok(Ordered(out))
     }
 }
 
-impl<'de> Deserialize<'de> for ParamTable {
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<ParamTable, D::Error> {
-        d.deserialize_map(ParamTableVisitor)
+impl<'de, V: Deserialize<'de>> Deserialize<'de> for Ordered<V> {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Ordered<V>, D::Error> {
+        d.deserialize_map(OrderedVisitor(std::marker::PhantomData))
     }
 }
 
@@ -247,6 +288,9 @@ pub struct FileScene {
     /// The domain's ends as written (`[[θ lo, θ hi], [θ̇ lo, θ̇ hi]]`).
     pub domain_text: [[String; 2]; 2],
     pub params: ParamSet,
+    /// `[conditions]` as `(label, inequality)`, in the order written: each
+    /// proved in intervals when the scene was built.
+    pub conditions: Vec<(String, String)>,
     /// In an order where each uses only earlier ones.
     pub definitions: Vec<(String, String)>,
     /// Ω and Ω₀.
@@ -261,8 +305,32 @@ pub struct FileScene {
     factored: Option<Program>,
     /// θ̈ for the phase portrait, if given.
     dynamics: Option<Program>,
+    /// The conserved energy whose level lines are the phase curves, if given.
+    energy: Option<Program>,
+    /// `[functions]`, in the order written.
+    pub functions: Vec<Function>,
     /// Parameter-only subexpressions that may be undefined (one line each).
     pub warnings: Vec<String>,
+}
+
+/// A named function of θ and the parameters (`[functions]`), compiled once:
+/// evaluated at a point, over an interval or on dual numbers, it is the same
+/// sequence of operations as its text.
+#[derive(Clone, Debug)]
+pub struct Function {
+    pub name: String,
+    /// As written.
+    pub text: String,
+    program: Program,
+}
+
+impl Function {
+    /// The function at θ.
+    pub fn eval<T: Scalar>(&self, theta: T) -> T {
+        let mut out = [theta];
+        self.program.eval(theta, T::int(0), &mut out);
+        out[0]
+    }
 }
 
 /// A scene file's text with the name its errors give: read once, compiled
@@ -293,9 +361,19 @@ impl SceneText {
         })
     }
 
-    /// A shipped scene file by name, if there is one.
+    /// A shipped scene file by name, if there is one: a name `--scene`
+    /// reads as a file ([`SHIPPED`]).
     pub fn shipped(name: &str) -> Option<SceneText> {
-        let (_, text) = SHIPPED.iter().find(|(n, _)| *n == name)?;
+        if SHIPPED.iter().any(|(n, _)| *n == name) {
+            Self::embedded(name)
+        } else {
+            None
+        }
+    }
+
+    /// Any embedded scene file by name ([`EMBEDDED`]), if there is one.
+    pub fn embedded(name: &str) -> Option<SceneText> {
+        let (_, text) = EMBEDDED.iter().find(|(n, _)| *n == name)?;
         Some(SceneText {
             file: format!("scenes/{name}.toml"),
             text: (*text).into(),
@@ -317,12 +395,13 @@ impl FileScene {
         SceneText::read(path)?.compile(overrides)
     }
 
-    /// A shipped scene file by name, if there is one.
+    /// An embedded scene file by name ([`EMBEDDED`]: the paper's scenes in
+    /// both readings too), if there is one.
     pub fn shipped(
         name: &str,
         overrides: &[(String, String)],
     ) -> Option<Result<FileScene, SceneFileError>> {
-        Some(SceneText::shipped(name)?.compile(overrides))
+        Some(SceneText::embedded(name)?.compile(overrides))
     }
 
     /// Compiles the text of a scene file (errors without the file name).
@@ -373,6 +452,7 @@ impl FileScene {
             .zip(&params.values)
             .map(|(s, p)| (s.name.to_string(), p.value))
             .collect();
+        let conditions = conditions(&raw.conditions, &params, &enclosed, boxes)?;
         let domain_text = [&raw.domain.theta, &raw.domain.theta_dot]
             .map(|ends| ends.each_ref().map(|e| literal_text(text, e)));
         let domain = Domain {
@@ -404,12 +484,44 @@ impl FileScene {
         ])?;
         let coefficients = program.quadratics(&[0, 1]);
         let factored = program.factored_quadratics(&[0, 1]);
-        let dynamics = match raw.dynamics {
-            Some(d) => Some(compile(&[("dynamics.theta_ddot".into(), d.theta_ddot)])?),
-            None => None,
+        let (dynamics, energy) = match raw.dynamics {
+            Some(d) => (
+                Some(compile(&[("dynamics.theta_ddot".into(), d.theta_ddot)])?),
+                match d.energy {
+                    Some(e) => Some(compile(&[("dynamics.energy".into(), e)])?),
+                    None => None,
+                },
+            ),
+            None => (None, None),
         };
+        let mut functions = Vec::with_capacity(raw.functions.0.len());
+        for (name, text) in raw.functions.0 {
+            let key = format!("functions.{name}");
+            check_name(&key, &name)?;
+            if params.specs.iter().any(|s| s.name == name) {
+                return Err(format!("`{key}`: `{name}` is also a parameter"));
+            }
+            if definitions.iter().any(|(d, _)| *d == name) {
+                return Err(format!("`{key}`: `{name}` is also a definition"));
+            }
+            let program = compile(&[(key.clone(), text.clone())])?;
+            if program.theta_dot_degree(0) != Some(0) {
+                return Err(format!(
+                    "`{key}`: a function of theta and the parameters must not depend on theta_dot"
+                ));
+            }
+            functions.push(Function {
+                name,
+                text,
+                program,
+            });
+        }
         let mut warnings = Vec::new();
-        for p in std::iter::once(&program).chain(&dynamics) {
+        let programs = std::iter::once(&program)
+            .chain(&dynamics)
+            .chain(&energy)
+            .chain(functions.iter().map(|f| &f.program));
+        for p in programs {
             let hull = |e: [Interval; 2]| e[0].convex_hull(e[1]);
             for issue in p.constant_issues(hull(domain.theta), hull(domain.theta_dot)) {
                 let (message, proved) = constant_message(&issue, &params);
@@ -426,12 +538,15 @@ impl FileScene {
             domain,
             domain_text,
             params,
+            conditions,
             definitions,
             regions,
             program,
             coefficients,
             factored,
             dynamics,
+            energy,
+            functions,
             warnings,
         })
     }
@@ -506,6 +621,20 @@ impl FileScene {
 
     pub fn has_dynamics(&self) -> bool {
         self.dynamics.is_some()
+    }
+
+    /// The energy of `[dynamics]` at (θ, θ̇), if the file gives one.
+    pub fn energy<T: Scalar>(&self, a: &Angle<T>, theta_dot: T) -> Option<T> {
+        let mut out = [theta_dot];
+        self.energy
+            .as_ref()?
+            .eval_angle(a.theta, Some((a.sin, a.cos)), theta_dot, &mut out);
+        Some(out[0])
+    }
+
+    /// The function of `[functions]` named `name`, if there is one.
+    pub fn function(&self, name: &str) -> Option<&Function> {
+        self.functions.iter().find(|f| f.name == name)
     }
 
     /// θ̈ from `[dynamics]`; NaN without it.
@@ -680,6 +809,115 @@ fn definitions(table: &toml::Table, params: &ParamSet) -> Result<Vec<(String, St
         defs.push((name.clone(), string_value(&key, v)?.to_string()));
     }
     Ok(defs)
+}
+
+/// `[conditions]` checked on the enclosed parameters (and the boxes given
+/// for some): each `lhs OP rhs` must be proved, OP one of `<`, `>`, `<=`,
+/// `>=`. One that fails, or that the enclosures cannot decide (the two
+/// sides overlap), is an error naming it and the values it reads.
+fn conditions(
+    table: &Ordered<String>,
+    params: &ParamSet,
+    enclosed: &[(String, Interval)],
+    boxes: &[(String, Interval)],
+) -> Result<Vec<(String, String)>, String> {
+    let mut out = Vec::with_capacity(table.0.len());
+    for (label, text) in &table.0 {
+        let key = format!("conditions.{label}");
+        if label.trim().is_empty() {
+            return Err("`conditions`: a condition needs a name".into());
+        }
+        let (lhs, op, rhs) = split_condition(text).ok_or_else(|| {
+            format!(
+                "`{key}`: `{text}` is not one comparison `lhs < rhs`, `lhs > rhs`, \
+                 `lhs <= rhs` or `lhs >= rhs`"
+            )
+        })?;
+        let side = |t: &str, shift: usize| {
+            enclose_constant(enclosed, &key, t).map_err(|e| expr_message(e, shift))
+        };
+        let l = side(lhs, 0)?;
+        let r = side(rhs, lhs.chars().count() + op.chars().count())?;
+        let (holds, fails) = match op {
+            "<" => (l.sup() < r.inf(), l.inf() >= r.sup()),
+            "<=" | "≤" => (l.sup() <= r.inf(), l.inf() > r.sup()),
+            ">" => (l.inf() > r.sup(), l.sup() <= r.inf()),
+            // `>=`, `≥`
+            _ => (l.inf() >= r.sup(), l.sup() < r.inf()),
+        };
+        let with = values_read(text, params, boxes);
+        if fails {
+            return Err(format!("`{key}`: `{text}` does not hold{with}"));
+        }
+        if !holds {
+            return Err(format!(
+                "`{key}`: `{text}` cannot be decided{with}: the enclosures of its sides \
+                 ([{}, {}] and [{}, {}]) overlap; give values for which it holds with a margin",
+                short_num(l.inf()),
+                short_num(l.sup()),
+                short_num(r.inf()),
+                short_num(r.sup())
+            ));
+        }
+        out.push((label.clone(), text.clone()));
+    }
+    Ok(out)
+}
+
+/// ` with a = 1, b = 0.5` for the parameters a text names (as entered, or
+/// as the box given), or nothing.
+fn values_read(text: &str, params: &ParamSet, boxes: &[(String, Interval)]) -> String {
+    let mut names: Vec<String> = Vec::new();
+    let mut word = String::new();
+    for c in text.chars().chain(std::iter::once(' ')) {
+        if c.is_ascii_alphanumeric() || c == '_' {
+            word.push(c);
+            continue;
+        }
+        let w = std::mem::take(&mut word);
+        if params.specs.iter().any(|s| s.name == w) && !names.contains(&w) {
+            names.push(w);
+        }
+    }
+    let values: Vec<String> = names
+        .iter()
+        .map(|w| match boxes.iter().find(|(n, _)| n == w) {
+            Some((_, x)) => format!("{w} ∈ [{}, {}]", short_num(x.inf()), short_num(x.sup())),
+            None => format!(
+                "{w} = {}",
+                params.values[params
+                    .specs
+                    .iter()
+                    .position(|s| s.name == w)
+                    .expect("named")]
+                .text
+            ),
+        })
+        .collect();
+    if values.is_empty() {
+        String::new()
+    } else {
+        format!(" with {}", values.join(", "))
+    }
+}
+
+/// Splits a condition into `(lhs, op, rhs)`: exactly one comparison, `<`,
+/// `>`, `<=`, `>=` (or `≤`, `≥`), both sides non-empty.
+fn split_condition(text: &str) -> Option<(&str, &str, &str)> {
+    let mut at = text
+        .char_indices()
+        .filter(|(_, c)| matches!(c, '<' | '>' | '≤' | '≥'));
+    let (i, c) = at.next()?;
+    let len = if text[i + c.len_utf8()..].starts_with('=') && !matches!(c, '≤' | '≥') {
+        2
+    } else {
+        c.len_utf8()
+    };
+    if at.next().is_some() || text[i + len..].contains('=') || text[..i].contains('=') {
+        return None;
+    }
+    let (lhs, op, rhs) = (&text[..i], &text[i..i + len], &text[i + len..]);
+    (!lhs.trim().is_empty() && !rhs.trim().is_empty()).then_some((lhs, op, rhs))
 }
 
 /// Splits `lhs < rhs` or `lhs > rhs` (exactly one comparison).

@@ -428,10 +428,10 @@ impl Scene {
         name: &str,
         overrides: &[(String, String)],
     ) -> Result<(Scene, ParamSet), String> {
-        match (name.parse::<SceneId>(), FileScene::shipped(name, overrides)) {
+        match (name.parse::<SceneId>(), SceneText::shipped(name)) {
             (Ok(id), _) => Scene::build(id, overrides).map_err(|e| e.to_string()),
-            (Err(_), Some(f)) => {
-                let f = f.map_err(|e| e.to_string())?;
+            (Err(_), Some(t)) => {
+                let f = t.compile(overrides).map_err(|e| e.to_string())?;
                 let params = f.params.clone();
                 Ok((Scene::File(Box::new(f)), params))
             }
@@ -441,6 +441,25 @@ impl Scene {
                 file::SHIPPED.map(|s| s.0).join(", ")
             )),
         }
+    }
+
+    /// The file form of a paper scene in one reading: the embedded
+    /// `scenes/NAME.toml` (derived) or `scenes/NAME-printed.toml`, with
+    /// `name=value` parameter overrides. It states what the built-in scene
+    /// computes: its parameters, conditions, regions, dynamics, energy and
+    /// the paper's functions.
+    pub fn file_of(
+        id: SceneId,
+        variant: Variant,
+        overrides: &[(String, String)],
+    ) -> Result<(Scene, ParamSet), SceneFileError> {
+        let name = match variant {
+            Variant::Derived => id.name().to_string(),
+            Variant::Printed => format!("{}-printed", id.name()),
+        };
+        let f = FileScene::shipped(&name, overrides).expect("every paper scene is embedded")?;
+        let params = f.params.clone();
+        Ok((Scene::File(Box::new(f)), params))
     }
 
     /// Reads a scene file, with `name=value` parameter overrides.
@@ -556,8 +575,10 @@ impl Scene {
         with_model!(self, m => m.acceleration(v, a, theta_dot), f => f.acceleration(a.theta, theta_dot))
     }
 
+    /// The conserved energy ([`Model::energy`]; for a file, `[dynamics]`'s
+    /// `energy`), if there is one.
     pub fn energy<T: Scalar>(&self, a: &Angle<T>, theta_dot: T) -> Option<T> {
-        with_model!(self, m => m.energy(a, theta_dot), _f => None)
+        with_model!(self, m => m.energy(a, theta_dot), f => f.energy(a, theta_dot))
     }
 }
 

@@ -31,6 +31,7 @@ mod reference;
 mod roots;
 mod roots_request;
 mod scene_files;
+mod scene_format;
 mod soundness;
 mod stability;
 mod statements;
