@@ -492,7 +492,7 @@ fn prove_empty(
 pub fn empty_tree(
     scene: &Scene,
     variant: Variant,
-    cell: crate::pave::Cell,
+    cell: crate::scene::Cell,
     opts: DecideOptions,
 ) -> Option<(Vec<Node>, Vec<EmptyReason>)> {
     let spec = cell.spec();

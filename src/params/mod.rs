@@ -17,7 +17,7 @@ pub use decide::{decide, empty_root, DecideOptions, Regions};
 pub use family::{Family, Source};
 pub use search::{search, AtlasRun, SearchOptions, Shard};
 
-use crate::pave::Cell;
+use crate::scene::Cell;
 use crate::scene::{Scene, Variant};
 
 /// Whether `cell` is proved empty on the scene's whole domain at its

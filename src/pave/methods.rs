@@ -19,10 +19,11 @@
 //! - `slices` ([`super::slices`]): adaptive θ-slabs, then one contraction
 //!   per final slab.
 
+use super::bisection::Bisection;
 use super::centred::Centred;
 use super::contract::Contract;
 use super::labels::Scope;
-use super::natural::{Bisection, Natural};
+use super::natural::Natural;
 use super::slices::Slices;
 use super::{
     budget, engine, CellSpec, ConstraintSet, PaveError, PaveOptions, Paving, PhaseBox, StopReason,
@@ -141,6 +142,9 @@ pub fn pave_with<S: ConstraintSet, F: super::LevelFlow>(
         return Err(PaveError::EmptyDomain);
     }
     let names = set.names();
+    if names.is_empty() {
+        return Err(PaveError::NoConstraints);
+    }
     if names.len() > MAX_CONSTRAINTS {
         return Err(PaveError::TooManyConstraints);
     }
