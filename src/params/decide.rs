@@ -488,7 +488,7 @@ fn prove_empty(
     Ok((nodes, reasons))
 }
 
-/// [`prove_empty`] over the scene's whole domain at its own parameters.
+/// `prove_empty` over the scene's whole domain at its own parameters.
 pub fn empty_tree(
     scene: &Scene,
     variant: Variant,

@@ -218,7 +218,7 @@ pub fn centred_label(q: &Quadratic<DecInterval>, w: Interval) -> Label {
 /// on the box, g is largest (smallest) at one end of that variable, so the
 /// label is decided on the box reduced to those ends. The value and both
 /// derivatives must be continuous (`≥ dac`), as the checker requires.
-/// Proved on `b` with slack ([`with_slack`]): a derivative that ends at 0
+/// Proved on `b` with slack (`with_slack`): a derivative that ends at 0
 /// on `b`, or an end value next to 0, decides nothing.
 pub fn monotone_label(e: &SlabEnds, b: &PhaseBox) -> Label {
     if !e.smooth {

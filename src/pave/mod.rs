@@ -599,7 +599,7 @@ pub struct BudgetStop {
     /// levels carried on down to the resolution.
     pub leaves_needed_estimate: f64,
     /// The resolution the paving returned is complete at: the finest power
-    /// of two above ε whose paving fits ([`budget`]). `None`: not even
+    /// of two above ε whose paving fits (the `budget` module). `None`: not even
     /// ε = 1 fits, and the paving is the domain's box alone.
     pub complete_at_eps: Option<f64>,
 }
