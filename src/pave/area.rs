@@ -314,6 +314,28 @@ mod tests {
         }
     }
 
+    /// A set of no constraints is refused with an error, not paved.
+    #[test]
+    fn no_constraints_is_an_error() {
+        struct Nothing;
+        impl ConstraintSet for Nothing {
+            type Slab = ();
+            fn names(&self) -> Vec<String> {
+                Vec::new()
+            }
+            fn slab(&self, _theta: Interval) {}
+            fn enclose(&self, _slab: &(), _theta_dot: Interval) -> PerConstraint<DecInterval> {
+                unreachable!("never evaluated")
+            }
+        }
+        let unit = PhaseBox {
+            theta: [0.0, 1.0],
+            theta_dot: [0.0, 1.0],
+        };
+        let got = pave(&Nothing, unit, PaveOptions::default(), |_, _, _| ());
+        assert_eq!(got.err(), Some(crate::pave::PaveError::NoConstraints));
+    }
+
     /// A set asking a sign of a constraint the paving does not have is
     /// neither proved in nor out anywhere: its inner bound is 0 and its
     /// outer bound the whole square, while the paving's own constraint

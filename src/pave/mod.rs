@@ -174,6 +174,10 @@ pub struct Leaf {
     pub labels: PerConstraint<Label>,
 }
 
+// Sized labels cost no memory: a leaf is the box and one byte per label
+// slot plus the count, as small as with bare label arrays.
+const _: () = assert!(std::mem::size_of::<Leaf>() == 40);
+
 /// A node of the bisection tree in preorder: enough to replay the paving.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
