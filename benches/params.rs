@@ -7,7 +7,7 @@ mod timing;
 
 use detach::params::model::{ParamAxis, SetStatus};
 use detach::params::{search, DecideOptions, Family, SearchOptions, Source};
-use detach::pave::Cell;
+use detach::scene::Cell;
 use detach::scene::{SceneText, Variant};
 use timing::Group;
 

@@ -26,9 +26,9 @@ use std::time::Instant;
 
 pub use crate::check::{Report, Verdict};
 pub use crate::pave::{
-    Cell, Emptiness, Label, Leaf, LevelFlow, Method, Paving, PhaseBox, StopReason,
+    Emptiness, Label, Leaf, LevelFlow, Method, Paving, PerConstraint, PhaseBox, StopReason,
 };
-pub use crate::scene::{Scene, Variant};
+pub use crate::scene::{Cell, Scene, Variant};
 
 /// Most leaves one paving may be asked for (about 230 bytes each while
 /// paving), as `detach pave --max-boxes` allows.
@@ -466,6 +466,69 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A leaf carries one label per constraint of its paving, no more: two
+    /// for a scene (Ω, Ω₀), also when a region only steers refinement or
+    /// when the file has no Ω₀ (then Ω₀ = Ω), and one for a one-constraint
+    /// set paved by the engine directly.
+    #[test]
+    fn leaves_have_one_label_per_constraint() {
+        let rod = Problem::load("painleve-rod", &[("mu", "1.5")]).unwrap();
+        let ball = Problem::from_toml(
+            "name = \"ball\"\n[domain]\ntheta = [\"0\", \"1\"]\n\
+             theta_dot = [\"-1\", \"1\"]\n[regions]\nomega = \"theta_dot^2 < theta\"\n",
+            "ball.toml",
+            &[],
+        )
+        .unwrap();
+        for (problem, region) in [(&rod, None), (&rod, Some(Cell::Omega)), (&ball, None)] {
+            let req = PaveRequest {
+                eps: 1.0 / 64.0,
+                region,
+                ..PaveRequest::default()
+            };
+            let p = problem.pave(&req).unwrap().paving;
+            assert_eq!(p.names, ["omega", "omega0"]);
+            assert!(p.leaves.len() > 100);
+            for leaf in &p.leaves {
+                assert_eq!(leaf.labels.len(), 2, "{:?}", leaf);
+                assert_eq!(leaf.labels.iter().count(), 2);
+            }
+        }
+
+        /// `θ̇ < 1/2` on the unit square.
+        struct Below;
+        impl crate::pave::ConstraintSet for Below {
+            type Slab = ();
+            fn names(&self) -> Vec<String> {
+                vec!["below".into()]
+            }
+            fn slab(&self, _theta: inari::Interval) {}
+            fn enclose(
+                &self,
+                _slab: &(),
+                theta_dot: inari::Interval,
+            ) -> PerConstraint<inari::DecInterval> {
+                let half = inari::DecInterval::new(inari::const_interval!(0.5, 0.5));
+                PerConstraint::new(&[inari::DecInterval::new(theta_dot) - half]).unwrap()
+            }
+        }
+        let unit = PhaseBox {
+            theta: [0.0, 1.0],
+            theta_dot: [0.0, 1.0],
+        };
+        let opts = PaveOptions {
+            eps: 1.0 / 64.0,
+            ..PaveOptions::default()
+        };
+        let p = crate::pave::pave(&Below, unit, opts, |_, _, _| ()).unwrap();
+        assert!(p.leaves.len() > 100);
+        for leaf in &p.leaves {
+            assert_eq!(leaf.labels.len(), 1, "{:?}", leaf);
+        }
+        assert!(p.leaves.iter().any(|l| l.labels[..] == [Label::ProvedIn]));
+        assert!(p.leaves.iter().any(|l| l.labels[..] == [Label::ProvedOut]));
     }
 
     /// The callback returning `()` never stops a paving.

@@ -3,8 +3,9 @@
 //! in where the quadrature does not apply and narrowing it where it missed
 //! its target. Each bound says which of the two gave it.
 
-use crate::pave::{pave_scene_method, Cell, Method, MethodOptions, PaveOptions, Paving};
+use crate::pave::{pave_scene_method, Method, MethodOptions, PaveOptions, Paving};
 use crate::quadrature::{cell_area, check_target, AreaEnclosure, AreaError, AreaOptions};
+use crate::scene::Cell;
 use crate::scene::{Domain, Scene, Variant};
 use serde::Serialize;
 use std::time::Instant;

@@ -198,7 +198,7 @@ impl Paving {
         let n = p.names.len();
         let mut bytes = Vec::with_capacity(p.leaves.len() * (n + 1));
         for l in &p.leaves {
-            bytes.extend(l.labels[..n].iter().map(|&x| label_code(x)));
+            bytes.extend(l.labels.iter().map(|&x| label_code(x)));
             let class = Class::of_leaf(l);
             bytes.push(Class::ALL.iter().position(|&c| c == class).unwrap_or(0) as u8);
         }

@@ -61,7 +61,6 @@ impl BitWriter {
 /// θ-midpoint split `100`, θ̇-midpoint split `101`, split at an explicit
 /// point `11` + axis bit + the point's 64 bits.
 pub fn encode_tree(paving: &Paving) -> Vec<u8> {
-    let k = paving.names.len();
     let mut w = BitWriter::default();
     for node in &paving.nodes {
         match *node {
@@ -72,7 +71,7 @@ pub fn encode_tree(paving: &Paving) -> Vec<u8> {
             }
             Node::Leaf(i) => {
                 w.push(0, 1);
-                for &l in &paving.leaves[i as usize].labels[..k] {
+                for &l in paving.leaves[i as usize].labels.iter() {
                     w.push(label_bits(l), 2);
                 }
             }

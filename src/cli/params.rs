@@ -6,7 +6,7 @@ use detach::number::param::parse_assignment;
 use detach::params::model::{ParamAtlas, ParamAxis, SetStatus};
 use detach::params::report::{atlas_json, merge};
 use detach::params::{search, DecideOptions, Family, SearchOptions, Shard, Source};
-use detach::pave::Cell;
+use detach::scene::Cell;
 use detach::scene::{SceneText, Variant};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;

@@ -4,7 +4,7 @@
 //!
 //! Region pictures colour a paving of two sets the way the atlas colours its
 //! cells: a pixel takes a class only when every leaf meeting it is proved in
-//! that class ([`super::CellLayer`]). Curve pictures are plain `f64` samples,
+//! that class (as the atlas layers do). Curve pictures are plain `f64` samples,
 //! clipped at the edges of the plot (never clamped into it), with the points
 //! the check certified marked on them.
 

@@ -5,7 +5,7 @@
 use super::{draw_err, tick_label, write_figure, Area, FigureError};
 use crate::params::model::{ParamAtlas, SetStatus};
 use crate::params::Family;
-use crate::pave::Cell;
+use crate::scene::Cell;
 use plotters::prelude::*;
 use std::path::Path;
 

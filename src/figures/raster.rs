@@ -70,7 +70,7 @@ impl Class {
     /// The class of a leaf of a two-constraint paving (constraint 0 = Ω,
     /// constraint 1 = Ω₀). A cell only when both labels are decided.
     pub fn of_leaf(leaf: &Leaf) -> Class {
-        if leaf.labels[..2].contains(&Label::Undefined) {
+        if leaf.labels.contains(&Label::Undefined) {
             return Class::Undefined;
         }
         Class::CELLS

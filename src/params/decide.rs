@@ -488,11 +488,11 @@ fn prove_empty(
     Ok((nodes, reasons))
 }
 
-/// [`prove_empty`] over the scene's whole domain at its own parameters.
+/// `prove_empty` over the scene's whole domain at its own parameters.
 pub fn empty_tree(
     scene: &Scene,
     variant: Variant,
-    cell: crate::pave::Cell,
+    cell: crate::scene::Cell,
     opts: DecideOptions,
 ) -> Option<(Vec<Node>, Vec<EmptyReason>)> {
     let spec = cell.spec();

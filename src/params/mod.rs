@@ -2,8 +2,8 @@
 //! each of Ω, Ω₀ and the four cells is non-empty, empty, or undecided.
 //!
 //! One stage per module: [`family`] rebuilds a scene with parameters as
-//! intervals, [`decide`] proves one set's status on one parameter box,
-//! [`search`] bisects the parameter box where a status is undecided, and
+//! intervals, [`mod@decide`] proves one set's status on one parameter box,
+//! [`mod@search`] bisects the parameter box where a status is undecided, and
 //! [`report`] writes the JSON, the 1-D thresholds and the join of shards.
 //! [`model`] is what is proved, as the proof writer states it.
 
@@ -17,7 +17,7 @@ pub use decide::{decide, empty_root, DecideOptions, Regions};
 pub use family::{Family, Source};
 pub use search::{search, AtlasRun, SearchOptions, Shard};
 
-use crate::pave::Cell;
+use crate::scene::Cell;
 use crate::scene::{Scene, Variant};
 
 /// Whether `cell` is proved empty on the scene's whole domain at its

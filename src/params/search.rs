@@ -12,7 +12,7 @@
 use super::decide::{decide, DecideOptions};
 use super::family::Family;
 use super::model::{ParamAtlas, ParamLeaf, ParamNode, SetStatus};
-use crate::pave::Cell;
+use crate::scene::Cell;
 use rayon::prelude::*;
 
 /// Each axis of the root is halved this many times into base boxes.

@@ -1,8 +1,7 @@
 //! Rigorous area bounds of regions and partition cells from a paving.
 
 use super::{Label, Leaf, Paving};
-/// Re-exported: pavings name their sets by the scene's vocabulary.
-pub use crate::scene::Cell;
+use crate::scene::Cell;
 use inari::{const_interval, Interval};
 use serde::Serialize;
 
@@ -19,13 +18,18 @@ impl CellSpec {
         CellSpec(c)
     }
 
-    /// Every literal proved on the leaf: the whole box lies in the set.
+    /// Every literal proved on the leaf: the whole box lies in the set. A
+    /// literal on a constraint the paving does not have is never proved.
     pub fn proved_in(&self, leaf: &Leaf) -> bool {
-        self.0.iter().zip(&leaf.labels).all(|(want, l)| match want {
-            None => true,
-            Some(true) => *l == Label::ProvedIn,
-            Some(false) => *l == Label::ProvedOut,
-        })
+        self.0
+            .iter()
+            .enumerate()
+            .all(|(i, want)| match (want, leaf.labels.get(i)) {
+                (None, _) => true,
+                (Some(true), Some(l)) => *l == Label::ProvedIn,
+                (Some(false), Some(l)) => *l == Label::ProvedOut,
+                (Some(_), None) => false,
+            })
     }
 
     /// The set is empty by construction: two constraints that are the same
@@ -42,12 +46,16 @@ impl CellSpec {
     }
 
     /// Some literal disproved on the leaf: the box misses the set entirely.
+    /// A literal on a constraint the paving does not have is never disproved.
     pub fn proved_out(&self, leaf: &Leaf) -> bool {
-        self.0.iter().zip(&leaf.labels).any(|(want, l)| match want {
-            None => false,
-            Some(true) => *l == Label::ProvedOut,
-            Some(false) => *l == Label::ProvedIn,
-        })
+        self.0
+            .iter()
+            .zip(leaf.labels.iter())
+            .any(|(want, l)| match want {
+                None => false,
+                Some(true) => *l == Label::ProvedOut,
+                Some(false) => *l == Label::ProvedIn,
+            })
     }
 }
 
@@ -284,4 +292,71 @@ pub fn standard_cell_bounds(
         Some(Emptiness::Proved) => (Sums::ZERO.bounds(true, uncovered_sup), empty[i]),
         e => (bounds[i], e),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pave::{pave, ConstraintSet, PaveOptions, PerConstraint, PhaseBox};
+    use inari::{const_interval, DecInterval};
+
+    /// `θ̇ < 1/2` on the unit square: its area is exactly 1/2.
+    struct Below;
+    impl ConstraintSet for Below {
+        type Slab = ();
+        fn names(&self) -> Vec<String> {
+            vec!["below".into()]
+        }
+        fn slab(&self, _theta: Interval) {}
+        fn enclose(&self, _slab: &(), theta_dot: Interval) -> PerConstraint<DecInterval> {
+            let half = DecInterval::new(const_interval!(0.5, 0.5));
+            PerConstraint::new(&[DecInterval::new(theta_dot) - half]).unwrap()
+        }
+    }
+
+    /// A set of no constraints is refused with an error, not paved.
+    #[test]
+    fn no_constraints_is_an_error() {
+        struct Nothing;
+        impl ConstraintSet for Nothing {
+            type Slab = ();
+            fn names(&self) -> Vec<String> {
+                Vec::new()
+            }
+            fn slab(&self, _theta: Interval) {}
+            fn enclose(&self, _slab: &(), _theta_dot: Interval) -> PerConstraint<DecInterval> {
+                unreachable!("never evaluated")
+            }
+        }
+        let unit = PhaseBox {
+            theta: [0.0, 1.0],
+            theta_dot: [0.0, 1.0],
+        };
+        let got = pave(&Nothing, unit, PaveOptions::default(), |_, _, _| ());
+        assert_eq!(got.err(), Some(crate::pave::PaveError::NoConstraints));
+    }
+
+    /// A set asking a sign of a constraint the paving does not have is
+    /// neither proved in nor out anywhere: its inner bound is 0 and its
+    /// outer bound the whole square, while the paving's own constraint
+    /// brackets the exact 1/2.
+    #[test]
+    fn a_literal_past_the_constraints_is_never_proved() {
+        let unit = PhaseBox {
+            theta: [0.0, 1.0],
+            theta_dot: [0.0, 1.0],
+        };
+        let opts = PaveOptions {
+            eps: 1.0 / 64.0,
+            ..PaveOptions::default()
+        };
+        let p = pave(&Below, unit, opts, |_, _, _| ()).unwrap();
+        let own = p.area_bounds(&CellSpec::of(&[Some(true)]), 0.0);
+        assert!(0.45 < own.inner_area && own.inner_area <= 0.5 && 0.5 <= own.outer_area);
+        for second in [Some(true), Some(false)] {
+            let both = p.area_bounds(&CellSpec::of(&[Some(true), second]), 0.0);
+            assert_eq!(both.inner_area, 0.0, "{second:?}");
+            assert_eq!(both.outer_area, own.outer_area, "{second:?}");
+        }
+    }
 }

@@ -3,10 +3,11 @@
 //! θ); a box these decide is certified by a small local subdivision. The
 //! centred enclosures only steer: every leaf's label is natural.
 
+use super::bisection::Bisection;
 use super::certify::{certify, CERTIFY_LEAVES};
-use super::engine::{Local, Open, Refine, Work};
+use super::engine::Refine;
 use super::labels::{centred_label, Labels, Scope};
-use super::natural::Bisection;
+use super::level::{Local, Open, Work};
 use super::{ConstraintSet, Label, PerConstraint, SlabEnds};
 use std::sync::Arc;
 

@@ -2,8 +2,8 @@
 //! where a steering enclosure says a box is decided, a few extra splits give
 //! leaves whose labels the checker confirms.
 
-use super::engine::{Local, Work};
 use super::labels::{point, Scope};
+use super::level::{Local, Work};
 use super::{ConstraintSet, PhaseBox, SlabEnds};
 use inari::DecInterval;
 

@@ -5,10 +5,11 @@
 //! labelled by the natural extension or, with the slab's end data, by the
 //! checker's monotone and convex tests.
 
+use super::bisection::Bisection;
 use super::certify::{certify, CERTIFY_LEAVES, CERTIFY_LEAVES_MONOTONE};
-use super::engine::{Local, Open, Refine, Work};
+use super::engine::Refine;
 use super::labels::{with_w, Labels, Scope};
-use super::natural::Bisection;
+use super::level::{Local, Open, Work};
 use super::{ConstraintSet, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
 use crate::number::scalar::is_defined;
 use crate::scene::Quadratic;

@@ -10,19 +10,16 @@
 
 use super::bisection::Bisection;
 use super::labels::Scope;
-use super::level::{par_each_mut, refill, Done, Labels, Outcome, Plan, PAR_MIN};
+use super::level::{par_each_mut, refill, Done, Labels, Local, Open, Outcome, Plan, Work, PAR_MIN};
 use super::tree::Tree;
 use super::{
     BudgetStop, ConstraintSet, Label, LevelFlow, PaveOptions, PaveStats, Paving, PerConstraint,
-    PhaseBox, SlabEnds, StopReason, MAX_CONSTRAINTS,
+    PhaseBox, SlabEnds, StopReason,
 };
 use inari::Interval;
 use rayon::prelude::*;
 use std::mem::size_of;
 use std::sync::Arc;
-
-// The types a method's `subtree` speaks in, named here for the methods.
-pub(super) use super::level::{Local, Open, Work};
 
 /// A refinement method: where bisection stops, and what it does with a box
 /// left undecided by the natural labels beyond bisecting it.
@@ -365,7 +362,7 @@ fn visit<S: ConstraintSet, R: Refine<S>>(method: &R, o: &Open<S::Slab>) -> Done<
     // interval work (undecided as far as computed).
     if o.fresh && method.split_unevaluated(&o.bx) {
         return Done {
-            labels: [Label::Undecided; MAX_CONSTRAINTS],
+            labels: Labels::filled(Label::Undecided, scope.n),
             outcome: Outcome::Split(0),
             work,
             slab: None,

@@ -52,7 +52,6 @@ pub fn label_word(l: Label) -> &'static str {
 /// Writes every leaf (format in the module docs). The constraint columns are
 /// named after [`Paving::names`].
 pub fn write_leaves_csv<W: Write>(paving: &Paving, provenance: &str, mut w: W) -> io::Result<()> {
-    let n = paving.names.len();
     // One comment line first: what wrote the file, and for which problem.
     writeln!(w, "# {}", provenance.replace('\n', " "))?;
     write!(
@@ -72,7 +71,7 @@ pub fn write_leaves_csv<W: Write>(paving: &Paving, provenance: &str, mut w: W) -
         for x in ends {
             write!(w, ",{}", hex_float(x))?;
         }
-        for l in &leaf.labels[..n] {
+        for l in leaf.labels.iter() {
             write!(w, ",{}", label_word(*l))?;
         }
         writeln!(w)?;

@@ -6,7 +6,7 @@
 
 pub(super) use super::level::Labels;
 use super::level::Work;
-use super::{ConstraintSet, Label, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
+use super::{ConstraintSet, Label, PhaseBox, SlabEnds};
 use crate::number::scalar::{is_defined, Dual};
 use crate::scene::Quadratic;
 use inari::{DecInterval, Interval};
@@ -25,7 +25,7 @@ impl<S: ConstraintSet> Scope<'_, S> {
     /// the θ̇-range with slack ([`with_slack`]).
     pub fn natural(&self, slab: &S::Slab, b: &PhaseBox, work: &mut Work) -> Labels {
         work.evals += 1;
-        let mut labels = [Label::ProvedOut; MAX_CONSTRAINTS];
+        let mut labels = Labels::filled(Label::ProvedOut, self.n);
         for (l, g) in labels.iter_mut().zip(
             self.set
                 .enclose(slab, with_slack(b).theta_dot_interval())
@@ -57,7 +57,7 @@ impl<S: ConstraintSet> Scope<'_, S> {
         let Some(ends) = ends else {
             return self.natural(slab, b, work);
         };
-        let mut labels = [Label::Undecided; MAX_CONSTRAINTS];
+        let mut labels = Labels::filled(Label::Undecided, self.n);
         work.evals += 1;
         for i in self.relevant_own() {
             if let Some(e) = ends.get(i) {
@@ -218,7 +218,7 @@ pub fn centred_label(q: &Quadratic<DecInterval>, w: Interval) -> Label {
 /// on the box, g is largest (smallest) at one end of that variable, so the
 /// label is decided on the box reduced to those ends. The value and both
 /// derivatives must be continuous (`≥ dac`), as the checker requires.
-/// Proved on `b` with slack ([`with_slack`]): a derivative that ends at 0
+/// Proved on `b` with slack (`with_slack`): a derivative that ends at 0
 /// on `b`, or an end value next to 0, decides nothing.
 pub fn monotone_label(e: &SlabEnds, b: &PhaseBox) -> Label {
     if !e.smooth {

@@ -2,12 +2,12 @@
 //! what each one decided and adds to the tree, and the parallel helpers that
 //! fill a level's buffers. Shared by the engine, the tree and the labels.
 
-use super::{Label, PhaseBox, MAX_CONSTRAINTS};
+use super::{Label, PerConstraint, PhaseBox};
 use rayon::prelude::*;
 use std::sync::Arc;
 
-/// One label per constraint (unused slots past the constraint count).
-pub(super) type Labels = [Label; MAX_CONSTRAINTS];
+/// One label per constraint.
+pub(super) type Labels = PerConstraint<Label>;
 
 /// A small subtree in preorder, produced for one box.
 #[derive(Clone, Copy, Debug)]

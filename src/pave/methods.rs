@@ -1,6 +1,6 @@
 //! Paving methods: which one (`--method`), with what options, and the
 //! entry point that checks the arguments and runs the shared engine
-//! ([`super::engine`]) with it.
+//! (the `engine` module) with it.
 //!
 //! Every method builds the same kind of tree — midpoint splits, splits at
 //! recorded exact points, labelled leaves — and every label it writes is one
@@ -9,20 +9,21 @@
 //! split, or that a box is worth certifying by a few extra splits, never a
 //! label.
 //!
-//! - `natural` ([`super::natural`]): label by the natural extension, bisect
+//! - `natural` (module `natural`): label by the natural extension, bisect
 //!   undecided boxes.
-//! - `centred` ([`super::centred`]): natural ∩ mean-value form ∩
+//! - `centred` (module `centred`): natural ∩ mean-value form ∩
 //!   monotonicity, certified by a small local subdivision.
-//! - `contract` ([`super::contract`]): on every new θ-slab, the exact
+//! - `contract` (module `contract`): on every new θ-slab, the exact
 //!   θ̇-partition of each quadratic constraint, recorded as splits at the
 //!   contraction points.
-//! - `slices` ([`super::slices`]): adaptive θ-slabs, then one contraction
+//! - `slices` (module `slices`): adaptive θ-slabs, then one contraction
 //!   per final slab.
 
+use super::bisection::Bisection;
 use super::centred::Centred;
 use super::contract::Contract;
 use super::labels::Scope;
-use super::natural::{Bisection, Natural};
+use super::natural::Natural;
 use super::slices::Slices;
 use super::{
     budget, engine, CellSpec, ConstraintSet, PaveError, PaveOptions, Paving, PhaseBox, StopReason,
@@ -141,6 +142,9 @@ pub fn pave_with<S: ConstraintSet, F: super::LevelFlow>(
         return Err(PaveError::EmptyDomain);
     }
     let names = set.names();
+    if names.is_empty() {
+        return Err(PaveError::NoConstraints);
+    }
     if names.len() > MAX_CONSTRAINTS {
         return Err(PaveError::TooManyConstraints);
     }

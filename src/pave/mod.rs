@@ -32,7 +32,7 @@ use inari::{DecInterval, Interval};
 use serde::Serialize;
 
 pub use area::{
-    empty_cells, standard_cell_bounds, standard_cells, AreaBounds, Cell, CellSpec, Emptiness,
+    empty_cells, standard_cell_bounds, standard_cells, AreaBounds, CellSpec, Emptiness,
 };
 pub use methods::{monotone_label, pave_with, run_method, Method, MethodOptions, MethodRun};
 
@@ -169,8 +169,14 @@ impl PhaseBox {
 pub struct Leaf {
     #[serde(rename = "box")]
     pub bx: PhaseBox,
-    pub labels: [Label; MAX_CONSTRAINTS],
+    /// One label per constraint of the paving, in [`Paving::names`] order:
+    /// `labels.len()` is the paving's constraint count.
+    pub labels: PerConstraint<Label>,
 }
+
+// Sized labels cost no memory: a leaf is the box and one byte per label
+// slot plus the count, as small as with bare label arrays.
+const _: () = assert!(std::mem::size_of::<Leaf>() == 40);
 
 /// A node of the bisection tree in preorder: enough to replay the paving.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -186,11 +192,12 @@ pub enum Node {
 }
 
 /// One value per constraint (at most [`MAX_CONSTRAINTS`]), kept inline: the
-/// per-box evaluations allocate nothing.
-#[derive(Clone, Copy, Debug)]
+/// per-box evaluations allocate nothing. It reads as a slice of exactly the
+/// constraint count (`Deref`), so no unused slot is ever seen.
+#[derive(Clone, Copy)]
 pub struct PerConstraint<T> {
     items: [T; MAX_CONSTRAINTS],
-    len: usize,
+    len: u8,
 }
 
 impl<T: Copy> PerConstraint<T> {
@@ -205,15 +212,69 @@ impl<T: Copy> PerConstraint<T> {
         buf[..items.len()].copy_from_slice(items);
         Some(PerConstraint {
             items: buf,
-            len: items.len(),
+            len: items.len() as u8,
         })
+    }
+
+    /// `len` copies of `x`, for `len` in `1..=MAX_CONSTRAINTS` (the count
+    /// [`pave_with`] accepts).
+    pub(crate) fn filled(x: T, len: usize) -> Self {
+        assert!((1..=MAX_CONSTRAINTS).contains(&len), "1 to 4 constraints");
+        PerConstraint {
+            items: [x; MAX_CONSTRAINTS],
+            len: len as u8,
+        }
     }
 }
 
 impl<T> std::ops::Deref for PerConstraint<T> {
     type Target = [T];
     fn deref(&self) -> &[T] {
-        &self.items[..self.len]
+        &self.items[..usize::from(self.len)]
+    }
+}
+
+impl<T> std::ops::DerefMut for PerConstraint<T> {
+    fn deref_mut(&mut self) -> &mut [T] {
+        &mut self.items[..usize::from(self.len)]
+    }
+}
+
+impl<T> IntoIterator for PerConstraint<T> {
+    type Item = T;
+    type IntoIter = std::iter::Take<std::array::IntoIter<T, MAX_CONSTRAINTS>>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.items.into_iter().take(usize::from(self.len))
+    }
+}
+
+impl<'a, T> IntoIterator for &'a PerConstraint<T> {
+    type Item = &'a T;
+    type IntoIter = std::slice::Iter<'a, T>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter()
+    }
+}
+
+/// Equal when the values are (the same count, the same values).
+impl<T: PartialEq> PartialEq for PerConstraint<T> {
+    fn eq(&self, other: &Self) -> bool {
+        **self == **other
+    }
+}
+
+impl<T: Eq> Eq for PerConstraint<T> {}
+
+impl<T: std::fmt::Debug> std::fmt::Debug for PerConstraint<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+/// A sequence of the values, as a slice.
+impl<T: Serialize> Serialize for PerConstraint<T> {
+    fn serialize<Se: serde::Serializer>(&self, s: Se) -> Result<Se::Ok, Se::Error> {
+        s.collect_seq(self.iter())
     }
 }
 
@@ -542,7 +603,7 @@ pub struct BudgetStop {
     /// levels carried on down to the resolution.
     pub leaves_needed_estimate: f64,
     /// The resolution the paving returned is complete at: the finest power
-    /// of two above ε whose paving fits ([`budget`]). `None`: not even
+    /// of two above ε whose paving fits (the `budget` module). `None`: not even
     /// ε = 1 fits, and the paving is the domain's box alone.
     pub complete_at_eps: Option<f64>,
 }
@@ -577,6 +638,8 @@ pub enum PaveError {
     EmptyDomain,
     #[error("at most {MAX_CONSTRAINTS} constraints can be paved at once")]
     TooManyConstraints,
+    #[error("a paving needs at least one constraint")]
+    NoConstraints,
 }
 
 /// Paves `root` for every constraint of `set` with the natural method.

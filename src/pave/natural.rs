@@ -2,9 +2,10 @@
 //! the relatively wider axis down to the resolution. [`Bisection`] is also
 //! where `centred` and `contract` stop.
 
-pub(super) use super::bisection::Bisection;
-use super::engine::{Local, Open, Refine, Work};
+use super::bisection::Bisection;
+use super::engine::Refine;
 use super::labels::{Labels, Scope};
+use super::level::{Local, Open, Work};
 use super::{ConstraintSet, PerConstraint, SlabEnds};
 use std::sync::Arc;
 

@@ -14,8 +14,9 @@
 
 use super::bisection::Bisection;
 use super::contract::{contract_fresh, roots};
-use super::engine::{Local, Open, Refine, Work};
+use super::engine::Refine;
 use super::labels::{Labels, Scope};
+use super::level::{Local, Open, Work};
 use super::{ConstraintSet, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
 use std::sync::Arc;
 

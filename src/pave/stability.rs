@@ -2,10 +2,9 @@
 //! window, a region and the feature a paving should resolve there), every
 //! method run on each, and every method over each paper scene's domain.
 
-use super::{run_method, Label, Method, MethodRun, PaveOptions, Paving, StopReason};
-use super::{Cell, PaveError};
+use super::{run_method, Label, Method, MethodRun, PaveError, PaveOptions, Paving, StopReason};
 use crate::number::param::ParamError;
-use crate::scene::{Domain, Scene, SceneId, Variant, PI};
+use crate::scene::{Cell, Domain, Scene, SceneId, Variant, PI};
 use inari::const_interval;
 use serde::Serialize;
 

@@ -191,7 +191,7 @@ impl Tree {
         refill(&mut nodes, self.nodes, PAR_MIN, |_| Node::Leaf(0));
         refill(&mut leaves, self.leaves, PAR_MIN, |_| Leaf {
             bx: root,
-            labels: [super::Label::Undecided; super::MAX_CONSTRAINTS],
+            labels: Labels::filled(super::Label::Undecided, 1),
         });
         let levels_bytes: usize = levels
             .iter()

@@ -57,11 +57,10 @@ impl Paving {
     /// The leaves where some constraint is undefined, their area and, when
     /// they dominate, their hull.
     pub fn undefined_area(&self) -> UndefinedArea {
-        let n = self.names.len();
         let undefined: Vec<_> = self
             .leaves
             .iter()
-            .filter(|l| l.labels[..n].contains(&Label::Undefined))
+            .filter(|l| l.labels.contains(&Label::Undefined))
             .collect();
         const ZERO: Interval = const_interval!(0.0, 0.0);
         let area = undefined.iter().fold(ZERO, |a, l| a + l.bx.area());

@@ -14,7 +14,7 @@
 //! even, so `(θ−m)^n ≥ 0`), the coefficients from interval Taylor arithmetic
 //! ([`taylor`]). Two ends the piece cannot order (a root crossing a window
 //! end or another root, or running along one) are kept as a tie whose error
-//! is bounded by the Taylor series of their difference ([`Gaps`]). Where the
+//! is bounded by the Taylor series of their difference (`Gaps`). Where the
 //! shape is not decided (the discriminant or the leading coefficient
 //! vanishing, a singular line), the piece is bisected; what is left
 //! undecided at the end is bounded by `[0, hi − lo]` times its width.

@@ -15,7 +15,7 @@
 //!   approaches it.
 //! * [`critical`]: the critical curve κ_crit(α) of (2.9) and a certified
 //!   atlas of the (α, κ) plane.
-//! * [`plot`]: pictures of the last two.
+//! * [`crate::figures::roots`]: pictures of the last two.
 //!
 //! Method notes and results: `docs/roots.md`.
 

@@ -1,5 +1,5 @@
 //! The three systems of the paper as reduced phase-plane models, and
-//! systems read from scene files ([`file`], compiled by [`expr`]).
+//! systems read from scene files ([`mod@file`], compiled by [`expr`]).
 //!
 //! Every region here is `{g(θ, θ̇) < 0}` with `g` quadratic in θ̇ for fixed θ,
 //! so a scene gives each constraint as θ-dependent coefficients

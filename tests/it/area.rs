@@ -454,7 +454,7 @@ fn area_takes_windows_like_pave() {
 #[test]
 fn the_area_strategy_says_how_each_bound_was_obtained() {
     use detach::area::{certified_areas, Provenance, Source};
-    use detach::pave::Cell;
+    use detach::scene::Cell;
     let s = Scene::default_of(SceneId::ViscousDisc);
     let d = s.domain();
     let cells = [Cell::Omega, Cell::Omega0];
@@ -501,7 +501,7 @@ fn the_area_strategy_says_how_each_bound_was_obtained() {
 #[test]
 fn the_area_strategy_refuses_a_width_below_rounding_for_all_sets_at_once() {
     use detach::area::{certified_areas, AreasError};
-    use detach::pave::Cell;
+    use detach::scene::Cell;
     let s = Scene::default_of(SceneId::ViscousDisc);
     let opts = AreaOptions {
         tol: 1e-15,

@@ -5,7 +5,7 @@ use detach::figures::{
     undefined_hatch, vector_regions, AtlasStyle, Class, PictureInfo, Raster, Tracing,
 };
 use detach::pave::{
-    pave_scene, Label, Leaf, PaveOptions, PaveStats, Paving, PhaseBox, StopReason, MAX_CONSTRAINTS,
+    pave_scene, Label, Leaf, PaveOptions, PaveStats, Paving, PerConstraint, PhaseBox, StopReason,
 };
 use detach::scene::{Scene, SceneId, Variant};
 use std::path::PathBuf;
@@ -188,12 +188,9 @@ fn raster_of_real_pavings_never_overclaims() {
 }
 
 fn leaf(theta: [f64; 2], theta_dot: [f64; 2], l0: Label, l1: Label) -> Leaf {
-    let mut labels = [Label::ProvedOut; MAX_CONSTRAINTS];
-    labels[0] = l0;
-    labels[1] = l1;
     Leaf {
         bx: PhaseBox { theta, theta_dot },
-        labels,
+        labels: PerConstraint::new(&[l0, l1]).unwrap(),
     }
 }
 

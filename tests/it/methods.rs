@@ -7,6 +7,7 @@ use detach::certificate::{paving_proof, PavingStatement};
 use detach::check::{check_bytes, Report as CheckReport, Verdict};
 use detach::pave::{
     pave_scene_method, standard_cells, Label, Method, MethodOptions, PaveOptions, Paving,
+    PerConstraint,
 };
 use detach::scene::{Angle, Scene, SceneId, Variant};
 use inari::{DecInterval, Interval};
@@ -220,7 +221,7 @@ fn every_method_brackets_the_reference_area() {
     }
 }
 
-fn label_at(p: &Paving, t: f64, w: f64) -> Vec<[Label; 4]> {
+fn label_at(p: &Paving, t: f64, w: f64) -> Vec<PerConstraint<Label>> {
     p.leaves
         .iter()
         .filter(|l| l.bx.contains(t, w))
@@ -242,7 +243,8 @@ fn methods_never_contradict_each_other() {
             for _ in 0..400 {
                 let t = r.theta[0] + rng.unit() * (r.theta[1] - r.theta[0]);
                 let w = r.theta_dot[0] + rng.unit() * (r.theta_dot[1] - r.theta_dot[0]);
-                let all: Vec<[Label; 4]> = pavings.iter().flat_map(|p| label_at(p, t, w)).collect();
+                let all: Vec<PerConstraint<Label>> =
+                    pavings.iter().flat_map(|p| label_at(p, t, w)).collect();
                 for c in 0..2 {
                     let yes = all.iter().any(|l| l[c] == Label::ProvedIn);
                     let no = all.iter().any(|l| l[c] == Label::ProvedOut);

@@ -5,7 +5,7 @@
 use crate::common::{assert_bad_input, detach, json, Rng};
 use detach::params::model::{ParamAxis, SetStatus};
 use detach::params::{search, DecideOptions, Family, SearchOptions, Source};
-use detach::pave::Cell;
+use detach::scene::Cell;
 use detach::scene::{SceneText, Variant};
 use inari::Interval;
 
