@@ -578,7 +578,7 @@ fn reason_fails(
             )));
         };
         // The literal fails when the opposite label is proved.
-        if proved(&st.prog, st.roots[c], t, w, !want_in) {
+        if proved(st.prog, st.roots[c], t, w, !want_in) {
             return Ok(None);
         }
         return Ok(Some(format!(
@@ -617,7 +617,7 @@ fn reason_fails(
         )));
     }
     // Positive: F > 0, the label out of F; negative: F < 0, the label in.
-    if proved(&st.prog, f, t, w, !positive) {
+    if proved(st.prog, f, t, w, !positive) {
         return Ok(None);
     }
     Ok(Some(format!(
