@@ -118,12 +118,16 @@ fn strip<'a, 'b>(mut toks: &'a [&'b str]) -> &'a [&'b str] {
 /// enclosing parentheses removed, `product` is `L * R` or `L / R` at its last
 /// `*` or `/` outside parentheses, with no `+` or binary `-` there, and `L`
 /// (or, for `*` only, `R`) is the same token sequence as `base`. Returns the
-/// other operand's text.
-fn factor_text(product: &str, base: &str) -> Option<String> {
+/// other operand's text. Two equal token sequences are the same function:
+/// the factor `1`.
+pub(crate) fn factor_text(product: &str, base: &str) -> Option<String> {
     let all = tokens(product);
     let toks = strip(&all);
     let base_toks = tokens(base);
     let base = strip(&base_toks);
+    if toks == base {
+        return Some("1".into());
+    }
     let mut depth = 0i32;
     let mut split = None;
     for (k, &t) in toks.iter().enumerate() {
@@ -192,6 +196,31 @@ fn status_of(v: &Value, ev: &Value, what: &str) -> Result<Status, Unreadable> {
     }
 }
 
+/// `factor[j][i]` of a statement's constraints (FORMAT.md, "the factor
+/// form"), each factor compiled into `prog`.
+pub(crate) fn factor_table(
+    prog: &mut Program,
+    names: &[String],
+    texts: &[&str],
+) -> Result<Vec<Vec<Option<u32>>>, Unreadable> {
+    let n = texts.len();
+    let mut factor = vec![vec![None; n]; n];
+    for (j, row) in factor.iter_mut().enumerate() {
+        for (i, slot) in row.iter_mut().enumerate() {
+            if i == j {
+                continue;
+            }
+            if let Some(f) = factor_text(texts[j], texts[i]) {
+                *slot = Some(
+                    prog.compile(&f)
+                        .map_err(|e| format!("factor of constraint {}: {e}", names[j]))?,
+                );
+            }
+        }
+    }
+    Ok(factor)
+}
+
 fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
     let st = obj_of(root, "statement")?;
     let ev = obj_of(root, "evidence")?;
@@ -247,20 +276,7 @@ fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
                 .map_err(|e| format!("constraint {name}: {e}"))?,
         );
     }
-    let mut factor = vec![vec![None; cons.len()]; cons.len()];
-    for (j, row) in factor.iter_mut().enumerate() {
-        for (i, slot) in row.iter_mut().enumerate() {
-            if i == j {
-                continue;
-            }
-            if let Some(f) = factor_text(texts[j], texts[i]) {
-                *slot = Some(
-                    prog.compile(&f)
-                        .map_err(|e| format!("factor of constraint {}: {e}", names[j]))?,
-                );
-            }
-        }
-    }
+    let factor = factor_table(&mut prog, &names, &texts)?;
     let null = Value::Null;
     let dom = obj_of(st, "domain")?;
     let (t0, t1) = pair_of(dom.get("t").unwrap_or(&null), "domain t")?;
@@ -467,7 +483,14 @@ fn verify(st: &mut Statement, checked: &mut u64) -> Result<(), String> {
                     match status {
                         Status::Nonempty(w) => witness(st, &d, set, w, &what)?,
                         Status::Empty { nodes, body } => {
-                            empty(st, set, *nodes, body, &what, checked)?
+                            let reasons = Reasons {
+                                prog: &st.prog,
+                                names: &st.names,
+                                roots: &st.roots,
+                                factor: &st.factor,
+                                phase_box: st.phase_box,
+                            };
+                            empty_tree(&reasons, &set.literals, *nodes, body, &what, checked)?
                         }
                         Status::Undecided => {}
                     }
@@ -515,9 +538,20 @@ fn witness(
     Ok(())
 }
 
+/// What an emptiness reason is checked against: a statement's constraints
+/// (their names, values and factor forms) and the phase box its trees
+/// start from.
+pub(crate) struct Reasons<'a> {
+    pub prog: &'a Program,
+    pub names: &'a [String],
+    pub roots: &'a [u32],
+    pub factor: &'a [Vec<Option<u32>>],
+    pub phase_box: [f64; 4],
+}
+
 /// The set's literal for constraint `c`, if it has one.
-fn literal(set: &SetClaim, c: usize) -> Option<bool> {
-    set.literals
+fn literal(literals: &[(usize, bool)], c: usize) -> Option<bool> {
+    literals
         .iter()
         .find(|&&(k, _)| k == c)
         .map(|&(_, want_in)| want_in)
@@ -525,8 +559,8 @@ fn literal(set: &SetClaim, c: usize) -> Option<bool> {
 
 /// Why the set misses one phase leaf `t × w`; `None` when the reason holds.
 fn reason_fails(
-    st: &Statement,
-    set: &SetClaim,
+    st: &Reasons,
+    literals: &[(usize, bool)],
     bits: &mut BitReader,
     t: Interval,
     w: Interval,
@@ -537,14 +571,14 @@ fn reason_fails(
         if c >= nc {
             return Ok(Some(format!("literal reason names constraint {}", c + 1)));
         }
-        let Some(want_in) = literal(set, c) else {
+        let Some(want_in) = literal(literals, c) else {
             return Ok(Some(format!(
                 "literal reason: the set has no literal of {}",
                 st.names[c]
             )));
         };
         // The literal fails when the opposite label is proved.
-        if proved(&st.prog, st.roots[c], t, w, !want_in) {
+        if proved(st.prog, st.roots[c], t, w, !want_in) {
             return Ok(None);
         }
         return Ok(Some(format!(
@@ -569,7 +603,7 @@ fn reason_fails(
             st.names[j], st.names[i]
         )));
     };
-    let contradicts = match (literal(set, j), literal(set, i)) {
+    let contradicts = match (literal(literals, j), literal(literals, i)) {
         (Some(a), Some(b)) if positive => a != b,
         (Some(true), Some(true)) => true,
         _ => false,
@@ -583,7 +617,7 @@ fn reason_fails(
         )));
     }
     // Positive: F > 0, the label out of F; negative: F < 0, the label in.
-    if proved(&st.prog, f, t, w, !positive) {
+    if proved(st.prog, f, t, w, !positive) {
         return Ok(None);
     }
     Ok(Some(format!(
@@ -594,11 +628,11 @@ fn reason_fails(
     )))
 }
 
-/// An emptiness tree (`empty/1`): replayed from the phase box, every leaf's
-/// reason checked.
-fn empty(
-    st: &Statement,
-    set: &SetClaim,
+/// An emptiness tree (`empty/1`) of the set with these literals: replayed
+/// from the phase box, every leaf's reason checked.
+pub(crate) fn empty_tree(
+    st: &Reasons,
+    literals: &[(usize, bool)],
     nodes_claimed: u64,
     body: &[u8],
     what: &str,
@@ -619,7 +653,7 @@ fn empty(
         if !bits.bit().ok_or_else(end)? {
             leaves += 1;
             let (t, w) = (iv(b[0], b[1]), iv(b[2], b[3]));
-            match reason_fails(st, set, &mut bits, t, w) {
+            match reason_fails(st, literals, &mut bits, t, w) {
                 Err(()) => return Err(end()),
                 Ok(Some(why)) => {
                     return Err(format!("{what}: leaf {leaves} {}: {why}", show_box(&b)))
@@ -690,7 +724,10 @@ mod tests {
         assert_eq!(factor_text("V/U", "U"), None);
         assert_eq!(factor_text("U*V*W", "U"), None);
         assert_eq!(factor_text("U/V", "u"), None);
-        assert_eq!(factor_text("U", "U"), None);
+        // The same tokens are the same function: the factor 1.
+        assert_eq!(factor_text("U", "U").as_deref(), Some("1"));
+        assert_eq!(factor_text("(a*w - b)", "a * w-b").as_deref(), Some("1"));
+        assert_eq!(factor_text("a*w - b", "a*w - c"), None);
         assert_eq!(factor_text("(U)*(V)/(W)", "U"), None);
         // A number's exponent sign is no operator: 2e-3*U is 2e-3 times U.
         assert_eq!(factor_text("2e-3*U", "U").as_deref(), Some("2e-3"));

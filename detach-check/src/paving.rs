@@ -8,6 +8,7 @@ use super::area::{AreaSum, LeafArea};
 use super::encoding::{base64_decode, decimal_enclosure, parse_hex_f64, BitReader};
 use super::eval::{apply, continuous, defined, loosen_i, show, Dual, Num, Op, Program};
 use super::json::{arr_of, as_obj, decls, obj_of, opt_str, pair_of, str_of, u64_of, Obj};
+use super::param_atlas::{empty_tree, factor_table, Reasons};
 use super::roots::constant;
 use super::{Outcome, Unreadable};
 
@@ -158,10 +159,22 @@ struct AreaClaim {
     empty: bool,
 }
 
+/// An area's set proved empty (`evidence.empty`): an emptiness tree
+/// (`empty/1`) from a phase box containing the domain.
+struct EmptyEvidence {
+    area: usize,
+    phase_box: [f64; 4],
+    nodes: u64,
+    body: Vec<u8>,
+}
+
 struct Statement {
     prog: Program,
     names: Vec<String>,
     roots: Vec<u32>,
+    /// The factor forms between constraints, for emptiness reasons.
+    factor: Vec<Vec<Option<u32>>>,
+    empty: Vec<EmptyEvidence>,
     domain: [u32; 4],
     root_box: [f64; 4],
     leaves: u64,
@@ -277,6 +290,12 @@ fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
     }
     let nodes = u64_of(ev, "nodes")?;
     let body = base64_decode(str_of(ev, "body")?).map_err(|e| format!("body: {e}"))?;
+    let text_refs: Vec<&str> = cons
+        .iter()
+        .map(|c| as_obj(c, "a constraint").and_then(|o| str_of(o, "expr")))
+        .collect::<Result<_, _>>()?;
+    let factor = factor_table(&mut prog, &names, &text_refs)?;
+    let empty = empty_evidence(ev, areas.len())?;
     // `scene/variant`, or the scene alone (a scene file has no variant).
     let scene = opt_str(st, "scene")?.unwrap_or("?");
     let claim = match opt_str(st, "variant")? {
@@ -288,6 +307,8 @@ fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
             prog,
             names,
             roots,
+            factor,
+            empty,
             domain,
             root_box,
             leaves,
@@ -297,6 +318,52 @@ fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
         },
         claim,
     ))
+}
+
+/// `evidence.empty` (optional): at most one emptiness tree per area.
+fn empty_evidence(ev: &Obj, areas: usize) -> Result<Vec<EmptyEvidence>, Unreadable> {
+    let Some(v) = ev.get("empty") else {
+        return Ok(Vec::new());
+    };
+    let list = v
+        .as_array()
+        .ok_or_else(|| Unreadable("evidence empty must be an array".into()))?;
+    let mut out: Vec<EmptyEvidence> = Vec::new();
+    for e in list {
+        let o = as_obj(e, "an emptiness tree")?;
+        let area = u64_of(o, "area")?;
+        let area = usize::try_from(area)
+            .ok()
+            .filter(|&a| a < areas)
+            .ok_or_else(|| Unreadable(format!("emptiness tree of area {area}: no such area")))?;
+        if out.iter().any(|x| x.area == area) {
+            return Err(Unreadable(format!("area {area} has two emptiness trees")));
+        }
+        let what = format!("emptiness tree of area {area}");
+        let null = serde_json::Value::Null;
+        let pb = obj_of(o, "phase_box")?;
+        let (t0, t1) = pair_of(pb.get("t").unwrap_or(&null), "phase_box t")?;
+        let (w0, w1) = pair_of(pb.get("w").unwrap_or(&null), "phase_box w")?;
+        let mut phase_box = [0.0; 4];
+        for (slot, text) in phase_box.iter_mut().zip([t0, t1, w0, w1]) {
+            *slot = parse_hex_f64(text, false).map_err(|e| format!("{what}: phase_box: {e}"))?;
+        }
+        let encoding = str_of(o, "encoding")?;
+        if encoding != "empty/1" {
+            return Err(Unreadable(format!(
+                "{what}: unknown tree encoding {encoding:?}"
+            )));
+        }
+        let nodes = u64_of(o, "nodes")?;
+        let body = base64_decode(str_of(o, "body")?).map_err(|e| format!("{what}: body: {e}"))?;
+        out.push(EmptyEvidence {
+            area,
+            phase_box,
+            nodes,
+            body,
+        });
+    }
+    Ok(out)
 }
 
 pub fn check(root: &Obj) -> Result<Outcome, Unreadable> {
@@ -562,10 +629,38 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
         ));
     }
 
-    // 4. The areas.
+    // 4. Sets proved empty, leaf by leaf, on a phase box containing D.
+    let mut proved_empty = vec![false; st.areas.len()];
+    for e in &st.empty {
+        let a = &st.areas[e.area];
+        let what = format!("{} (emptiness tree)", a.set);
+        let p = e.phase_box;
+        for (axis, k) in [("t", 0), ("w", 2)] {
+            if p[k] > d[k].inf() || p[k + 1] < d[k + 1].sup() {
+                return Err(format!(
+                    "{what}: phase_box {axis} [{:e}, {:e}] does not contain the domain [{:e}, {:e}]",
+                    p[k],
+                    p[k + 1],
+                    d[k].inf(),
+                    d[k + 1].sup()
+                ));
+            }
+        }
+        let reasons = Reasons {
+            prog: &st.prog,
+            names: &st.names,
+            roots: &st.roots,
+            factor: &st.factor,
+            phase_box: p,
+        };
+        empty_tree(&reasons, &a.literals, e.nodes, &e.body, &what, checked)?;
+        proved_empty[e.area] = true;
+    }
+
+    // 5. The areas.
     for (k, a) in st.areas.iter().enumerate() {
         let lo = inner[k].bounds().inf();
-        let hi = if a.empty {
+        let hi = if a.empty || proved_empty[k] {
             0.0
         } else {
             loosen_i(iv(outer[k].bounds().sup(), outer[k].bounds().sup()) + uncovered).sup()

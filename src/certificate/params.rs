@@ -82,7 +82,7 @@ fn constraint_bits(c: usize) -> Result<u64, String> {
 /// `0`, then its reason: `0` and 2 bits of the constraint (a literal), or
 /// `1`, 2 bits each of the constraint and the other, and the factor's sign
 /// (`1` positive).
-fn encode_empty(tree: &[Node], reasons: &[EmptyReason]) -> Result<Vec<u8>, String> {
+pub(crate) fn encode_empty(tree: &[Node], reasons: &[EmptyReason]) -> Result<Vec<u8>, String> {
     let mut w = BitWriter::default();
     let mut leaves = 0;
     for node in tree {
@@ -109,6 +109,13 @@ fn encode_empty(tree: &[Node], reasons: &[EmptyReason]) -> Result<Vec<u8>, Strin
                         w.push(constraint_bits(*constraint)?, 2);
                         w.push(constraint_bits(*other)?, 2);
                         w.push(u64::from(*positive), 1);
+                    }
+                    // The same expression is itself times the factor 1, positive.
+                    Some(EmptyReason::SameConstraint { constraint, other }) => {
+                        w.push(1, 1);
+                        w.push(constraint_bits(*constraint)?, 2);
+                        w.push(constraint_bits(*other)?, 2);
+                        w.push(1, 1);
                     }
                     None => return Err(format!("leaf {i} of an emptiness tree has no reason")),
                 }

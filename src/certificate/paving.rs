@@ -4,6 +4,7 @@
 
 use super::confirm::{confirm_labels, Confirmed, StatedText};
 use super::numbers::{decimal, hex, Round};
+use super::params::encode_empty;
 use super::statement::file_statement;
 use crate::number::param::ParamSet;
 use crate::pave::{Label, Node, Paving};
@@ -148,15 +149,30 @@ pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
     let uncovered = st
         .domain
         .area_outside([paving.root.theta, paving.root.theta_dot]);
+    let mut empty = Vec::new();
     let areas: Vec<Value> = Cell::ALL
         .into_iter()
-        .map(|cell| {
+        .enumerate()
+        .map(|(k, cell)| {
             let b = paving.area_bounds(&cell.spec(), uncovered);
+            let tree = (!b.proved_empty)
+                .then(|| emptiness_evidence(st, cell, k))
+                .flatten();
+            let (inner, outer) = match tree {
+                Some(t) => {
+                    empty.push(t);
+                    ("0".to_string(), "0".to_string())
+                }
+                None => (
+                    decimal(b.inner_area, AREA_DIGITS, Round::Down),
+                    decimal(b.outer_area, AREA_DIGITS, Round::Up),
+                ),
+            };
             json!({
                 "set": cell.name(),
                 "literals": literals(cell),
-                "inner": decimal(b.inner_area, AREA_DIGITS, Round::Down),
-                "outer": decimal(b.outer_area, AREA_DIGITS, Round::Up),
+                "inner": inner,
+                "outer": outer,
             })
         })
         .collect();
@@ -195,6 +211,9 @@ pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
         },
     });
     proof["evidence"]["resolution"]["unconfirmed"] = json!(confirmed.undecided);
+    if !empty.is_empty() {
+        proof["evidence"]["empty"] = Value::Array(empty);
+    }
     // A scene file has one reading and no place in the paper.
     if st.scene.id().is_none() {
         if let Some(s) = proof["statement"].as_object_mut() {
@@ -203,6 +222,26 @@ pub fn paving_proof(st: &PavingStatement, paving: &Paving) -> Value {
         }
     }
     proof
+}
+
+/// The emptiness tree of area `k` (the set `cell`) when the set is proved
+/// empty on the statement's domain: each leaf names a literal of the set
+/// proved false on it, or a factor rule (`empty/1`, as a parameter atlas
+/// states it), from a phase box containing the domain.
+fn emptiness_evidence(st: &PavingStatement, cell: Cell, k: usize) -> Option<Value> {
+    let (tree, reasons) = crate::params::empty_tree(st.scene, st.variant, st.domain, cell)?;
+    let body = encode_empty(&tree, &reasons).ok()?;
+    let p = crate::params::empty_root(st.domain);
+    Some(json!({
+        "area": k,
+        "phase_box": {
+            "t": [hex(p.theta[0]), hex(p.theta[1])],
+            "w": [hex(p.theta_dot[0]), hex(p.theta_dot[1])],
+        },
+        "encoding": "empty/1",
+        "nodes": tree.len(),
+        "body": base64(&body),
+    }))
 }
 
 /// The formulas a proof states: definitions, Ω and Ω₀ as `{expr < 0}`, and

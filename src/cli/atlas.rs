@@ -427,10 +427,10 @@ fn print_table(r: &PaveReport) {
     }
     for g in &r.regions {
         if let Some(why) = g.empty {
-            let why = if why == "omega0 = omega" {
-                "Ω₀ = Ω"
-            } else {
-                "Ω₀ ⊂ Ω, p_φ = p_ψ = 0"
+            let why = match why {
+                "omega0 = omega" => "Ω₀ = Ω",
+                "omega0 inside omega" => "Ω₀ ⊂ Ω, p_φ = p_ψ = 0",
+                other => other,
             };
             outln!(
                 "  {} {:>12} {:>12} {:>12} {:>12} {:>12} {:>12}  empty ({why})",

@@ -73,6 +73,8 @@ pub struct Regions<'a> {
     scene: &'a Scene,
     variant: Variant,
     factors: Vec<Factor>,
+    /// Ω₀ is written as the same expression as Ω: one function.
+    same: bool,
     /// Factor signs by (factor, θ-range): boxes of one θ-range share them.
     signs: RefCell<HashMap<(usize, u64, u64), Option<bool>>>,
 }
@@ -103,6 +105,7 @@ impl<'a> Regions<'a> {
             scene,
             variant,
             factors,
+            same: scene.omega0_is_omega(variant),
             signs: RefCell::new(HashMap::new()),
         }
     }
@@ -249,6 +252,13 @@ impl<'a> Regions<'a> {
         want: &[Option<bool>; 2],
         rules: &[(&Factor, Option<bool>)],
     ) -> Option<EmptyReason> {
+        // Opposite signs of one function: no point anywhere, no evaluation.
+        if self.same && want[0].is_some() && want[1].is_some() && want[0] != want[1] {
+            return Some(EmptyReason::SameConstraint {
+                constraint: 1,
+                other: 0,
+            });
+        }
         let l = self.labels(b);
         for c in 0..2 {
             match (want[c], l[c]) {
@@ -488,16 +498,18 @@ fn prove_empty(
     Ok((nodes, reasons))
 }
 
-/// `prove_empty` over the scene's whole domain at its own parameters.
+/// `prove_empty` over `domain` at the scene's own parameters: a tree
+/// from `empty_root(domain)`.
 pub fn empty_tree(
     scene: &Scene,
     variant: Variant,
+    domain: &Domain,
     cell: crate::scene::Cell,
     opts: DecideOptions,
 ) -> Option<(Vec<Node>, Vec<EmptyReason>)> {
     let spec = cell.spec();
     let want = [spec.0[0], spec.0[1]];
-    prove_empty(&Regions::new(scene, variant), &scene.domain(), &want, opts).ok()
+    prove_empty(&Regions::new(scene, variant), domain, &want, opts).ok()
 }
 
 fn zero() -> DecInterval {

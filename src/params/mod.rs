@@ -24,9 +24,20 @@ use crate::scene::{Scene, Variant};
 /// parameters (a phase paving where every leaf misses it, as an atlas's
 /// empty status): what `pave`, `atlas` and `area` report as exactly empty.
 pub fn proved_empty(scene: &Scene, variant: Variant, cell: Cell) -> bool {
+    empty_tree(scene, variant, &scene.domain(), cell).is_some()
+}
+
+/// The tree that proves `cell` empty on `domain` at the scene's parameters,
+/// within the budget `pave`, `atlas` and `area` allow it, if there is one.
+pub fn empty_tree(
+    scene: &Scene,
+    variant: Variant,
+    domain: &crate::scene::Domain,
+    cell: Cell,
+) -> Option<(Vec<crate::pave::Node>, Vec<model::EmptyReason>)> {
     let opts = DecideOptions {
         witness_boxes: 0,
         empty_leaves: 20_000,
     };
-    decide::empty_tree(scene, variant, cell, opts).is_some()
+    decide::empty_tree(scene, variant, domain, cell, opts)
 }

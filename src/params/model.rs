@@ -39,6 +39,10 @@ pub enum EmptyReason {
         other: usize,
         positive: bool,
     },
+    /// Constraints `constraint` and `other` are the same expression (the
+    /// same function), and the set asks opposite signs of them. A proof
+    /// states it as a factor rule with the factor 1.
+    SameConstraint { constraint: usize, other: usize },
 }
 
 /// What is proved about one set on one parameter box.

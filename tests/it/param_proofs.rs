@@ -479,3 +479,71 @@ fn the_writer_refuses_an_atlas_that_does_not_fit() {
     a.leaves[0].sets.pop();
     assert!(param_atlas_proof(&statement, &a).is_err());
 }
+
+/// `pave --proof` of the rod at μ = 1.2, below μ* = 4/3 (V > 0 for every θ
+/// when μ < 4/3: closed form in `scenes/painleve-rod.toml`), states both
+/// paradox cells empty, inner = outer = 0, each with an emptiness tree;
+/// both checkers accept it (`detach verify` and the checker crate). Without a tree, or with a tree whose one leaf
+/// names a literal not refuted on the whole domain, the claimed 0 is
+/// INVALID.
+#[test]
+fn a_paving_proof_states_the_rods_paradox_cells_empty_below_four_thirds() {
+    let dir = std::env::temp_dir().join(format!("detach-pave-empty-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("rod.json");
+    let out = crate::common::detach(&[
+        "pave",
+        "--scene",
+        "painleve-rod",
+        "--param",
+        "mu=1.2",
+        "--eps",
+        "0.0625",
+        "--proof",
+        path.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let proof: serde_json::Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    let areas = proof["statement"]["areas"].as_array().unwrap().clone();
+    let empty = proof["evidence"]["empty"].as_array().unwrap().clone();
+    let index = |name: &str| areas.iter().position(|a| a["set"] == name).unwrap();
+    for name in ["not_omega_and_omega0", "omega_and_not_omega0"] {
+        let k = index(name);
+        assert_eq!(
+            (&areas[k]["inner"], &areas[k]["outer"]),
+            (&"0".into(), &"0".into())
+        );
+        let tree = empty.iter().find(|e| e["area"] == k).unwrap();
+        assert_eq!(tree["encoding"], "empty/1");
+    }
+    // Ω is not empty: no tree, and a positive inner bound.
+    assert!(empty.iter().all(|e| e["area"] != index("omega")));
+    // The exact checker: the paving's root box reaches the domain's end
+    // π/2, which a looser checker encloses wider, whatever the cells.
+    let exact = check_bytes(&to_bytes(&proof)).unwrap().verdict;
+    assert_eq!(exact, Verdict::Valid);
+    let out = detach_verify(&proof);
+    assert!(out.contains("VALID"), "{out}");
+
+    let mut no_tree = proof.clone();
+    no_tree["evidence"]
+        .as_object_mut()
+        .unwrap()
+        .shift_remove("empty");
+    assert_invalid(&no_tree, "claimed outer 0 is below");
+    // One leaf: Ω̄ ∩ Ω₀ asks Ω out, so the reason is "Ω proved in" on the
+    // whole phase box, false (U > 0 at large θ̇).
+    let mut lie = proof.clone();
+    let k = empty
+        .iter()
+        .position(|e| e["area"] == index("not_omega_and_omega0"))
+        .unwrap();
+    lie["evidence"]["empty"][k]["nodes"] = 1.into();
+    lie["evidence"]["empty"][k]["body"] = "AA==".into();
+    assert_invalid(&lie, "literal reason: omega is not proved in");
+}

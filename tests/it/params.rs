@@ -352,6 +352,11 @@ fn pave_and_area_report_a_proved_empty_cell_as_exactly_empty() {
         );
         assert_eq!(a["empty"], "proved empty", "{a}");
     }
+    // The table says why: proved, not the disc's Ω₀ ⊂ Ω.
+    let out = detach(&["pave", "--scene", "painleve-rod", "--param", "mu=1.2"]);
+    let table = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(table.matches("empty (proved empty)").count(), 2, "{table}");
+    assert!(!table.contains("p_φ"), "{table}");
     // Above the threshold the cells are not empty.
     let pave = json(&[
         "pave",
@@ -510,5 +515,110 @@ fn the_rods_parameter_atlas_proof_is_valid_and_a_changed_v_is_not() {
     assert_eq!(text.matches(v).count(), 1, "V is stated once, as written");
     let changed = text.replace(v, "1 + 3*cos(t)^2 - 2*mu*sin(t)*cos(t)");
     assert!(matches!(verdict(changed.as_bytes()), Verdict::Invalid(_)));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The statuses of every box of a `params --json` run, by set.
+fn statuses(v: &serde_json::Value, set: &str) -> Vec<String> {
+    v["boxes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b["sets"][set].as_str().unwrap().to_string())
+        .collect()
+}
+
+/// Ω₀ written as the same expression as Ω (the smooth disc of §2, where
+/// (2.7) and (2.8) are one formula; a user file stating one region twice):
+/// Ω̄∩Ω₀ and Ω∩Ω̄₀ ask opposite signs of one function, so they are empty for
+/// every parameter ("same constraint", the factor 1 in a proof). `params`
+/// states them empty in every box with a proof both checkers accept, and
+/// `area` gives exactly 0; a region that differs (U < 1) is not emptied.
+#[test]
+fn cells_asking_one_constraint_both_ways_are_empty() {
+    let dir = std::env::temp_dir().join(format!("detach-same-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let proof = dir.join("smooth.json");
+    let v = json(&[
+        "params",
+        "--scene",
+        "smooth-disc",
+        "--x",
+        "p_phi=0:2",
+        "--eps",
+        "0.25",
+        "--json",
+        "--proof",
+        proof.to_str().unwrap(),
+    ]);
+    for set in PARADOXES {
+        let s = statuses(&v, set.name());
+        assert!(
+            !s.is_empty() && s.iter().all(|s| s == "empty"),
+            "{set:?}: {s:?}"
+        );
+    }
+    let out = detach(&["verify", proof.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    let bytes = std::fs::read(&proof).unwrap();
+    let verdict = detach::check::check_bytes(&bytes).unwrap().verdict;
+    assert_eq!(verdict, detach::check::Verdict::Valid);
+
+    // Not of degree 2 in θ̇, so `area` bounds it by a paving.
+    let file = |omega0: &str| {
+        format!(
+            "name = \"twice\"\n[domain]\ntheta = [\"0\", \"1\"]\ntheta_dot = [\"-2\", \"2\"]\n\
+             [parameters]\nk = \"1\"\n[definitions]\nU = \"sin(k*theta*theta_dot) - 0.3\"\n\
+             [regions]\nomega = \"U < 0\"\nomega0 = \"{omega0}\"\n"
+        )
+    };
+    let twice = dir.join("twice.toml");
+    std::fs::write(&twice, file("U < 0")).unwrap();
+    let t = twice.to_str().unwrap();
+    let v = json(&[
+        "params",
+        "--scene-file",
+        t,
+        "--x",
+        "k=1:2",
+        "--eps",
+        "0.5",
+        "--json",
+    ]);
+    let area = json(&["area", "--scene-file", t, "--json"]);
+    for set in PARADOXES {
+        let s = statuses(&v, set.name());
+        assert!(s.iter().all(|s| s == "empty"), "{set:?}: {s:?}");
+        let a = area["regions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["name"] == set.name())
+            .unwrap();
+        assert_eq!(
+            (a["lower"].as_f64(), a["upper"].as_f64()),
+            (Some(0.0), Some(0.0)),
+            "{a}"
+        );
+    }
+    // U < 1 is another region: 0 ≤ U < 1 has points (U = 0.7 where
+    // kθθ̇ = π/2, inside the domain for every k in [1, 2]), not stated empty.
+    std::fs::write(&twice, file("U < 1")).unwrap();
+    let v = json(&[
+        "params",
+        "--scene-file",
+        t,
+        "--x",
+        "k=1:2",
+        "--eps",
+        "0.5",
+        "--json",
+    ]);
+    let s = statuses(&v, Cell::Omega0NotOmega.name());
+    assert!(s.iter().all(|s| s != "empty"), "{s:?}");
     std::fs::remove_dir_all(&dir).ok();
 }
