@@ -1,7 +1,7 @@
 //! Scene files: a planar system with a unilateral constraint written as
 //! TOML (`docs/scene-files.md`), read into a [`FileScene`] whose two regions
 //! are compiled once ([`super::expr`]) and evaluated over any
-//! [`Scalar`](crate::number::scalar::Scalar).
+//! [`Scalar`].
 //!
 //! A file is refused, with one message naming the file, the key and (inside
 //! an expression) the character, when it is not TOML, lacks a key, has an
