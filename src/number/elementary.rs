@@ -13,7 +13,7 @@
 //! possible pole of `tan`, an argument of `ln` reaching 0 — the functions fall
 //! back to `inari`'s own.
 
-use crate::number::scalar::Scalar;
+use crate::number::scalar::{Known, Scalar};
 use inari::{const_interval, DecInterval, Interval};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -256,6 +256,9 @@ impl Neg for CrDec {
 impl Scalar for CrDec {
     fn lift(x: Interval) -> Self {
         CrDec(DecInterval::new(x))
+    }
+    fn lift_known(k: &Known) -> Self {
+        CrDec(k.decorated)
     }
     fn int(n: i32) -> Self {
         CrDec(<DecInterval as Scalar>::int(n))

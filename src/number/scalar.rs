@@ -24,11 +24,10 @@ pub trait Scalar:
     /// A constant known as an enclosure. `f64` takes its midpoint (uncertified
     /// paths only); interval types keep the whole enclosure.
     fn lift(x: Interval) -> Self;
-    /// [`Scalar::lift`] of a constant whose `f64` lift is already known
-    /// (`mid` is `f64::lift(x)`): `f64` takes `mid` without computing it.
-    fn lift_known(x: Interval, mid: f64) -> Self {
-        let _ = mid;
-        Self::lift(x)
+    /// [`Scalar::lift`] of a constant lifted once for every scalar
+    /// ([`Known`]): the same value, copied instead of computed.
+    fn lift_known(k: &Known) -> Self {
+        Self::lift(k.interval)
     }
     /// A small integer, exact in every implementation.
     fn int(n: i32) -> Self;
@@ -71,6 +70,27 @@ pub trait Scalar:
     /// `(sin, cos)` together; duals reuse both for the derivatives.
     fn sin_cos(self) -> (Self, Self) {
         (self.sin(), self.cos())
+    }
+}
+
+/// A constant in the forms the scalars lift it to, each computed once: what
+/// a compiled formula lifts at every evaluation ([`Scalar::lift_known`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Known {
+    pub interval: Interval,
+    /// `DecInterval::lift(interval)`.
+    pub decorated: DecInterval,
+    /// `f64::lift(interval)`, the midpoint.
+    pub mid: f64,
+}
+
+impl Known {
+    pub fn new(interval: Interval) -> Known {
+        Known {
+            interval,
+            decorated: <DecInterval as Scalar>::lift(interval),
+            mid: <f64 as Scalar>::lift(interval),
+        }
     }
 }
 
@@ -126,8 +146,8 @@ impl Scalar for f64 {
     fn lift(x: Interval) -> Self {
         x.mid()
     }
-    fn lift_known(_: Interval, mid: f64) -> Self {
-        mid
+    fn lift_known(k: &Known) -> Self {
+        k.mid
     }
     fn int(n: i32) -> Self {
         n as f64
@@ -198,6 +218,9 @@ impl Scalar for Interval {
     fn lift(x: Interval) -> Self {
         x
     }
+    fn lift_known(k: &Known) -> Self {
+        k.interval
+    }
     fn int(n: i32) -> Self {
         Interval::try_from((n as f64, n as f64)).expect("small integers are exact")
     }
@@ -251,6 +274,9 @@ impl Scalar for Interval {
 impl Scalar for DecInterval {
     fn lift(x: Interval) -> Self {
         DecInterval::new(x)
+    }
+    fn lift_known(k: &Known) -> Self {
+        k.decorated
     }
     fn int(n: i32) -> Self {
         DecInterval::new(<Interval as Scalar>::int(n))
@@ -446,8 +472,8 @@ impl<T: Scalar, const N: usize> Scalar for DualN<T, N> {
     fn lift(x: Interval) -> Self {
         Self::constant(T::lift(x))
     }
-    fn lift_known(x: Interval, mid: f64) -> Self {
-        Self::constant(T::lift_known(x, mid))
+    fn lift_known(k: &Known) -> Self {
+        Self::constant(T::lift_known(k))
     }
     fn int(n: i32) -> Self {
         Self::constant(T::int(n))
@@ -607,5 +633,40 @@ mod tests {
         assert!(!is_defined(<DecInterval as Scalar>::int(1) / x));
         let y = DecInterval::new(Interval::try_from((1.0, 2.0)).unwrap());
         assert!(is_defined(<DecInterval as Scalar>::int(1) / y));
+    }
+
+    /// A constant lifted once ([`Known`]) is, for every scalar, bit for bit
+    /// what lifting its enclosure gives (the tape copies these lifts).
+    #[test]
+    fn known_constants_lift_as_their_enclosures() {
+        use crate::number::elementary::CrDec;
+        let bits = |x: Interval| (x.inf().to_bits(), x.sup().to_bits());
+        let dec = |x: DecInterval| (x.interval().map(bits), x.decoration());
+        let cases = [
+            (0.1f64.next_down(), 0.1),
+            (1.0, 2.0),
+            (-3.0, -3.0),
+            (0.0, 0.0),
+            (-0.25, 1e300),
+            (-f64::MAX, f64::MAX),
+        ];
+        for (lo, hi) in cases {
+            let x = Interval::try_from((lo, hi)).unwrap();
+            let k = Known::new(x);
+            assert_eq!(f64::lift_known(&k).to_bits(), f64::lift(x).to_bits());
+            assert_eq!(bits(Interval::lift_known(&k)), bits(x));
+            let d = DecInterval::lift_known(&k);
+            assert_eq!(dec(d), dec(DecInterval::lift(x)), "{x:?}");
+            assert_eq!(dec(CrDec::lift_known(&k).0), dec(CrDec::lift(x).0));
+            let (a, b) = (
+                DualTheta::<CrDec>::lift_known(&k),
+                DualTheta::<CrDec>::lift(x),
+            );
+            assert_eq!(dec(a.value.0), dec(b.value.0));
+            assert_eq!(dec(a.grad[0].0), dec(b.grad[0].0));
+            let (a, b) = (Dual::<f64>::lift_known(&k), Dual::<f64>::lift(x));
+            assert_eq!(a.value.to_bits(), b.value.to_bits());
+            assert_eq!(a.grad.map(f64::to_bits), b.grad.map(f64::to_bits));
+        }
     }
 }

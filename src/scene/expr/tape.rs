@@ -4,7 +4,7 @@
 use super::graph::Node;
 use super::parse::Func;
 use super::{THETA, THETA_DOT};
-use crate::number::scalar::{is_defined, Scalar};
+use crate::number::scalar::{is_defined, Known, Scalar};
 use inari::{DecInterval, Decoration, Interval};
 use std::collections::HashMap;
 
@@ -63,7 +63,7 @@ const COS_SLOT: u32 = 3;
 const FIRST_CONST: u32 = 4;
 
 /// How a [`Program`] is evaluated: slots `[θ, θ̇, sin θ, cos θ, constants…,
-/// results…]`, the constants lifted once per evaluation, `sin θ` and `cos θ`
+/// results…]`, the constants copied in from their lifts made with the plan, `sin θ` and `cos θ`
 /// taken from the caller or computed once, and one operation per result in
 /// tape order (no dispatch on variables or constants, `sin`/`cos` pairs as
 /// one operation). In an evaluation plan a result's slot is reused once the
@@ -71,9 +71,9 @@ const FIRST_CONST: u32 = 4;
 /// it is part of every evaluation).
 #[derive(Clone, Debug)]
 pub(super) struct Plan {
-    /// Lifted into the slots from [`FIRST_CONST`] on: each enclosure with
-    /// its `f64` lift ([`Scalar::lift_known`]).
-    pub(super) consts: Vec<(Interval, f64)>,
+    /// Copied into the slots from [`FIRST_CONST`] on, each lifted once for
+    /// every scalar ([`Scalar::lift_known`]).
+    pub(super) consts: Vec<Known>,
     pub(super) ops: Vec<Step>,
     /// Whether `sin θ` and `cos θ` are read.
     trig: [bool; 2],
@@ -273,7 +273,7 @@ impl Plan {
         for (j, k) in known.iter().enumerate() {
             if let (true, Some(c)) = (needed[j], k) {
                 slot[j] = FIRST_CONST + plan_consts.len() as u32;
-                plan_consts.push(*c);
+                plan_consts.push(Known::new(c.0));
             }
         }
         let mut next = FIRST_CONST + plan_consts.len() as u32;
@@ -405,8 +405,8 @@ impl Plan {
             (None, [true, false]) => slots[SIN_SLOT as usize] = theta.sin(),
             (None, _) => slots[COS_SLOT as usize] = theta.cos(),
         }
-        for (s, &(c, mid)) in slots[FIRST_CONST as usize..].iter_mut().zip(&self.consts) {
-            *s = T::lift_known(c, mid);
+        for (s, k) in slots[FIRST_CONST as usize..].iter_mut().zip(&self.consts) {
+            *s = T::lift_known(k);
         }
         for step in &self.ops {
             let x = |a: u32| slots[a as usize];
