@@ -118,6 +118,17 @@ fn one_box() {
     }
 }
 
+/// A paper scene from its built-in formulas and from its scene file
+/// (`scenes/`, compiled to a tape), each named by its source, built-in
+/// first.
+fn file_and_built_in(id: SceneId) -> [(&'static str, Scene); 2] {
+    let path = format!("{}/scenes/{}.toml", env!("CARGO_MANIFEST_DIR"), id.name());
+    let file = Scene::from_file(path.as_ref(), &[])
+        .expect("shipped file")
+        .0;
+    [("built-in", Scene::default_of(id)), ("file", file)]
+}
+
 /// One evaluation of a paper scene's coefficients, built-in against file,
 /// in each scalar the pavers use: `f64` (steering), decorated intervals
 /// with the correctly rounded functions (slabs) and their θ-duals (slab
@@ -129,12 +140,7 @@ fn tape() {
     let slab = CrDec(DecInterval::new(th));
     let dual = DualTheta::variable(slab, 0);
     for id in SceneId::ALL {
-        let path = format!("{}/scenes/{}.toml", env!("CARGO_MANIFEST_DIR"), id.name());
-        let file = Scene::from_file(path.as_ref(), &[])
-            .expect("shipped file")
-            .0;
-        let built_in = Scene::default_of(id);
-        for (source, s) in [("built-in", &built_in), ("file", &file)] {
+        for (source, s) in &file_and_built_in(id) {
             let v = Variant::Derived;
             let name = format!("{}/{source}", id.name());
             let (p, sl, du) = (Angle::new(1.1f64), Angle::new(slab), Angle::new(dual));
@@ -155,18 +161,14 @@ fn scene_files() {
     let load_before = load();
     let mut rows = Vec::new();
     for id in SceneId::ALL {
-        let path = format!("{}/scenes/{}.toml", env!("CARGO_MANIFEST_DIR"), id.name());
-        let file = Scene::from_file(path.as_ref(), &[])
-            .expect("shipped file")
-            .0;
-        let built_in = Scene::default_of(id);
+        let sources = file_and_built_in(id);
         for m in Method::ALL {
             for threads in [1, 2] {
                 let pool = rayon::ThreadPoolBuilder::new()
                     .num_threads(threads)
                     .build()
                     .expect("thread pool");
-                let [b, f] = [("built-in", &built_in), ("file", &file)].map(|(source, s)| {
+                let [b, f] = sources.each_ref().map(|(source, s)| {
                     let d = s.domain();
                     let case = format!("{}/{m}/threads={threads}/{source}", id.name());
                     pool.install(|| {
