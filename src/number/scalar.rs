@@ -6,7 +6,7 @@
 //! Scene formulas are written once against [`Scalar`]; evaluating on a point, on
 //! a box, or with derivatives is the same code.
 
-use inari::{const_interval, DecInterval, Decoration, Interval};
+use inari::{const_dec_interval, const_interval, DecInterval, Decoration, Interval};
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -85,6 +85,14 @@ pub struct Known {
 }
 
 impl Known {
+    /// The exact 0, lifted as [`Scalar::int`] gives it: a dual constant's
+    /// gradient.
+    pub const ZERO: Known = Known {
+        interval: const_interval!(0.0, 0.0),
+        decorated: const_dec_interval!(0.0, 0.0),
+        mid: 0.0,
+    };
+
     pub fn new(interval: Interval) -> Known {
         Known {
             interval,
@@ -473,7 +481,10 @@ impl<T: Scalar, const N: usize> Scalar for DualN<T, N> {
         Self::constant(T::lift(x))
     }
     fn lift_known(k: &Known) -> Self {
-        Self::constant(T::lift_known(k))
+        DualN {
+            value: T::lift_known(k),
+            grad: [T::lift_known(&Known::ZERO); N],
+        }
     }
     fn int(n: i32) -> Self {
         Self::constant(T::int(n))
@@ -667,6 +678,14 @@ mod tests {
             let (a, b) = (Dual::<f64>::lift_known(&k), Dual::<f64>::lift(x));
             assert_eq!(a.value.to_bits(), b.value.to_bits());
             assert_eq!(a.grad.map(f64::to_bits), b.grad.map(f64::to_bits));
+            let (a, b) = (Dual::<Interval>::lift_known(&k), Dual::<Interval>::lift(x));
+            assert_eq!(a.grad.map(bits), b.grad.map(bits));
         }
+        // The gradient's 0 is `int(0)` of each scalar.
+        let zero = Known::ZERO;
+        assert_eq!(f64::lift_known(&zero).to_bits(), 0f64.to_bits());
+        assert_eq!(bits(Interval::lift_known(&zero)), bits(Interval::int(0)));
+        let int0 = <DecInterval as Scalar>::int(0);
+        assert_eq!(dec(DecInterval::lift_known(&zero)), dec(int0));
     }
 }
