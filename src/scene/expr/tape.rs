@@ -63,12 +63,12 @@ const COS_SLOT: u32 = 3;
 const FIRST_CONST: u32 = 4;
 
 /// How a [`Program`] is evaluated: slots `[θ, θ̇, sin θ, cos θ, constants…,
-/// results…]`, the constants copied in from their lifts made with the plan, `sin θ` and `cos θ`
-/// taken from the caller or computed once, and one operation per result in
-/// tape order (no dispatch on variables or constants, `sin`/`cos` pairs as
-/// one operation). In an evaluation plan a result's slot is reused once the
-/// last operation reading it is done, so the slot array stays small (filling
-/// it is part of every evaluation).
+/// results…]`, the constants copied in as the plan lifted them, `sin θ` and
+/// `cos θ` taken from the caller or computed once, and one operation per
+/// result in tape order (no dispatch on variables or constants, `sin`/`cos`
+/// pairs as one operation). In an evaluation plan a result's slot is reused
+/// once the last operation reading it is done, so the slot array stays
+/// small (filling it is part of every evaluation).
 #[derive(Clone, Debug)]
 pub(super) struct Plan {
     /// Copied into the slots from [`FIRST_CONST`] on, each lifted once for
