@@ -429,7 +429,6 @@ fn print_table(r: &PaveReport) {
         if let Some(why) = g.empty {
             let why = match why {
                 "omega0 = omega" => "Ω₀ = Ω",
-                "omega0 inside omega" => "Ω₀ ⊂ Ω, p_φ = p_ψ = 0",
                 other => other,
             };
             outln!(
