@@ -849,15 +849,18 @@ fn kinked_coefficients_are_measured_soundly() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Descriptions and units of a file's parameters are listed by `detach
-/// scenes` (the shipped rod declares them) and kept in its JSON.
+/// Descriptions and units of a file's parameters and its conditions are
+/// listed by `detach scenes` (the shipped rod declares units) and kept in
+/// its JSON.
 #[test]
 fn scenes_lists_parameter_descriptions_and_units() {
     let out = detach(&["scenes"]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success());
-    assert!(text.contains("g      = 9.81 m/s^2 Any: gravity"), "{text}");
+    assert!(text.contains("g      = 9.81 m/s^2 gravity"), "{text}");
     assert!(text.contains("l      = 1 m"), "{text}");
+    // Conditions as the files write them: the viscous disc's b < a.
+    assert!(text.contains("conditions: a > 0, b >= 0, b < a"), "{text}");
     let v = json(&["scenes", "--json"]);
     let rod = v
         .as_array()
