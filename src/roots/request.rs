@@ -326,7 +326,7 @@ fn build_scene(inputs: &RootsInputs, default: SceneId) -> Result<(Scene, ParamSe
         Some(s) => s.parse::<SceneId>().map_err(RequestError::Scene)?,
         None => default,
     };
-    Scene::build(id, inputs.params).map_err(|e| RequestError::Scene(e.message))
+    Scene::build(id, inputs.params).map_err(|e| RequestError::Scene(e.to_string()))
 }
 
 fn scene_values(set: &ParamSet) -> Vec<Value> {

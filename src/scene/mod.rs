@@ -283,14 +283,31 @@ impl SceneId {
     }
 
     /// The scene's title, from its derived file.
-    pub fn title(self) -> String {
-        Scene::default_of(self).title().to_string()
+    pub fn title(self) -> &'static str {
+        self.declared().0
     }
 
     /// The parameters a run may set (names, defaults, meanings), from the
     /// derived file.
     pub fn params(self) -> &'static [ParamSpec] {
-        Scene::default_of(self).params_specs()
+        self.declared().1
+    }
+
+    /// Title and parameters, read from the embedded file once.
+    fn declared(self) -> (&'static str, &'static [ParamSpec]) {
+        static DECLARED: std::sync::OnceLock<Vec<(&'static str, &'static [ParamSpec])>> =
+            std::sync::OnceLock::new();
+        DECLARED.get_or_init(|| {
+            SceneId::ALL
+                .map(|id| {
+                    let f = FileScene::shipped(&id.file_name(Variant::Derived), &[])
+                        .expect("every paper scene is embedded")
+                        .expect("defaults are valid");
+                    let title: &'static str = Box::leak(f.title.into_boxed_str());
+                    (title, f.params.specs)
+                })
+                .to_vec()
+        })[self as usize]
     }
 }
 
@@ -378,7 +395,7 @@ impl Scene {
         overrides: &[(String, String)],
     ) -> Result<(Scene, ParamSet), String> {
         match (name.parse::<SceneId>(), SceneText::shipped(name)) {
-            (Ok(id), _) => Scene::build(id, overrides).map_err(|e| e.message),
+            (Ok(id), _) => Scene::build(id, overrides).map_err(|e| e.to_string()),
             (Err(_), Some(t)) => {
                 let f = t.compile(overrides).map_err(|e| e.to_string())?;
                 let params = f.params.clone();
