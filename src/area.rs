@@ -133,10 +133,7 @@ pub fn certified_areas(
             .map_err(|e| AreasError::Paving(format!("{e:?}")))?;
         Ok((p, start.elapsed().as_secs_f64()))
     };
-    let not_quadratic = match scene {
-        Scene::File(f) => f.not_quadratic(),
-        _ => None,
-    };
+    let not_quadratic = scene.reading(variant).not_quadratic();
     let mut notes = Vec::new();
     let refusal = |c: Cell, e: AreaError| AreasError::Refused(format!("{}: {e}", named(c)));
     let bounds = |p: &Paving, c: Cell| {

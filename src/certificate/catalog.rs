@@ -11,13 +11,15 @@
 
 use super::paving::{paving_proof, PavingStatement};
 use super::roots::{build_pieces, kappa0_proof, roots_proof, RootsStatement};
-use crate::number::scalar::Scalar;
+use super::statement::in_proof_names;
 use crate::pave::{pave_scene, PaveOptions};
-use crate::roots::equations::{Eq210, Eq29};
+use crate::roots::equations::{
+    eq_2_10, eq_2_9, scene_function, SceneFunction, TEXT_2_10, TEXT_2_9,
+};
 use crate::roots::isolate::Budget;
 use crate::roots::request::Problem;
-use crate::roots::{prove_kappa0, EquationId, EquationRoots, RealFn, RootsInputs, RootsRequest};
-use crate::scene::{Scene, SceneId, SmoothDisc, Variant};
+use crate::roots::{prove_kappa0, EquationId, EquationRoots, RootsInputs, RootsRequest};
+use crate::scene::{Scene, SceneId, Variant};
 use inari::Interval;
 use serde_json::Value;
 
@@ -92,7 +94,7 @@ pub fn atlas_proof(id: SceneId, variant: Variant) -> Value {
     };
     let paving = pave_scene(&scene, variant, opts, |_, _, _| {}).expect("default paving");
     let domain = scene.domain();
-    let text = id.domain_text().map(|side| side.map(String::from));
+    let text = scene.domain_text();
     paving_proof(
         &PavingStatement {
             scene: &scene,
@@ -153,10 +155,7 @@ pub fn roots_proof_of(request: &RootsRequest, roots: &EquationRoots) -> Result<V
     match (&request.problem, request.equation) {
         (Problem::KappaAlpha { kappa, alpha }, _) => {
             let (kt, at) = (given("kappa"), given("alpha"));
-            let f = Eq29 {
-                kappa: *kappa,
-                alpha: *alpha,
-            };
+            let f = eq_2_9(*kappa, *alpha);
             Ok(roots_proof(
                 &RootsStatement {
                     title: format!("the roots of (2.9) on θ ∈ (0, π) at κ = {kt}, α = {at}"),
@@ -165,7 +164,7 @@ pub fn roots_proof_of(request: &RootsRequest, roots: &EquationRoots) -> Result<V
                     parameters: vec![("kappa".into(), kt), ("alpha".into(), at)],
                     definitions: vec![],
                     variable: "t",
-                    function: F_2_9.into(),
+                    function: in_proof_names(TEXT_2_9),
                     domain: ["0", "pi"],
                 },
                 &build_pieces(&f, 0.0, pi, &roots.roots),
@@ -173,7 +172,7 @@ pub fn roots_proof_of(request: &RootsRequest, roots: &EquationRoots) -> Result<V
         }
         (Problem::Kappa { kappa }, _) => {
             let kt = given("kappa");
-            let f = Eq210 { kappa: *kappa };
+            let f = eq_2_10(*kappa);
             Ok(roots_proof(
                 &RootsStatement {
                     title: format!("the positive roots of (2.10) at κ = {kt}"),
@@ -182,18 +181,14 @@ pub fn roots_proof_of(request: &RootsRequest, roots: &EquationRoots) -> Result<V
                     parameters: vec![("kappa".into(), kt)],
                     definitions: vec![],
                     variable: "mu",
-                    function: F_2_10.into(),
+                    function: TEXT_2_10.into(),
                     domain: ["0", "inf"],
                 },
                 &build_pieces(&f, 0.0, f64::INFINITY, &roots.roots),
             ))
         }
         (Problem::Scene { scene, params }, EquationId::E2_12) => {
-            let disc = match scene {
-                Scene::Smooth(d) => d,
-                Scene::Ice(i) => &i.disc,
-                _ => unreachable!("a checked request"),
-            };
+            let f = scene_function(scene, EquationId::E2_12).expect("a checked request");
             let keep = ["m", "g", "a", "A", "p_phi", "p_psi"];
             Ok(roots_proof(
                 &RootsStatement {
@@ -209,10 +204,10 @@ pub fn roots_proof_of(request: &RootsRequest, roots: &EquationRoots) -> Result<V
                         .collect(),
                     definitions: vec![],
                     variable: "t",
-                    function: F_2_12.into(),
+                    function: in_proof_names(&f.text),
                     domain: ["0", "pi"],
                 },
-                &build_pieces(&ClearedSlope(disc), 0.0, pi, &roots.roots),
+                &build_pieces(&SceneFunction(f), 0.0, pi, &roots.roots),
             ))
         }
         (_, eq) => Err(format!(
@@ -223,28 +218,6 @@ pub fn roots_proof_of(request: &RootsRequest, roots: &EquationRoots) -> Result<V
                 ""
             }
         )),
-    }
-}
-
-const F_2_9: &str = "kappa*sin(t)^2*sin(t) - cos(t)*(alpha - cos(t))*(1 - alpha*cos(t))";
-
-const F_2_10: &str = "mu*(1 - mu)*(1 + mu) - 2*kappa";
-
-/// `sin³θ · Π̃'(θ)` of (2.12) with the singular factors cleared:
-/// `m g a cos θ sin³θ + (p_ψ − p_φ cos θ)(p_φ − p_ψ cos θ)/A`. Same zeros as
-/// Π̃' on (0, π), and defined on all of [0, π].
-const F_2_12: &str =
-    "m*g*a*cos(t)*sin(t)^2*sin(t) + (p_psi - p_phi*cos(t))*(p_phi - p_psi*cos(t))/A";
-
-struct ClearedSlope<'a>(&'a SmoothDisc);
-
-impl RealFn for ClearedSlope<'_> {
-    fn eval<T: Scalar>(&self, theta: T) -> T {
-        let d = self.0;
-        let (s, c) = theta.sin_cos();
-        let (m, g, a, big_a) = (T::lift(d.m), T::lift(d.g), T::lift(d.a), T::lift(d.big_a));
-        let (pf, ps) = (T::lift(d.p_phi), T::lift(d.p_psi));
-        m * g * a * c * s.sqr() * s + (ps - pf * c) * (pf - ps * c) / big_a
     }
 }
 

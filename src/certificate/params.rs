@@ -5,7 +5,7 @@
 //!
 //! The writer states what the prover found; it proves nothing itself. The
 //! prover's labels must hold for the expressions stated here (the author's
-//! text of a scene file, the paper's formulas of a built-in scene) as a
+//! text of the scene's file, for a paper scene the file of its reading) as a
 //! checker evaluates them, with the slack of `proofs/FORMAT.md`, "Accuracy".
 
 use super::numbers::hex;
@@ -35,25 +35,14 @@ pub use crate::params::empty_root as phase_root;
 
 /// Definitions, Ω and Ω₀ as the statement gives them.
 fn formulas(scene: &Scene, variant: Variant) -> (Vec<(String, String)>, [String; 2]) {
-    match scene {
-        Scene::File(f) => (
-            f.definitions
-                .iter()
-                .map(|(n, e)| (n.clone(), in_proof_names(e)))
-                .collect(),
-            [0, 1].map(|i| in_proof_names(&f.regions[i].expr)),
-        ),
-        _ => {
-            let f = scene.id().expect("a paper scene").formulas(variant);
-            (
-                f.definitions
-                    .iter()
-                    .map(|(n, e)| (n.to_string(), e.to_string()))
-                    .collect(),
-                [f.omega.to_string(), f.omega0.to_string()],
-            )
-        }
-    }
+    let f = scene.reading(variant);
+    (
+        f.definitions
+            .iter()
+            .map(|(n, e)| (n.clone(), in_proof_names(e)))
+            .collect(),
+        [0, 1].map(|i| in_proof_names(&f.regions[i].expr)),
+    )
 }
 
 /// The literals of a standard set by its proof-file name.

@@ -254,35 +254,16 @@ pub struct StatementFormulas {
 }
 
 fn statement_formulas(scene: &Scene, variant: Variant) -> StatementFormulas {
-    match scene {
-        Scene::File(f) => {
-            let s = file_statement(f);
-            StatementFormulas {
-                definitions: s.definitions,
-                omega: s.omega,
-                omega0: s.omega0,
-                meaning: [
-                    format!("Ω: {}", f.regions[0].inequality.trim()),
-                    format!("Ω₀: {}", f.regions[1].inequality.trim()),
-                ],
-            }
-        }
-        _ => {
-            let f = scene.id().expect("a paper scene").formulas(variant);
-            StatementFormulas {
-                definitions: f
-                    .definitions
-                    .iter()
-                    .map(|(n, e)| (n.to_string(), e.to_string()))
-                    .collect(),
-                omega: f.omega.into(),
-                omega0: f.omega0.into(),
-                meaning: [
-                    "Ω: no detachment (Λ̈ < 0 at zero reaction)".into(),
-                    "Ω₀: the normal reaction keeps its sign".into(),
-                ],
-            }
-        }
+    let f = scene.reading(variant);
+    let s = file_statement(f);
+    StatementFormulas {
+        definitions: s.definitions,
+        omega: s.omega,
+        omega0: s.omega0,
+        meaning: [
+            format!("Ω: {}", f.regions[0].inequality.trim()),
+            format!("Ω₀: {}", f.regions[1].inequality.trim()),
+        ],
     }
 }
 

@@ -31,9 +31,10 @@ use super::witness::{find_difference, window};
 use super::{dec, enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::pave::PhaseBox;
+use crate::roots::equations::{scene_function, SceneFunction};
 use crate::roots::isolate::{isolate, point, RealFn};
-use crate::roots::{solve_3_3, Budget};
-use crate::scene::{Angle, IceDisc, Scene, SceneId};
+use crate::roots::{solve_3_3, Budget, EquationId};
+use crate::scene::{Angle, Scene, SceneId};
 use inari::{DecInterval, Interval};
 use serde_json::json;
 
@@ -131,17 +132,17 @@ fn rp(r: &mut Rng) -> Pt {
     }
 }
 
-/// The ice disc at the §2 defaults with p_φ, p_ψ, c₀ from text.
-pub fn ice_disc(pf: &str, ps: &str, c0: &str) -> IceDisc {
+/// Certified equilibria of (3.3) for the ice disc at the §2 defaults with
+/// p_φ, p_ψ, c₀ from text, and the function (`eq_3_3` of its file) solved.
+fn ice_roots(pf: &str, ps: &str, c0: &str) -> (crate::roots::EquationRoots, Scene) {
     let o = vec![
         ("p_phi".to_string(), pf.to_string()),
         ("p_psi".to_string(), ps.to_string()),
         ("c0".to_string(), c0.to_string()),
     ];
-    match Scene::build(SceneId::IceDisc, &o).expect("valid").0 {
-        Scene::Ice(d) => d,
-        _ => unreachable!(),
-    }
+    let (scene, params) = Scene::build(SceneId::IceDisc, &o).expect("valid");
+    let f = scene_function(&scene, EquationId::E3_3).expect("the ice disc's file has (3.3)");
+    (solve_3_3(f, &params, &Budget::default()), scene)
 }
 
 fn p2(pf: &str, ps: &str) -> P2<Interval> {
@@ -1095,10 +1096,9 @@ impl RealFn for EqualP {
 }
 
 fn ice_equilibria(pf: &str, ps: &str, c0: &str) -> (Option<Vec<[f64; 2]>>, serde_json::Value) {
-    let ice = ice_disc(pf, ps, c0);
     if pf == ps {
         let f = EqualP(p2(pf, ps), dec(c0));
-        let crate_r = solve_3_3(&ice, &Budget::default());
+        let (crate_r, _) = ice_roots(pf, ps, c0);
         let edge = crate_r.edges.iter().find(|e| e.end.contains("pi"));
         let end = edge.is_some_and(|e| e.proved);
         let hi = edge.map_or(2.8, |e| e.part[0]);
@@ -1111,7 +1111,7 @@ fn ice_equilibria(pf: &str, ps: &str, c0: &str) -> (Option<Vec<[f64; 2]>>, serde
             json!({"c0": c0, "complete": complete, "roots": roots, "f(0)": enc(f0), "search": [0.0, hi], "end_pi_from_crate": end}),
         )
     } else {
-        let r = solve_3_3(&ice, &Budget::default());
+        let (r, _) = ice_roots(pf, ps, c0);
         let roots: Vec<[f64; 2]> = r.roots.iter().map(|x| [x.lo, x.hi]).collect();
         (
             r.complete.then(|| roots.clone()),
@@ -1587,9 +1587,8 @@ pub fn s3_sub3(mutant: bool) -> Outcome {
 /// (a minimum of the energy's potential part), a saddle where `> 0`; the
 /// sign is that of `d(sin³θ θ̈)/dθ` on the certified root enclosure.
 fn ice_types(pf: &str, ps: &str, c0: &str) -> (Option<Vec<&'static str>>, serde_json::Value) {
-    let ice = ice_disc(pf, ps, c0);
-    let r = solve_3_3(&ice, &Budget::default());
-    let f = crate::roots::equations::IceAcceleration(&ice);
+    let (r, scene) = ice_roots(pf, ps, c0);
+    let f = SceneFunction(scene_function(&scene, EquationId::E3_3).expect("(3.3)"));
     let types: Vec<&'static str> = r
         .roots
         .iter()

@@ -22,7 +22,7 @@ use crate::roots::critical::{band_cell, g as g_crit};
 use crate::roots::equations::kappa_alpha;
 use crate::roots::isolate::{point, RealFn};
 use crate::roots::{prove_kappa0, solve_2_10, solve_2_9, Budget, EquationRoots};
-use crate::scene::{Scene, SceneId, SmoothDisc};
+use crate::scene::{Scene, SceneId};
 use inari::Interval;
 use serde_json::json;
 
@@ -94,19 +94,16 @@ pub fn params_json(t: &[&str]) -> serde_json::Value {
         .into()
 }
 
-/// The scene's disc at given texts (for the root isolator).
-pub fn disc(pf: &str, ps: &str) -> SmoothDisc {
+/// The smooth disc's parameters at the defaults with p_φ, p_ψ from text
+/// (for κ and α of (2.9)).
+pub fn disc(pf: &str, ps: &str) -> crate::number::param::ParamSet {
     let o = vec![
         ("p_phi".to_string(), pf.to_string()),
         ("p_psi".to_string(), ps.to_string()),
     ];
-    match Scene::build(SceneId::SmoothDisc, &o)
+    Scene::build(SceneId::SmoothDisc, &o)
         .expect("valid parameters")
-        .0
-    {
-        Scene::Smooth(d) => d,
-        _ => unreachable!(),
-    }
+        .1
 }
 
 /// Rotational kinetic energy from the body angular velocity (Euler angles

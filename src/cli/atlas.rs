@@ -429,7 +429,6 @@ fn print_table(r: &PaveReport) {
         if let Some(why) = g.empty {
             let why = match why {
                 "omega0 = omega" => "Ω₀ = Ω",
-                "omega0 inside omega" => "Ω₀ ⊂ Ω, p_φ = p_ψ = 0",
                 other => other,
             };
             outln!(
@@ -818,6 +817,8 @@ pub fn run_scenes(args: &ScenesArgs) -> CliResult {
         name: String,
         title: String,
         params: &'static [detach::number::param::ParamSpec],
+        /// `[conditions]` the parameters must satisfy, as written.
+        conditions: Vec<String>,
         domain: DomainText,
         /// Empty for a scene file (one reading).
         variants: Vec<Variant>,
@@ -833,6 +834,12 @@ pub fn run_scenes(args: &ScenesArgs) -> CliResult {
             name: scene.name().into(),
             title: scene.title().into(),
             params,
+            conditions: scene
+                .reading(Variant::Derived)
+                .conditions
+                .iter()
+                .map(|(_, c)| c.clone())
+                .collect(),
             domain: DomainText {
                 theta: b[0],
                 theta_dot: b[1],
@@ -878,7 +885,10 @@ pub fn run_scenes(args: &ScenesArgs) -> CliResult {
                 u => format!("{} {u}", p.default),
             };
             let meaning = if p.meaning.is_empty() { "-" } else { p.meaning };
-            outln!("  {:<6} = {:<6} {:?}: {meaning}", p.name, value, p.sign);
+            outln!("  {:<6} = {:<6} {meaning}", p.name, value);
+        }
+        if !s.conditions.is_empty() {
+            outln!("  conditions: {}", s.conditions.join(", "));
         }
     }
     Ok(())

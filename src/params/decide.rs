@@ -89,18 +89,16 @@ struct Factor {
 
 impl<'a> Regions<'a> {
     pub fn new(scene: &'a Scene, variant: Variant) -> Regions<'a> {
-        let factors = match scene {
-            Scene::File(f) => f
-                .factors()
-                .into_iter()
-                .map(|f| Factor {
-                    constraint: f.output,
-                    other: f.other,
-                    program: f.factor,
-                })
-                .collect(),
-            _ => Vec::new(),
-        };
+        let factors = scene
+            .reading(variant)
+            .factors()
+            .into_iter()
+            .map(|f| Factor {
+                constraint: f.output,
+                other: f.other,
+                program: f.factor,
+            })
+            .collect();
         Regions {
             scene,
             variant,
@@ -113,14 +111,14 @@ impl<'a> Regions<'a> {
     /// Ω's and Ω₀'s labels on a box, as the paver gives them.
     pub fn labels(&self, b: &PhaseBox) -> [Label; 2] {
         let (t, w) = (b.theta_interval(), b.theta_dot_interval());
-        let e = match self.scene {
-            Scene::File(file) if !file.is_quadratic() => {
+        let e = match self.scene.reading(self.variant) {
+            file if !file.is_quadratic() => {
                 let s = FileRegions { file };
                 s.enclose(&s.slab(t), w)
             }
-            scene => {
+            _ => {
                 let s = SceneConstraints {
-                    scene,
+                    scene: self.scene,
                     variant: self.variant,
                 };
                 s.enclose(&s.slab(t), w)

@@ -2,10 +2,8 @@
 //! parameters that vary enclosed as intervals, the others as given.
 
 use super::model::ParamAxis;
-use crate::number::param::{Param, ParamSet, ParamSpec};
-use crate::scene::{
-    FileScene, IceDisc, Model, Scene, SceneId, SceneText, SmoothDisc, Variant, ViscousDisc,
-};
+use crate::number::param::{Param, ParamSet};
+use crate::scene::{FileScene, Scene, SceneId, SceneText, Variant};
 use inari::Interval;
 
 /// Where the scene comes from: one of the paper's, or a scene file's text.
@@ -63,7 +61,10 @@ impl Family {
                 axes[0].name
             ));
         }
-        let (base, params) = build(&source, &overrides, &[])?;
+        let (base, params) = match &source {
+            Source::Paper(id) => Scene::build(*id, &overrides).map_err(|e| e.to_string())?,
+            Source::File(_) => build(&source, variant, &overrides, &[])?,
+        };
         let mut root = Vec::new();
         for a in &axes {
             let spec = params
@@ -122,7 +123,7 @@ impl Family {
                 Ok((a.name.clone(), x))
             })
             .collect::<Result<_, &str>>()?;
-        Ok(build(&self.source, &self.overrides, &boxes)?.0)
+        Ok(build(&self.source, self.variant, &self.overrides, &boxes)?.0)
     }
 
     /// The scene at one point of the parameter box (steering only).
@@ -138,36 +139,22 @@ impl Family {
     }
 }
 
-/// The scene with `overrides` and then `boxes` applied.
+/// The scene with `overrides` and then `boxes` applied: a paper scene as
+/// the file of the reading `variant` (the one the search evaluates).
 fn build(
     source: &Source,
+    variant: Variant,
     overrides: &[(String, String)],
     boxes: &[(String, Interval)],
 ) -> Result<(Scene, ParamSet), String> {
-    match source {
+    let text = match source {
         Source::Paper(id) => {
-            let specs: &'static [ParamSpec] = id.params();
-            let mut p = ParamSet::build(id.name(), specs, overrides).map_err(|e| e.to_string())?;
-            for (name, x) in boxes {
-                let i = specs.iter().position(|s| s.name == name).expect("checked");
-                p.values[i].value = *x;
-            }
-            let scene = match id {
-                SceneId::ViscousDisc => Scene::Viscous(ViscousDisc::from_params(&p).map_err(e)?),
-                SceneId::SmoothDisc => Scene::Smooth(SmoothDisc::from_params(&p).map_err(e)?),
-                SceneId::IceDisc => Scene::Ice(IceDisc::from_params(&p).map_err(e)?),
-            };
-            Ok((scene, p))
+            SceneText::embedded(&id.file_name(variant)).expect("every paper scene is embedded")
         }
-        Source::File(t) => {
-            let f = FileScene::parse_enclosed(&t.text, overrides, boxes)
-                .map_err(|m| format!("{}: {m}", t.file))?;
-            let p = f.params.clone();
-            Ok((Scene::File(Box::new(f)), p))
-        }
-    }
-}
-
-fn e(x: crate::number::param::ParamError) -> String {
-    x.to_string()
+        Source::File(t) => t.clone(),
+    };
+    let f = FileScene::parse_enclosed(&text.text, overrides, boxes)
+        .map_err(|m| format!("{}: {m}", text.file))?;
+    let p = f.params.clone();
+    Ok((Scene::File(Box::new(f)), p))
 }

@@ -217,8 +217,6 @@ impl Sums {
 pub enum Emptiness {
     /// Ω₀ is Ω by construction (the same function: an ideal constraint).
     Omega0IsOmega,
-    /// Ω₀ ⊂ Ω is proved for these parameters.
-    Omega0InsideOmega,
     /// A paving of the whole domain proves it: every leaf has a literal of
     /// the cell proved false, or a factor rule ([`crate::params`]).
     Proved,
@@ -228,7 +226,6 @@ impl Emptiness {
     pub fn describe(self) -> &'static str {
         match self {
             Emptiness::Omega0IsOmega => "omega0 = omega",
-            Emptiness::Omega0InsideOmega => "omega0 inside omega",
             Emptiness::Proved => "proved empty",
         }
     }
@@ -236,7 +233,6 @@ impl Emptiness {
     pub fn symbol(self) -> &'static str {
         match self {
             Emptiness::Omega0IsOmega => "Ω₀ = Ω",
-            Emptiness::Omega0InsideOmega => "Ω₀ ⊂ Ω",
             Emptiness::Proved => "proved empty",
         }
     }
@@ -244,20 +240,16 @@ impl Emptiness {
 
 /// Which of Ω, Ω₀ and the four cells ([`Cell`] order) are empty whatever
 /// the leaves: those asking opposite signs of one function (Ω₀ ≡ Ω),
-/// Ω̄∩Ω₀ when the scene proves Ω₀ ⊂ Ω, and any proved empty on the scene's
-/// whole domain ([`crate::params::proved_empty`]).
+/// and any proved empty on the scene's whole domain ([`crate::params::proved_empty`]).
 pub fn empty_cells(
     paving: &Paving,
     scene: &crate::scene::Scene,
     variant: crate::scene::Variant,
 ) -> [Option<Emptiness>; 6] {
-    let inside = scene.omega0_inside_omega(variant);
     let cells = standard_cells();
     std::array::from_fn(|i| {
         if cells[i].contradictory(&paving.same_as) {
             Some(Emptiness::Omega0IsOmega)
-        } else if inside && i == Cell::Omega0NotOmega.index() {
-            Some(Emptiness::Omega0InsideOmega)
         } else if crate::params::proved_empty(scene, variant, Cell::ALL[i]) {
             Some(Emptiness::Proved)
         } else {
@@ -268,8 +260,7 @@ pub fn empty_cells(
 
 /// Area bounds of Ω, Ω₀ and the four cells ([`Cell`] order) of a scene's
 /// paving, with what the scene proves applied: a cell empty by construction
-/// or proved empty has both bounds 0, and Ω̄∩Ω₀ has outer bound 0 when
-/// Ω₀ ⊂ Ω is proved.
+/// or proved empty has both bounds 0.
 pub fn standard_cell_bounds(
     paving: &Paving,
     scene: &crate::scene::Scene,
@@ -279,16 +270,6 @@ pub fn standard_cell_bounds(
     let empty = empty_cells(paving, scene, variant);
     let bounds = paving.area_bounds_all(&standard_cells(), uncovered_sup);
     std::array::from_fn(|i| match empty[i] {
-        // Empty by what the scene proves, not by the cell's literals: the
-        // leaves' sums bound it from below only.
-        Some(Emptiness::Omega0InsideOmega) => (
-            AreaBounds {
-                outer_area: bounds[i].inner_area,
-                outer_boxes: bounds[i].inner_boxes,
-                ..bounds[i]
-            },
-            empty[i],
-        ),
         Some(Emptiness::Proved) => (Sums::ZERO.bounds(true, uncovered_sup), empty[i]),
         e => (bounds[i], e),
     })

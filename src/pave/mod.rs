@@ -710,8 +710,8 @@ pub fn pave_scene_in<F: LevelFlow>(
     opts: PaveOptions,
     progress: impl FnMut(u32, usize, usize) -> F,
 ) -> Result<Paving, PaveError> {
-    match scene {
-        Scene::File(file) if !file.is_quadratic() => {
+    match scene.reading(variant) {
+        file if !file.is_quadratic() => {
             pave(&FileRegions { file }, root_box(domain)?, opts, progress)
         }
         _ => pave(
@@ -744,8 +744,8 @@ pub fn pave_scene_method<F: LevelFlow>(
     mo: &MethodOptions,
     progress: impl FnMut(u32, usize, usize) -> F,
 ) -> Result<Paving, PaveError> {
-    match scene {
-        Scene::File(file) if !file.is_quadratic() => {
+    match scene.reading(variant) {
+        file if !file.is_quadratic() => {
             pave_with(&FileRegions { file }, root_box(domain)?, opts, mo, progress)
         }
         _ => pave_with(

@@ -142,14 +142,17 @@ fn case(
         .into_iter()
         .map(|(n, v)| (n.to_string(), v))
         .collect();
-    let (scene, _) = Scene::build(id, &params)?;
+    let (scene, _) = Scene::build(id, &params).map_err(|e| ParamError::Invalid {
+        name: id.name().into(),
+        reason: e.message,
+    })?;
     let full = scene.domain();
     let (domain, window) = match window {
         Some(w) => (
             full.window(Some(w[0]), Some(w[1]))?,
             w.map(|s| s.map(str::to_string)),
         ),
-        None => (full, id.domain_text().map(|s| s.map(str::to_string))),
+        None => (full, scene.domain_text()),
     };
     Ok(StressCase {
         key,

@@ -7,8 +7,11 @@
 use super::cluster::{clusters, Cluster};
 use super::isolate::{isolate, point, Budget, RootEnclosure, RootStatus, Stats, UndecidedReason};
 use super::{RealFn, RootsError};
+use crate::number::param::ParamSet;
 use crate::number::scalar::Scalar;
-use crate::scene::{Angle, IceDisc, Model, SmoothDisc, Variant};
+use crate::scene::expr::Program;
+use crate::scene::file::Function;
+use crate::scene::Scene;
 use inari::{const_interval, Interval};
 use serde::Serialize;
 use std::fmt;
@@ -129,18 +132,70 @@ fn check_alpha(alpha: Interval) -> Result<(), RootsError> {
     Ok(())
 }
 
-/// (2.9) as `f(θ) = κ sin³θ − cos θ (α − cos θ)(1 − α cos θ)`.
-pub struct Eq29 {
-    pub kappa: Interval,
-    pub alpha: Interval,
+/// (2.9) as `f(θ) = κ sin³θ − cos θ (α − cos θ)(1 − α cos θ)`, in θ with
+/// the parameters κ, α: the one text the isolator evaluates and a proof
+/// states.
+pub const TEXT_2_9: &str =
+    "kappa*sin(theta)^2*sin(theta) - cos(theta)*(alpha - cos(theta))*(1 - alpha*cos(theta))";
+
+/// (2.10) as `g(μ) = μ(1 − μ)(1 + μ) − 2κ`, in μ with the parameter κ.
+pub const TEXT_2_10: &str = "mu*(1 - mu)*(1 + mu) - 2*kappa";
+
+/// An equation's text compiled once over its parameters' enclosures (the
+/// scene-file compiler: the same operations, in the order written).
+#[derive(Clone, Debug)]
+pub struct TextEquation {
+    program: Program,
 }
 
-impl RealFn for Eq29 {
-    fn eval<T: Scalar>(&self, theta: T) -> T {
-        let (s, c) = theta.sin_cos();
-        let (k, a) = (T::lift(self.kappa), T::lift(self.alpha));
-        k * s.sqr() * s - c * (a - c) * (T::int(1) - a * c)
+impl TextEquation {
+    /// `text` in the one variable `variable`, with `params` enclosed.
+    fn compile(variable: &str, text: &str, params: &[(&str, Interval)]) -> TextEquation {
+        let params: Vec<(String, Interval)> =
+            params.iter().map(|(n, x)| (n.to_string(), *x)).collect();
+        let text = with_variable_as_theta(text, variable);
+        let program = Program::compile(&params, &[], &[("f".to_string(), text)])
+            .expect("the equation texts compile");
+        TextEquation { program }
     }
+}
+
+impl RealFn for TextEquation {
+    fn eval<T: Scalar>(&self, x: T) -> T {
+        let mut out = [x];
+        self.program.eval(x, T::int(0), &mut out);
+        out[0]
+    }
+}
+
+/// `text` with the name `variable` written `theta`, the compiler's variable.
+fn with_variable_as_theta(text: &str, variable: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        out.push_str(if word == variable { "theta" } else { word });
+        word.clear();
+    };
+    for ch in text.chars() {
+        if ch.is_ascii_alphanumeric() || ch == '_' {
+            word.push(ch);
+        } else {
+            flush(&mut word, &mut out);
+            out.push(ch);
+        }
+    }
+    flush(&mut word, &mut out);
+    out
+}
+
+/// (2.9) at κ, α ([`TEXT_2_9`]).
+pub fn eq_2_9(kappa: Interval, alpha: Interval) -> TextEquation {
+    TextEquation::compile("theta", TEXT_2_9, &[("kappa", kappa), ("alpha", alpha)])
+}
+
+/// (2.10) at κ ([`TEXT_2_10`]).
+pub fn eq_2_10(kappa: Interval) -> TextEquation {
+    TextEquation::compile("mu", TEXT_2_10, &[("kappa", kappa)])
 }
 
 /// (2.9) multiplied by `(1 + s²)³`, `s = tan(θ/2)`:
@@ -214,7 +269,7 @@ pub fn solve_2_9(
             proved,
         });
     }
-    let f = Eq29 { kappa, alpha };
+    let f = eq_2_9(kappa, alpha);
     let iso = isolate(&f, ends[0], ends[1], budget);
     Ok(finish(
         &f,
@@ -224,18 +279,6 @@ pub fn solve_2_9(
         edges,
         Vec::new(),
     ))
-}
-
-/// (2.10) as `g(μ) = μ(1 − μ)(1 + μ) − 2κ`.
-pub struct Eq210 {
-    pub kappa: Interval,
-}
-
-impl RealFn for Eq210 {
-    fn eval<T: Scalar>(&self, mu: T) -> T {
-        let one = T::int(1);
-        mu * (one - mu) * (one + mu) - T::int(2) * T::lift(self.kappa)
-    }
 }
 
 /// Solves (2.10) for κ > 0 (an enclosure) on μ ∈ (0, ∞).
@@ -251,7 +294,7 @@ pub fn solve_2_10(kappa: Interval, budget: &Budget) -> Result<EquationRoots, Roo
         witness: enc(p_tail),
         proved: p_tail.sup() <= 0.0 && kappa.inf() > 0.0,
     };
-    let f = Eq210 { kappa };
+    let f = eq_2_10(kappa);
     let iso = isolate(&f, 0.0, 1.0, budget);
     Ok(finish(
         &f,
@@ -291,11 +334,13 @@ fn finish<F: RealFn>(
     }
 }
 
-/// κ and α of (2.9) for a disc, as enclosures: `κ = g A²/(a p_M²)`,
-/// `α = p_m/p_M`, p_M the momentum of larger absolute value. When the two
-/// may be equal in absolute value, α encloses both ratios (clipped to [−1, 1]).
-pub fn kappa_alpha(disc: &SmoothDisc) -> Result<(Interval, Interval), RootsError> {
-    let (pf, ps) = (disc.p_phi, disc.p_psi);
+/// κ and α of (2.9) for a disc's parameters (`g`, `A`, `a`, `p_phi`,
+/// `p_psi`), as enclosures: `κ = g A²/(a p_M²)`, `α = p_m/p_M`, p_M the
+/// momentum of larger absolute value. When the two may be equal in absolute
+/// value, α encloses both ratios (clipped to [−1, 1]).
+pub fn kappa_alpha(params: &ParamSet) -> Result<(Interval, Interval), RootsError> {
+    let (pf, ps) = (params.get("p_phi"), params.get("p_psi"));
+    let (g, big_a, a) = (params.get("g"), params.get("A"), params.get("a"));
     let pm2 = pf.sqr().max(ps.sqr());
     let zero = const_interval!(0.0, 0.0);
     if pf == zero && ps == zero {
@@ -304,7 +349,7 @@ pub fn kappa_alpha(disc: &SmoothDisc) -> Result<(Interval, Interval), RootsError
     if pm2.inf() <= 0.0 {
         return Err(RootsError::OutOfRange("overflows", "p_M² underflows"));
     }
-    let kappa = disc.g * disc.big_a.sqr() / (disc.a * pm2);
+    let kappa = g * big_a.sqr() / (a * pm2);
     if !kappa.sup().is_finite() {
         return Err(RootsError::OutOfRange("overflows", "κ above 1.8e308"));
     }
@@ -332,34 +377,34 @@ pub fn kappa_alpha(disc: &SmoothDisc) -> Result<(Interval, Interval), RootsError
     Ok((kappa, alpha.intersection(unit)))
 }
 
-/// `sin³θ · Π̃'(θ)` (2.12), Π̃' from [`SmoothDisc::reduced_potential_slope`].
-/// Same zeros and multiplicities as Π̃' on (0, π).
-pub struct PotentialSlope<'a>(pub &'a SmoothDisc);
+/// A scene's named θ-function (`[functions]`) as the isolator's function.
+pub struct SceneFunction<'a>(pub &'a Function);
 
-impl RealFn for PotentialSlope<'_> {
+impl RealFn for SceneFunction<'_> {
     fn eval<T: Scalar>(&self, theta: T) -> T {
-        let an = Angle::new(theta);
-        an.sin.sqr() * an.sin * self.0.reduced_potential_slope(&an)
+        self.0.eval(theta)
     }
 }
 
-/// `sin³θ · θ̈(θ)` of (3.3), θ̈ from [`IceDisc::acceleration`] (independent of θ̇).
-pub struct IceAcceleration<'a>(pub &'a IceDisc);
-
-impl RealFn for IceAcceleration<'_> {
-    fn eval<T: Scalar>(&self, theta: T) -> T {
-        let an = Angle::new(theta);
-        an.sin.sqr() * an.sin * self.0.acceleration(Variant::Derived, &an, T::int(0))
-    }
+/// The scene function an equation is solved on: (2.12) is `eq_2_12`, (3.3)
+/// `eq_3_3` of the scene's `[functions]` (each with its singular factors
+/// cleared, so defined wherever the scene's formulas are).
+pub fn scene_function(scene: &Scene, equation: EquationId) -> Option<&Function> {
+    let name = match equation {
+        EquationId::E2_12 => "eq_2_12",
+        EquationId::E3_3 => "eq_3_3",
+        _ => return None,
+    };
+    scene.function(crate::scene::Variant::Derived, name)
 }
 
 /// The ends θ → 0+ and θ → π− of a scene equation, handled by enclosing the
 /// scaled function over `(0, δ]` (resp. `[π − δ, π)`) in terms of
 /// `s = sin θ ∈ (0, sin δ]` and `c = cos θ` with the singular factors cleared.
-/// Tries δ = 2⁻², 2⁻⁴, …; `enclose(s, c, near_pi)` must enclose the scaled
-/// function on the whole end.
+/// Tries δ = 2⁻², 2⁻⁴, …; `enclose(θ, s, c, near_pi)` must enclose the
+/// scaled function on the whole end (θ the end's range).
 fn scene_edges(
-    enclose: impl Fn(Interval, Interval, bool) -> Interval,
+    enclose: impl Fn(Interval, Interval, Interval, bool) -> Interval,
     what: &str,
 ) -> ([f64; 2], Vec<EdgeProof>, Vec<RootEnclosure>) {
     let deltas = [
@@ -384,7 +429,12 @@ fn scene_edges(
             } else {
                 Interval::try_from((d.cos().inf(), 1.0)).expect("valid")
             };
-            let y = enclose(s, c, near_pi);
+            let theta = if near_pi {
+                (Interval::PI - d).convex_hull(Interval::PI)
+            } else {
+                Interval::try_from((0.0, delta)).expect("valid")
+            };
+            let y = enclose(theta, s, c, near_pi);
             last = Some((delta, y));
             if !y.is_empty() && !y.contains(0.0) {
                 found = Some((delta, y));
@@ -421,32 +471,41 @@ fn scene_edges(
     (bounds, edges, fragments)
 }
 
-/// Stationary points of Π̃ (2.12) on θ ∈ (0, π).
-pub fn solve_2_12(disc: &SmoothDisc, budget: &Budget) -> EquationRoots {
-    let (m, a, g, big_a, pf, ps) = (disc.m, disc.a, disc.g, disc.big_a, disc.p_phi, disc.p_psi);
-    // sin³θ Π̃' = m g a c s³ + (p_ψ − p_φ c)(p_φ − p_ψ c)/A
-    let enclose = |s: Interval, c: Interval, _| {
-        m * g * a * c * s.sqr() * s + (ps - pf * c) * (pf - ps * c) / big_a
-    };
+/// Stationary points of Π̃ (2.12) on θ ∈ (0, π): zeros of the scene's
+/// `eq_2_12` (`sin³θ·Π̃'(θ)`, defined on all of [0, π], so its ends are
+/// enclosed by evaluating it there).
+pub fn solve_2_12(f: &Function, budget: &Budget) -> EquationRoots {
+    let enclose = |theta: Interval, _s, _c, _near_pi| f.eval(theta);
     solve_scene_on_theta(
         EquationId::E2_12,
         enclose,
         "sin³θ·Π̃'(θ)",
-        &PotentialSlope(disc),
+        &SceneFunction(f),
         budget,
     )
 }
 
-/// Equilibria of (3.3) (zeros of θ̈, which does not depend on θ̇) on θ ∈ (0, π).
-pub fn solve_3_3(ice: &IceDisc, budget: &Budget) -> EquationRoots {
-    let d = &ice.disc;
-    let (m, a, g, big_a, pf, ps, c0) = (d.m, d.a, d.g, d.big_a, d.p_phi, d.p_psi, ice.c0);
+/// Equilibria of (3.3) (zeros of θ̈, which does not depend on θ̇) on
+/// θ ∈ (0, π): zeros of the scene's `eq_3_3` (`sin³θ·θ̈`). Its ends need
+/// the limit of `s² ln s` at 0, which an enclosure of the text cannot give,
+/// so they are bounded from the disc's parameters by the analysis below.
+pub fn solve_3_3(f: &Function, params: &ParamSet, budget: &Budget) -> EquationRoots {
+    let p = |n: &str| params.get(n);
+    let (m, a, g, big_a, pf, ps, c0) = (
+        p("m"),
+        p("a"),
+        p("g"),
+        p("A"),
+        p("p_phi"),
+        p("p_psi"),
+        p("c0"),
+    );
     let one = const_interval!(1.0, 1.0);
     // (A + m a²) sin³θ θ̈ = −m g a c s³ + (m a/A) (v_x s²)(p_ψ − p_φ c) − (p_ψ − p_φ c)(p_φ − p_ψ c)/A,
     // v_x s² = c₀ s² − (a/A)(p_ψ s² ln tg(θ/2) − p_φ s² ln s), with
     // ln tg(θ/2) = ln s − ln(1 + c) near 0 and = ln(1 − c) − ln s near π,
     // and s² ln s ∈ [S² ln S, 0] for s ∈ (0, S], S ≤ e^{-1/2}.
-    let enclose = |s: Interval, c: Interval, near_pi: bool| {
+    let enclose = |_theta, s: Interval, c: Interval, near_pi: bool| {
         let big_s = point(s.sup());
         let l = Interval::try_from(((big_s.sqr() * big_s.ln()).inf(), 0.0)).expect("valid");
         let s2 = s.sqr();
@@ -462,7 +521,7 @@ pub fn solve_3_3(ice: &IceDisc, budget: &Budget) -> EquationRoots {
         EquationId::E3_3,
         enclose,
         "(A + m a²) sin³θ·θ̈(θ)",
-        &IceAcceleration(ice),
+        &SceneFunction(f),
         budget,
     )
 }
@@ -471,7 +530,7 @@ pub fn solve_3_3(ice: &IceDisc, budget: &Budget) -> EquationRoots {
 /// function with its singular factors cleared), the interior by the isolator.
 fn solve_scene_on_theta<F: RealFn>(
     equation: EquationId,
-    enclose: impl Fn(Interval, Interval, bool) -> Interval,
+    enclose: impl Fn(Interval, Interval, Interval, bool) -> Interval,
     what: &str,
     f: &F,
     budget: &Budget,
@@ -543,23 +602,22 @@ mod tests {
     #[test]
     fn scene_equations_on_defaults_are_complete() {
         let b = Budget::default();
-        let Scene::Smooth(disc) = Scene::default_of(SceneId::SmoothDisc) else {
-            unreachable!()
-        };
-        let r = solve_2_12(&disc, &b);
+        let disc = Scene::default_of(SceneId::SmoothDisc);
+        let r = solve_2_12(scene_function(&disc, EquationId::E2_12).unwrap(), &b);
         assert!(r.complete, "{r:?}");
         // (2.12): one or three stationary points (paper, refs [7, 8]).
         assert!(r.roots.len() == 1 || r.roots.len() == 3, "{r:?}");
-        let Scene::Ice(ice) = Scene::default_of(SceneId::IceDisc) else {
-            unreachable!()
-        };
-        let r = solve_3_3(&ice, &b);
+        let (ice, params) = Scene::build(SceneId::IceDisc, &[]).unwrap();
+        let r = solve_3_3(scene_function(&ice, EquationId::E3_3).unwrap(), &params, &b);
         assert!(r.complete, "{r:?}");
         for root in &r.roots {
             // θ̈ changes sign across each unique enclosure (checked with the
             // unscaled scene formula, 1e-9 outside the endpoints: a few-ulp
             // enclosure is narrower than the rounding of f at its endpoints).
-            let f = |x: f64| ice.acceleration(Variant::Derived, &Angle::new(point(x)), point(0.0));
+            let f = |x: f64| {
+                let a = crate::scene::Angle::new(point(x));
+                ice.acceleration(crate::scene::Variant::Derived, &a, point(0.0))
+            };
             let (l, h) = (f(root.lo - 1e-9), f(root.hi + 1e-9));
             assert!(l.sup() < 0.0 && h.inf() > 0.0 || l.inf() > 0.0 && h.sup() < 0.0);
         }

@@ -3,7 +3,7 @@
 //! once on construction, solved once; a proof file is built from its roots
 //! ([`crate::certificate::catalog::roots_proof_of`]).
 
-use super::equations::kappa_alpha;
+use super::equations::{kappa_alpha, scene_function};
 use super::RootsError;
 use super::{solve_2_10, solve_2_12, solve_2_9, solve_3_3, Budget, EquationId, EquationRoots};
 use crate::number::param::{enclose_decimal, ParamError, ParamSet};
@@ -251,12 +251,10 @@ impl RootsRequest {
                     return Err(RequestError::ValuesAndScene);
                 }
                 let (scene, params) = build_scene(inputs, SceneId::SmoothDisc)?;
-                let disc = match &scene {
-                    Scene::Smooth(d) => d,
-                    Scene::Ice(i) => &i.disc,
-                    _ => return Err(wrong_scene(equation, &scene)),
-                };
-                let (k, a) = kappa_alpha(disc)?;
+                if !matches!(scene.id(), Some(SceneId::SmoothDisc | SceneId::IceDisc)) {
+                    return Err(wrong_scene(equation, &scene));
+                }
+                let (k, a) = kappa_alpha(&params)?;
                 derived.push(Value::of("kappa", "g A^2/(a p_M^2)", k));
                 derived.push(Value::of("alpha", "p_m/p_M", a));
                 parameters = scene_values(&params);
@@ -280,10 +278,8 @@ impl RootsRequest {
                     _ => SceneId::IceDisc,
                 };
                 let (scene, params) = build_scene(inputs, default)?;
-                match (equation, &scene) {
-                    (EquationId::E2_12, Scene::Smooth(_) | Scene::Ice(_))
-                    | (EquationId::E3_3, Scene::Ice(_)) => {}
-                    _ => return Err(wrong_scene(equation, &scene)),
+                if scene_function(&scene, equation).is_none() {
+                    return Err(wrong_scene(equation, &scene));
                 }
                 parameters = scene_values(&params);
                 Problem::Scene { scene, params }
@@ -310,21 +306,17 @@ impl RootsRequest {
         match (&self.problem, self.equation) {
             (Problem::KappaAlpha { kappa, alpha }, _) => solve_2_9(*kappa, *alpha, budget),
             (Problem::Kappa { kappa }, _) => solve_2_10(*kappa, budget),
-            (Problem::Scene { scene, .. }, eq) => match (eq, scene) {
-                (EquationId::E2_9, _) => {
-                    let disc = match scene {
-                        Scene::Ice(i) => &i.disc,
-                        Scene::Smooth(d) => d,
-                        _ => unreachable!("checked on construction"),
-                    };
-                    let (k, a) = kappa_alpha(disc)?;
-                    solve_2_9(k, a, budget)
-                }
-                (EquationId::E2_12, Scene::Smooth(d)) => Ok(solve_2_12(d, budget)),
-                (EquationId::E2_12, Scene::Ice(i)) => Ok(solve_2_12(&i.disc, budget)),
-                (EquationId::E3_3, Scene::Ice(i)) => Ok(solve_3_3(i, budget)),
-                _ => unreachable!("checked on construction"),
-            },
+            (Problem::Scene { params, .. }, EquationId::E2_9) => {
+                let (k, a) = kappa_alpha(params)?;
+                solve_2_9(k, a, budget)
+            }
+            (Problem::Scene { scene, params }, eq) => {
+                let f = scene_function(scene, eq).expect("checked on construction");
+                Ok(match eq {
+                    EquationId::E3_3 => solve_3_3(f, params, budget),
+                    _ => solve_2_12(f, budget),
+                })
+            }
         }
     }
 }
@@ -334,7 +326,7 @@ fn build_scene(inputs: &RootsInputs, default: SceneId) -> Result<(Scene, ParamSe
         Some(s) => s.parse::<SceneId>().map_err(RequestError::Scene)?,
         None => default,
     };
-    Ok(Scene::build(id, inputs.params)?)
+    Scene::build(id, inputs.params).map_err(|e| RequestError::Scene(e.to_string()))
 }
 
 fn scene_values(set: &ParamSet) -> Vec<Value> {

@@ -43,9 +43,9 @@ pub const EMBEDDED: [(&str, &str); 7] = [
     SHIPPED[0],
 ];
 
-/// The embedded files `--scene NAME` reads as files: those that are not the
-/// file form of a paper scene (`--scene viscous-disc` runs the built-in
-/// scene; [`super::Scene::file_of`] gives its file).
+/// The embedded files `--scene NAME` reads as one file: those that are not a
+/// reading of a paper scene (`--scene viscous-disc` reads both of its files,
+/// [`super::Scene::build`]).
 pub const SHIPPED: [(&str, &str); 1] = [(
     "painleve-rod",
     include_str!("../../scenes/painleve-rod.toml"),
@@ -781,20 +781,49 @@ fn parameters(
             }
         };
         enclose_decimal(name, &text).map_err(|e| format!("`{key}`: {e}"))?;
-        let leak = |s: &str| -> &'static str { Box::leak(s.to_string().into_boxed_str()) };
         specs.push(ParamSpec {
-            // A file's declarations live as long as the process: a few
-            // bytes per file loaded, so that they share `ParamSet` with the
-            // built-in scenes.
-            name: leak(name),
-            default: leak(&text),
+            name: interned(name),
+            default: interned(&text),
             sign: Sign::Any,
-            meaning: leak(raw.description.as_deref().unwrap_or_default()),
-            unit: leak(raw.unit.as_deref().unwrap_or_default()),
+            meaning: interned(raw.description.as_deref().unwrap_or_default()),
+            unit: interned(raw.unit.as_deref().unwrap_or_default()),
         });
     }
-    ParamSet::build(scene, Box::leak(specs.into_boxed_slice()), overrides)
-        .map_err(|e| e.to_string())
+    ParamSet::build(scene, interned_specs(specs), overrides).map_err(|e| e.to_string())
+}
+
+/// A file's declarations live as long as the process, so that they share
+/// `ParamSet` (`&'static` specs) with every scene. Each distinct text is
+/// stored once: a scene compiled again (a parameter search compiles one per
+/// box) adds nothing.
+fn interned(s: &str) -> &'static str {
+    static TEXTS: std::sync::Mutex<std::collections::BTreeSet<&'static str>> =
+        std::sync::Mutex::new(std::collections::BTreeSet::new());
+    let mut texts = TEXTS.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(t) = texts.get(s) {
+        return t;
+    }
+    let t: &'static str = Box::leak(s.to_string().into_boxed_str());
+    texts.insert(t);
+    t
+}
+
+/// [`interned`] for a whole declaration list (its texts already interned).
+fn interned_specs(specs: Vec<ParamSpec>) -> &'static [ParamSpec] {
+    type Key = Vec<[usize; 4]>;
+    static LISTS: std::sync::Mutex<Vec<(Key, &'static [ParamSpec])>> =
+        std::sync::Mutex::new(Vec::new());
+    let key: Key = specs
+        .iter()
+        .map(|p| [p.name, p.default, p.meaning, p.unit].map(|t| t.as_ptr() as usize))
+        .collect();
+    let mut lists = LISTS.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, l)) = lists.iter().find(|(k, _)| *k == key) {
+        return l;
+    }
+    let l: &'static [ParamSpec] = Box::leak(specs.into_boxed_slice());
+    lists.push((key, l));
+    l
 }
 
 /// The definitions, ordered so that each uses only earlier ones.

@@ -1,5 +1,6 @@
-//! The three systems of the paper as reduced phase-plane models, and
-//! systems read from scene files ([`mod@file`], compiled by [`expr`]).
+//! Phase-plane scenes, every one read from a scene file ([`mod@file`],
+//! compiled by [`expr`]): the paper's three systems from the embedded
+//! `scenes/*.toml` (two readings each), and users' own files.
 //!
 //! Every region here is `{g(θ, θ̇) < 0}` with `g` quadratic in θ̇ for fixed θ,
 //! so a scene gives each constraint as θ-dependent coefficients
@@ -10,23 +11,17 @@
 pub mod cell;
 pub mod expr;
 pub mod file;
-pub mod ice;
 pub mod slab;
-pub mod smooth;
-pub mod viscous;
 
 use crate::number::param::{enclose_window_end, ParamError, ParamSet, ParamSpec};
 use crate::number::scalar::Scalar;
-use inari::{const_interval, DecInterval, Interval};
+use inari::{DecInterval, Interval};
 use serde::Serialize;
 use std::fmt;
 use std::str::FromStr;
 
 pub use cell::{Cell, UnknownCell};
 pub use file::{FileScene, SceneFileError, SceneText};
-pub use ice::IceDisc;
-pub use smooth::SmoothDisc;
-pub use viscous::ViscousDisc;
 
 /// Which reading of the paper a formula follows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
@@ -255,59 +250,11 @@ impl Domain {
 
 /// π as an enclosure.
 pub const PI: Interval = Interval::PI;
-const ZERO: Interval = const_interval!(0.0, 0.0);
 
-fn int(n: f64) -> Interval {
-    Interval::try_from((n, n)).expect("exact small number")
-}
-
-/// The constraints of a scene written out in the proof-file expression
-/// language (`proofs/FORMAT.md`): `t` is θ, `w` is θ̇, names are the scene's
-/// parameters and the definitions, evaluated in order. Each text mirrors the
-/// operation order of the scene's [`Scalar`] code, so an interval evaluation
-/// of the text gives the same enclosure the paver computed.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Formulas {
-    pub definitions: Vec<(&'static str, &'static str)>,
-    /// Ω as `{expr < 0}`.
-    pub omega: &'static str,
-    /// Ω₀ as `{expr < 0}`.
-    pub omega0: &'static str,
-}
-
-/// What a system of the paper provides; formulas generic over [`Scalar`].
-pub trait Model: Sized {
-    /// `viscous-disc`, `smooth-disc`, `ice-disc`.
-    const NAME: &'static str;
-    /// Which part of the paper it is.
-    const TITLE: &'static str;
-    const PARAMS: &'static [ParamSpec];
-    fn from_params(p: &ParamSet) -> Result<Self, ParamError>;
-    fn domain(&self) -> Domain;
-    /// Ω and Ω₀ as `{g < 0}` quadratics in θ̇.
-    fn constraints<T: Scalar>(&self, v: Variant, a: &Angle<T>) -> Constraints<T>;
-    /// The same constraints as text, for proof files.
-    fn formulas(v: Variant) -> Formulas;
-    /// The phase-plane domain as text (`[[θ lo, θ hi], [θ̇ lo, θ̇ hi]]`).
-    const DOMAIN_TEXT: [[&'static str; 2]; 2];
-    /// True when Ω₀ is by construction the same function as Ω in this
-    /// variant (§2: an ideal constraint), so Ω̄∩Ω₀ and Ω∩Ω̄₀ are empty.
-    fn omega0_is_omega(&self, _v: Variant) -> bool {
-        false
-    }
-    /// True when Ω₀ ⊂ Ω is proved for these parameters (§3, subcase 1), so
-    /// Ω̄∩Ω₀ is empty.
-    fn omega0_inside_omega(&self, _v: Variant) -> bool {
-        false
-    }
-    /// θ̈ of the equation of motion in contact.
-    fn acceleration<T: Scalar>(&self, v: Variant, a: &Angle<T>, theta_dot: T) -> T;
-    /// A conserved energy whose level lines are the phase curves, if the paper
-    /// has one ((2.11), (3.2)).
-    fn energy<T: Scalar>(&self, a: &Angle<T>, theta_dot: T) -> Option<T>;
-}
-
-/// Scene identifiers, as spelled on the command line.
+/// The paper's scenes, as spelled on the command line. Each is two embedded
+/// scene files, `scenes/NAME.toml` (the derived reading) and
+/// `scenes/NAME-printed.toml` (the formulas as printed): everything about a
+/// scene — parameters, conditions, regions, dynamics — is written there.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SceneId {
@@ -321,40 +268,46 @@ impl SceneId {
 
     pub fn name(self) -> &'static str {
         match self {
-            SceneId::ViscousDisc => ViscousDisc::NAME,
-            SceneId::SmoothDisc => SmoothDisc::NAME,
-            SceneId::IceDisc => IceDisc::NAME,
+            SceneId::ViscousDisc => "viscous-disc",
+            SceneId::SmoothDisc => "smooth-disc",
+            SceneId::IceDisc => "ice-disc",
         }
     }
+
+    /// The embedded file of one reading: `NAME` or `NAME-printed`.
+    pub fn file_name(self, v: Variant) -> String {
+        match v {
+            Variant::Derived => self.name().to_string(),
+            Variant::Printed => format!("{}-printed", self.name()),
+        }
+    }
+
+    /// The scene's title, from its derived file.
     pub fn title(self) -> &'static str {
-        match self {
-            SceneId::ViscousDisc => ViscousDisc::TITLE,
-            SceneId::SmoothDisc => SmoothDisc::TITLE,
-            SceneId::IceDisc => IceDisc::TITLE,
-        }
+        self.declared().0
     }
-    /// Ω and Ω₀ as text in the proof-file expression language.
-    pub fn formulas(self, v: Variant) -> Formulas {
-        match self {
-            SceneId::ViscousDisc => ViscousDisc::formulas(v),
-            SceneId::SmoothDisc => SmoothDisc::formulas(v),
-            SceneId::IceDisc => IceDisc::formulas(v),
-        }
-    }
-    /// The default phase-plane domain as text.
-    pub fn domain_text(self) -> [[&'static str; 2]; 2] {
-        match self {
-            SceneId::ViscousDisc => ViscousDisc::DOMAIN_TEXT,
-            SceneId::SmoothDisc => SmoothDisc::DOMAIN_TEXT,
-            SceneId::IceDisc => IceDisc::DOMAIN_TEXT,
-        }
-    }
+
+    /// The parameters a run may set (names, defaults, meanings), from the
+    /// derived file.
     pub fn params(self) -> &'static [ParamSpec] {
-        match self {
-            SceneId::ViscousDisc => ViscousDisc::PARAMS,
-            SceneId::SmoothDisc => SmoothDisc::PARAMS,
-            SceneId::IceDisc => IceDisc::PARAMS,
-        }
+        self.declared().1
+    }
+
+    /// Title and parameters, read from the embedded file once.
+    fn declared(self) -> (&'static str, &'static [ParamSpec]) {
+        static DECLARED: std::sync::OnceLock<Vec<(&'static str, &'static [ParamSpec])>> =
+            std::sync::OnceLock::new();
+        DECLARED.get_or_init(|| {
+            SceneId::ALL
+                .map(|id| {
+                    let f = FileScene::shipped(&id.file_name(Variant::Derived), &[])
+                        .expect("every paper scene is embedded")
+                        .expect("defaults are valid");
+                    let title: &'static str = Box::leak(f.title.into_boxed_str());
+                    (title, f.params.specs)
+                })
+                .to_vec()
+        })[self as usize]
     }
 }
 
@@ -379,42 +332,55 @@ impl FromStr for SceneId {
     }
 }
 
-/// A scene with validated parameters: one of the paper's, or one read from
-/// a scene file (one reading: `variant` does not apply to it).
+/// One of the paper's scenes: both readings compiled from their files with
+/// the same parameters.
+#[derive(Clone, Debug)]
+pub struct PaperScene {
+    pub id: SceneId,
+    pub derived: FileScene,
+    pub printed: FileScene,
+}
+
+impl PaperScene {
+    /// The file of one reading.
+    pub fn reading(&self, v: Variant) -> &FileScene {
+        match v {
+            Variant::Derived => &self.derived,
+            Variant::Printed => &self.printed,
+        }
+    }
+}
+
+/// A scene with validated parameters: one of the paper's (two readings), or
+/// one read from a scene file (one reading: `variant` does not apply to it).
 #[derive(Clone, Debug)]
 pub enum Scene {
-    Viscous(ViscousDisc),
-    Smooth(SmoothDisc),
-    Ice(IceDisc),
+    Paper(Box<PaperScene>),
     File(Box<FileScene>),
 }
 
-/// Calls `$body` with `$m` bound to the concrete model, or evaluates `$file`
-/// with `$f` bound to a file scene.
-macro_rules! with_model {
-    ($scene:expr, $m:ident => $body:expr, $f:ident => $file:expr) => {
-        match $scene {
-            Scene::Viscous($m) => $body,
-            Scene::Smooth($m) => $body,
-            Scene::Ice($m) => $body,
-            Scene::File($f) => $file,
-        }
-    };
-}
-
 impl Scene {
-    /// Builds a scene from defaults overridden by `name=value` pairs.
+    /// Builds a paper scene from its files' defaults overridden by
+    /// `name=value` pairs (both readings; the parameters are the derived
+    /// file's, which the printed file shares).
     pub fn build(
         id: SceneId,
         overrides: &[(String, String)],
-    ) -> Result<(Scene, ParamSet), ParamError> {
-        let params = ParamSet::build(id.name(), id.params(), overrides)?;
-        let scene = match id {
-            SceneId::ViscousDisc => Scene::Viscous(ViscousDisc::from_params(&params)?),
-            SceneId::SmoothDisc => Scene::Smooth(SmoothDisc::from_params(&params)?),
-            SceneId::IceDisc => Scene::Ice(IceDisc::from_params(&params)?),
+    ) -> Result<(Scene, ParamSet), SceneFileError> {
+        let compile = |v: Variant| {
+            FileScene::shipped(&id.file_name(v), overrides).expect("every paper scene is embedded")
         };
-        Ok((scene, params))
+        let derived = compile(Variant::Derived)?;
+        let printed = compile(Variant::Printed)?;
+        let params = derived.params.clone();
+        Ok((
+            Scene::Paper(Box::new(PaperScene {
+                id,
+                derived,
+                printed,
+            })),
+            params,
+        ))
     }
 
     /// The scene at its default parameters.
@@ -443,21 +409,16 @@ impl Scene {
         }
     }
 
-    /// The file form of a paper scene in one reading: the embedded
+    /// One reading of a paper scene as a file scene: the embedded
     /// `scenes/NAME.toml` (derived) or `scenes/NAME-printed.toml`, with
-    /// `name=value` parameter overrides. It states what the built-in scene
-    /// computes: its parameters, conditions, regions, dynamics, energy and
-    /// the paper's functions.
+    /// `name=value` parameter overrides.
     pub fn file_of(
         id: SceneId,
         variant: Variant,
         overrides: &[(String, String)],
     ) -> Result<(Scene, ParamSet), SceneFileError> {
-        let name = match variant {
-            Variant::Derived => id.name().to_string(),
-            Variant::Printed => format!("{}-printed", id.name()),
-        };
-        let f = FileScene::shipped(&name, overrides).expect("every paper scene is embedded")?;
+        let f = FileScene::shipped(&id.file_name(variant), overrides)
+            .expect("every paper scene is embedded")?;
         let params = f.params.clone();
         Ok((Scene::File(Box::new(f)), params))
     }
@@ -472,12 +433,24 @@ impl Scene {
         Ok((Scene::File(Box::new(f)), params))
     }
 
+    /// The file whose formulas a run in reading `v` evaluates (a scene file
+    /// has one reading).
+    pub fn reading(&self, v: Variant) -> &FileScene {
+        match self {
+            Scene::Paper(p) => p.reading(v),
+            Scene::File(f) => f,
+        }
+    }
+
+    /// The file of the scene's main reading (derived, for a paper scene).
+    fn main_file(&self) -> &FileScene {
+        self.reading(Variant::Derived)
+    }
+
     /// The paper's scene this is, if it is one.
     pub fn id(&self) -> Option<SceneId> {
         match self {
-            Scene::Viscous(_) => Some(SceneId::ViscousDisc),
-            Scene::Smooth(_) => Some(SceneId::SmoothDisc),
-            Scene::Ice(_) => Some(SceneId::IceDisc),
+            Scene::Paper(p) => Some(p.id),
             Scene::File(_) => None,
         }
     }
@@ -485,82 +458,63 @@ impl Scene {
     /// `viscous-disc`, …, or the `name` of a scene file.
     pub fn name(&self) -> &str {
         match self {
+            Scene::Paper(p) => p.id.name(),
             Scene::File(f) => &f.name,
-            _ => self.id().expect("a paper scene").name(),
         }
     }
 
     /// Warnings about the scene's formulas (a scene file's parameter-only
-    /// subexpressions that may be undefined); none for the paper's scenes.
+    /// subexpressions that may be undefined).
     pub fn warnings(&self) -> &[String] {
-        match self {
-            Scene::File(f) => &f.warnings,
-            _ => &[],
-        }
+        &self.main_file().warnings
     }
 
     pub fn title(&self) -> &str {
-        match self {
-            Scene::File(f) => &f.title,
-            _ => self.id().expect("a paper scene").title(),
-        }
+        &self.main_file().title
+    }
+
+    /// The parameters' names, defaults and meanings.
+    pub fn params_specs(&self) -> &'static [ParamSpec] {
+        self.main_file().params.specs
     }
 
     /// The domain's ends as text (`[[θ lo, θ hi], [θ̇ lo, θ̇ hi]]`).
     pub fn domain_text(&self) -> [[String; 2]; 2] {
-        match self {
-            Scene::File(f) => f.domain_text.clone(),
-            _ => self
-                .id()
-                .expect("a paper scene")
-                .domain_text()
-                .map(|s| s.map(String::from)),
-        }
+        self.main_file().domain_text.clone()
     }
 
     pub fn domain(&self) -> Domain {
-        with_model!(self, m => m.domain(), f => f.domain)
+        self.main_file().domain
     }
 
     pub fn constraints<T: Scalar>(&self, v: Variant, a: &Angle<T>) -> Constraints<T> {
-        with_model!(self, m => m.constraints(v, a), f => {
-            let [omega, omega0] = f.quadratics(a);
-            Constraints { omega, omega0 }
-        })
+        let [omega, omega0] = self.reading(v).quadratics(a);
+        Constraints { omega, omega0 }
     }
 
     /// The constraints with each one's θ-only factor apart: `g = (a/b)·p`
     /// with `[a, b]` returned per constraint and `p` its quadratic, so that
     /// where the signs of `a` and `b` are known `{g < 0}` is `{p < 0}` or
     /// `{p > 0}`, and `p`'s roots carry none of the factor's rounding
-    /// ([`FileScene::factored_quadratics`]; `a = b = 1` for the paper's
-    /// scenes).
+    /// ([`FileScene::factored_quadratics`]).
     pub fn factored_constraints<T: Scalar>(
         &self,
         v: Variant,
         a: &Angle<T>,
     ) -> ([[T; 2]; 2], Constraints<T>) {
-        with_model!(self, m => ([[T::int(1); 2]; 2], m.constraints(v, a)), f => {
-            let (factor, [omega, omega0]) = f.factored_quadratics(a);
-            (factor, Constraints { omega, omega0 })
-        })
+        let (factor, [omega, omega0]) = self.reading(v).factored_quadratics(a);
+        (factor, Constraints { omega, omega0 })
     }
 
-    /// True when Ω₀ ≡ Ω by construction ([`Model::omega0_is_omega`]; for a
-    /// file, the same region text).
+    /// True when Ω₀ ≡ Ω by construction: the same region text.
     pub fn omega0_is_omega(&self, v: Variant) -> bool {
-        with_model!(self, m => m.omega0_is_omega(v), f => f.omega0_is_omega())
-    }
-
-    /// True when Ω₀ ⊂ Ω is proved ([`Model::omega0_inside_omega`]).
-    pub fn omega0_inside_omega(&self, v: Variant) -> bool {
-        with_model!(self, m => m.omega0_inside_omega(v), _f => false)
+        self.reading(v).omega0_is_omega()
     }
 
     /// The scene has an equation of motion for the phase portrait (a file
     /// only with `[dynamics]`).
     pub fn has_dynamics(&self) -> bool {
-        with_model!(self, _m => true, f => f.has_dynamics())
+        self.main_file().has_dynamics()
     }
 
     /// Certified coefficient enclosures over a θ-interval (decorated: a slab
@@ -572,24 +526,16 @@ impl Scene {
     /// θ̈ in contact (for a file without `[dynamics]`: NaN, see
     /// [`Scene::has_dynamics`]).
     pub fn acceleration<T: Scalar>(&self, v: Variant, a: &Angle<T>, theta_dot: T) -> T {
-        with_model!(self, m => m.acceleration(v, a, theta_dot), f => f.acceleration(a.theta, theta_dot))
+        self.reading(v).acceleration(a.theta, theta_dot)
     }
 
-    /// The conserved energy ([`Model::energy`]; for a file, `[dynamics]`'s
-    /// `energy`), if there is one.
+    /// The conserved energy (`[dynamics]`'s `energy`), if there is one.
     pub fn energy<T: Scalar>(&self, a: &Angle<T>, theta_dot: T) -> Option<T> {
-        with_model!(self, m => m.energy(a, theta_dot), f => f.energy(a, theta_dot))
+        self.main_file().energy(a, theta_dot)
     }
-}
 
-pub(crate) fn positive_gap(lo: Interval, hi: Interval) -> bool {
-    lo.sup() < hi.inf()
-}
-
-pub(crate) fn theta_range_0_pi() -> [Interval; 2] {
-    [ZERO, PI]
-}
-
-pub(crate) fn symmetric(r: f64) -> [Interval; 2] {
-    [int(-r), int(r)]
+    /// A named θ-function of the scene's `[functions]` in reading `v`.
+    pub fn function(&self, v: Variant, name: &str) -> Option<&file::Function> {
+        self.reading(v).function(name)
+    }
 }

@@ -22,15 +22,15 @@ fn bad_input_is_a_clear_error_with_exit_code_2() {
     );
     assert_bad_input(
         &["pave", "--scene", "smooth-disc", "--param", "m=0"],
-        "`m` must be positive",
+        "scenes/smooth-disc.toml: `conditions.m_positive`: `m > 0` does not hold with m = 0",
     );
     assert_bad_input(
         &["pave", "--scene", "viscous-disc", "--param", "m=-1"],
-        "`m` must be positive",
+        "`m > 0` does not hold with m = -1",
     );
     assert_bad_input(
         &["pave", "--scene", "viscous-disc", "--param", "mu=-0.1"],
-        "`mu` must be zero or positive",
+        "`mu >= 0` does not hold with mu = -0.1",
     );
     assert_bad_input(
         &["pave", "--scene", "viscous-disc", "--param", "b=2"],

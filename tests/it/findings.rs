@@ -53,18 +53,6 @@ fn viscous_printed_equation_of_motion_breaks_the_energy_balance() {
     assert!(printed.disjoint(derived), "{printed:?} vs {derived:?}");
 }
 
-#[test]
-fn ice_reaction_coefficient_printed_differs_from_derived() {
-    // (3.4) prints V₀ = 1/m; Newton–Euler gives 1/m + a²cos²θ/(A + m a² sin²θ).
-    let Scene::Ice(d) = Scene::default_of(SceneId::IceDisc) else {
-        unreachable!()
-    };
-    let an = Angle::new(iv(1.0, 1.0));
-    let p = d.reaction_coefficient(Variant::Printed, &an);
-    let q = d.reaction_coefficient(Variant::Derived, &an);
-    assert!(p.precedes(q) && p.disjoint(q), "{p:?} vs {q:?}");
-}
-
 /// A grid of boxes over the domain, for agreement checks.
 fn grid(scene: &Scene, n: usize) -> Vec<PhaseBox> {
     let b = scene.domain().inner_box();

@@ -636,9 +636,9 @@ fn leaves_export_round_trips_exactly() {
 }
 
 #[test]
-fn ice_omega0_inside_omega_makes_its_paradox_cell_exactly_empty() {
-    // §3 subcase 1 (p_φ = p_ψ = 0): Ω₀ ⊂ Ω, so Ω̄∩Ω₀ is empty; with
-    // p_ψ ≠ 0 nothing is claimed.
+fn ice_omega0_inside_omega_leaves_its_paradox_cell_without_a_box() {
+    // §3 subcase 1 (p_φ = p_ψ = 0): Ω₀ ⊂ Ω (paper-checks S3.sub1), so no
+    // box of Ω̄∩Ω₀ may be proved; the paving bounds it from above only.
     let cell = |args: &[&str]| {
         let out = detach(args);
         assert!(out.status.success());
@@ -655,8 +655,8 @@ fn ice_omega0_inside_omega_makes_its_paradox_cell_exactly_empty() {
         "pave", "--scene", "ice-disc", "--param", "p_phi=0", "--param", "p_psi=0", "--eps", "0.02",
         "--json",
     ]);
-    assert_eq!(zero["empty"], "omega0 inside omega");
-    assert_eq!(zero["outer_area"].as_f64(), Some(0.0));
+    assert_eq!(zero["inner_area"].as_f64(), Some(0.0));
+    assert!(zero["outer_area"].as_f64().unwrap() < 0.5);
     let other = cell(&["pave", "--scene", "ice-disc", "--eps", "0.02", "--json"]);
     assert!(other.get("empty").is_none());
     assert!(other["outer_area"].as_f64().unwrap() > 0.0);

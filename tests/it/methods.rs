@@ -55,7 +55,7 @@ fn checked_proof(
             variant: v,
             params,
             domain: &scene.domain(),
-            domain_text: id.domain_text().map(|s| s.map(String::from)),
+            domain_text: Scene::default_of(id).domain_text(),
             title: "test".into(),
         },
         p,

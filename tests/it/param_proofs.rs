@@ -13,7 +13,7 @@ use detach::params::model::{EmptyReason, ParamAtlas, ParamAxis, ParamLeaf, Param
 use detach::pave::{
     pave_scene_method, CellSpec, Method, MethodOptions, Node, PaveOptions, PhaseBox,
 };
-use detach::scene::{Domain, Model, Scene, SceneId, Variant, ViscousDisc};
+use detach::scene::{Domain, FileScene, Scene, SceneId, SceneText, Variant};
 use inari::{const_interval, Interval};
 
 fn point(x: f64) -> Interval {
@@ -127,11 +127,10 @@ fn status_from_paving(scene: &Scene, name: &str) -> SetStatus {
 /// The viscous disc (derived) with `b` over `[lo, hi]` (an interval
 /// parameter), the others at their defaults.
 fn viscous_over_b(lo: f64, hi: f64) -> (Scene, ParamSet) {
-    let (_, mut params) = Scene::build(SceneId::ViscousDisc, &[]).unwrap();
-    let k = params.specs.iter().position(|s| s.name == "b").unwrap();
-    params.values[k].value = iv(lo, hi);
-    let scene = Scene::Viscous(ViscousDisc::from_params(&params).unwrap());
-    (scene, params)
+    let text = SceneText::embedded("viscous-disc").unwrap();
+    let f = FileScene::parse_enclosed(&text.text, &[], &[("b".into(), iv(lo, hi))]).unwrap();
+    let params = f.params.clone();
+    (Scene::File(Box::new(f)), params)
 }
 
 const VISCOUS_SETS: [&str; 4] = [

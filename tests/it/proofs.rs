@@ -48,8 +48,8 @@ fn scene_enclosures(scene: &Scene, v: Variant, t: Interval, w: Interval) -> [Dec
 }
 
 fn text_enclosures(id: SceneId, v: Variant, t: Interval, w: Interval) -> [DecInterval; 2] {
-    let f = id.formulas(v);
-    let (_, params) = Scene::build(id, &[]).unwrap();
+    let (scene, params) = Scene::build(id, &[]).unwrap();
+    let f = detach::certificate::statement::file_statement(scene.reading(v));
     let params: Vec<(String, String)> = params
         .texts()
         .into_iter()
@@ -60,7 +60,7 @@ fn text_enclosures(id: SceneId, v: Variant, t: Interval, w: Interval) -> [DecInt
         .iter()
         .map(|(n, e)| (n.to_string(), e.to_string()))
         .collect();
-    [f.omega, f.omega0].map(|e| eval_on_box(&params, &defs, e, t, w).unwrap())
+    [&f.omega, &f.omega0].map(|e| eval_on_box(&params, &defs, e, t, w).unwrap())
 }
 
 proptest! {

@@ -5,7 +5,7 @@ use detach::inari::{const_interval, Interval};
 use detach::number::param::enclose_decimal;
 use detach::number::scalar::Scalar;
 use detach::roots::cluster::bound_cluster;
-use detach::roots::equations::{Eq210, Eq29, Eq29TanHalf, PotentialSlope};
+use detach::roots::equations::{eq_2_10, eq_2_9, Eq29TanHalf, TextEquation};
 use detach::roots::isolate::point;
 use detach::roots::{
     isolate, prove_kappa0, solve_2_10, solve_2_12, solve_2_9, Budget, EquationRoots, RealFn,
@@ -107,12 +107,19 @@ fn kappa0_contains_sqrt3_over_9_two_ways() {
 #[test]
 fn stationary_point_of_the_default_disc_matches_an_f64_scan() {
     // Independent: f64 sign scan + bisection of Π̃' (uncertified baseline).
-    let Scene::Smooth(disc) = Scene::default_of(SceneId::SmoothDisc) else {
-        unreachable!()
-    };
-    let r = solve_2_12(&disc, &Budget::default());
+    let disc = Scene::default_of(SceneId::SmoothDisc);
+    let eq =
+        detach::roots::equations::scene_function(&disc, detach::roots::EquationId::E2_12).unwrap();
+    let r = solve_2_12(eq, &Budget::default());
     assert!(r.complete);
-    let f = |x: f64| PotentialSlope(&disc).eval(x);
+    // Π̃' = m g a cos θ + A τ τ' (2.12) at the defaults m = a = 1, A = 0.25,
+    // g = 9.81, p_φ = 2.5, p_ψ = 2, written here in f64.
+    let f = |x: f64| {
+        let (s, c) = x.sin_cos();
+        let tau = (2.0 - 2.5 * c) / (0.25 * s);
+        let tau1 = (2.5 - 2.0 * c) / (0.25 * s * s);
+        9.81 * c + 0.25 * tau * tau1
+    };
     let n = 20_000;
     let mut found = Vec::new();
     for i in 1..n {
@@ -168,7 +175,7 @@ proptest! {
         let (kt, at) = (format!("{}e-3", k_milli), format!("{}e-3", a_milli));
         let (k, a) = (dec(&kt), dec(&at));
         let r = solve_2_9(k, a, &Budget::default()).unwrap();
-        let f = Eq29 { kappa: k, alpha: a };
+        let f = eq_2_9(k, a);
         for w in r.roots.windows(2) {
             prop_assert!(w[0].hi <= w[1].lo);
         }
@@ -286,12 +293,12 @@ fn away_from_kappa0_nothing_is_clustered() {
 }
 
 /// (2.10) plus `w (μ − 1/2)²` with `w ∈ [−10, 10]`: f'' = −6μ + 2w may vanish.
-struct WobblySecondDerivative(Interval);
+struct WobblySecondDerivative(TextEquation);
 impl RealFn for WobblySecondDerivative {
     fn eval<T: Scalar>(&self, mu: T) -> T {
         let w = T::lift(const_interval!(-10.0, 10.0));
         let half = T::lift(const_interval!(0.5, 0.5));
-        Eq210 { kappa: self.0 }.eval(mu) + w * (mu - half).sqr()
+        self.0.eval(mu) + w * (mu - half).sqr()
     }
 }
 
@@ -301,7 +308,7 @@ fn a_derivative_not_away_from_zero_gives_no_count_bound() {
     let c = &r.clusters[0];
     // mutant 1: the same hull, a function whose f'' encloses 0
     let m = bound_cluster(
-        &WobblySecondDerivative(dec("0.1924500897298753")),
+        &WobblySecondDerivative(eq_2_10(dec("0.1924500897298753"))),
         [r.searched[0], c.lo, c.hi, r.searched[1]],
         c.members.clone(),
     );
@@ -313,7 +320,7 @@ fn a_derivative_not_away_from_zero_gives_no_count_bound() {
     assert_eq!(m.count_text(), "any number of roots");
     // mutant 2: the hull stretched to μ = 0, where f'' = −6μ vanishes and
     // f' = 1 − 3μ² changes sign (and κ = 0.1 has two roots there: Viète)
-    let m = bound_cluster(&Eq210 { kappa: dec("0.1") }, [0.0, 0.0, 1.0, 1.0], vec![0]);
+    let m = bound_cluster(&eq_2_10(dec("0.1")), [0.0, 0.0, 1.0, 1.0], vec![0]);
     assert_eq!(m.nonzero_derivative, None);
     assert_eq!(m.at_most(), None);
 }

@@ -1,18 +1,17 @@
-//! The scene-file format states everything a paper scene's Rust knows: each
-//! paper scene's file (embedded, in both readings) against its built-in
-//! model on parameters, conditions, domain, regions, dynamics, energy and
-//! the functions of (2.12) and (3.3); and the new sections' rules.
+//! The paper's scenes are their files: each paper scene's two embedded
+//! files (derived and printed readings) agree on parameters, conditions and
+//! domain; the conditions accept and refuse as the files' headers state;
+//! the functions of (2.12) and (3.3) agree with the files' energy and
+//! dynamics; and the new sections' rules.
 //!
-//! References: the built-in models (`src/scene/{viscous,smooth,ice}.rs`)
-//! and the roots code (`src/roots/equations.rs`), an independent writing of
-//! the same formulas; the committed proof `proofs/roots-2.12.json` for the
-//! text of (2.12).
+//! References: the files' headers (parameter signs, 0 ≤ b < a), the energy
+//! (2.11) differentiated (dual numbers) for Π̃', the `[dynamics]` θ̈ for
+//! (3.3), and the committed proof `proofs/roots-2.12.json` for the text of
+//! (2.12).
 
 use crate::common::{assert_bad_input, Rng};
-use detach::number::scalar::Scalar;
-use detach::roots::equations::{IceAcceleration, PotentialSlope};
-use detach::roots::{isolate, solve_2_12, solve_3_3, Budget, RealFn};
-use detach::scene::file::{Function, EMBEDDED, SHIPPED};
+use detach::number::scalar::{Dual, Scalar};
+use detach::scene::file::{EMBEDDED, SHIPPED};
 use detach::scene::{Angle, FileScene, Scene, SceneId, Variant};
 use inari::Interval;
 use std::path::Path;
@@ -29,14 +28,6 @@ fn file_of(id: SceneId, v: Variant, overrides: &[(&str, &str)]) -> Result<Scene,
     Scene::file_of(id, v, &o)
         .map(|s| s.0)
         .map_err(|e| e.to_string())
-}
-
-fn built_in(id: SceneId, overrides: &[(&str, &str)]) -> Result<Scene, String> {
-    let o: Vec<(String, String)> = overrides
-        .iter()
-        .map(|(a, b)| (a.to_string(), b.to_string()))
-        .collect();
-    Scene::build(id, &o).map(|s| s.0).map_err(|e| e.to_string())
 }
 
 fn file(s: &Scene) -> &FileScene {
@@ -67,24 +58,6 @@ fn samples(id: SceneId, n: usize) -> Vec<(f64, f64)> {
             (t, -10.0 + 20.0 * r.unit())
         })
         .collect()
-}
-
-/// Asserts a file's value and the built-in's agree at a point and over a box
-/// (enclosures of the same real overlap).
-fn agree<F, G>(what: &str, file: F, rust: G, t: f64, w: f64)
-where
-    F: Fn(&Angle<f64>, f64, &Angle<Interval>, Interval) -> (f64, Interval),
-    G: Fn(&Angle<f64>, f64, &Angle<Interval>, Interval) -> (f64, Interval),
-{
-    let (pt, pw) = (Angle::new(t), w);
-    let (bt, bw) = (Angle::new(iv(t, t + 1e-3)), iv(w, w + 1e-3));
-    let (x, xi) = file(&pt, pw, &bt, bw);
-    let (y, yi) = rust(&pt, pw, &bt, bw);
-    assert!(close(x, y), "{what} at ({t}, {w}): file {x}, built-in {y}");
-    assert!(
-        !xi.disjoint(yi),
-        "{what} on a box at ({t}, {w}): file {xi:?}, built-in {yi:?}"
-    );
 }
 
 /// Every file of `scenes/` is embedded with its text; each loads by name;
@@ -128,68 +101,77 @@ fn every_scene_file_is_embedded_and_loads_by_name() {
     }
 }
 
-/// Each paper file declares the built-in's parameters (names, defaults, in
-/// order) and domain, and says Ω₀ = Ω exactly when the model does.
+/// Both readings of each paper scene declare the same parameters (names,
+/// defaults, in order) and domain; Ω₀ = Ω exactly for the smooth disc (§2),
+/// and an energy exactly for the conservative discs (§2, §3).
 #[test]
-fn paper_files_declare_the_built_in_parameters_and_domain() {
+fn paper_readings_declare_the_same_parameters_and_domain() {
     for id in SceneId::ALL {
-        let b = built_in(id, &[]).unwrap();
-        for v in Variant::ALL {
-            let s = file_of(id, v, &[]).unwrap();
-            let f = file(&s);
-            let names = |specs: &[detach::number::param::ParamSpec]| {
-                specs
-                    .iter()
-                    .map(|p| (p.name, p.default))
-                    .collect::<Vec<_>>()
-            };
-            assert_eq!(names(f.params.specs), names(id.params()), "{id} {v}");
-            let (x, y) = (s.domain(), b.domain());
-            assert_eq!((x.theta, x.theta_dot), (y.theta, y.theta_dot), "{id} {v}");
-            assert_eq!(s.omega0_is_omega(v), b.omega0_is_omega(v), "{id} {v}");
-            let probe = Angle::new(1.0_f64);
+        let names = |s: &Scene| {
+            file(s)
+                .params
+                .specs
+                .iter()
+                .map(|p| (p.name, p.default))
+                .collect::<Vec<_>>()
+        };
+        let d = file_of(id, Variant::Derived, &[]).unwrap();
+        let p = file_of(id, Variant::Printed, &[]).unwrap();
+        assert_eq!(names(&d), names(&p), "{id}");
+        assert_eq!(names(&d).len(), id.params().len(), "{id}");
+        let (x, y) = (d.domain(), p.domain());
+        assert_eq!((x.theta, x.theta_dot), (y.theta, y.theta_dot), "{id}");
+        let probe = Angle::new(1.0_f64);
+        for s in [&d, &p] {
+            assert_eq!(
+                s.omega0_is_omega(Variant::Derived),
+                id == SceneId::SmoothDisc,
+                "{id}"
+            );
             assert_eq!(
                 s.energy(&probe, 0.5).is_some(),
-                b.energy(&probe, 0.5).is_some(),
-                "{id} {v}"
+                id != SceneId::ViscousDisc,
+                "{id}"
             );
         }
     }
 }
 
-/// Parameter sets accepted and refused: the files' `[conditions]` decide as
-/// the built-in checks do (signs, and b < a in intervals: touching or
-/// overlapping enclosures are refused by both).
+/// Parameter sets accepted (`true`) and refused: the files' `[conditions]`
+/// decide as their headers state (m, a, A, C, g > 0; 0 ≤ b < a; μ ≥ 0; the
+/// momenta and c₀ any sign), on enclosures: touching or overlapping
+/// enclosures of `b < a` cannot be decided and are refused.
 #[test]
-fn conditions_accept_and_refuse_as_the_built_ins_do() {
-    let viscous: &[&[(&str, &str)]] = &[
-        &[],
-        &[("b", "0")],
-        &[("b", "0.999")],
-        &[("b", "1")],
-        &[("b", "1.5")],
-        &[("b", "-0.1")],
-        &[("a", "0"), ("b", "0")],
-        &[("a", "-1")],
-        &[("a", "0.1"), ("b", "0.1000000000000000000001")],
-        &[("a", "0.1000000000000000000001"), ("b", "0.1")],
-        &[("a", "1e-300"), ("b", "1e-301")],
-        &[("m", "0")],
-        &[("C", "-0.3")],
-        &[("mu", "0")],
-        &[("mu", "-0.1")],
-        &[("g", "0")],
+fn conditions_accept_and_refuse_as_the_headers_state() {
+    type Case = (&'static [(&'static str, &'static str)], bool);
+    let viscous: &[Case] = &[
+        (&[], true),
+        (&[("b", "0")], true),
+        (&[("b", "0.999")], true),
+        (&[("b", "1")], false),
+        (&[("b", "1.5")], false),
+        (&[("b", "-0.1")], false),
+        (&[("a", "0"), ("b", "0")], false),
+        (&[("a", "-1")], false),
+        (&[("a", "0.1"), ("b", "0.1000000000000000000001")], false),
+        (&[("a", "0.1000000000000000000001"), ("b", "0.1")], false),
+        (&[("a", "1e-300"), ("b", "1e-301")], true),
+        (&[("m", "0")], false),
+        (&[("C", "-0.3")], false),
+        (&[("mu", "0")], true),
+        (&[("mu", "-0.1")], false),
+        (&[("g", "0")], false),
     ];
-    let disc: &[&[(&str, &str)]] = &[
-        &[],
-        &[("m", "0")],
-        &[("m", "-1")],
-        &[("a", "-1")],
-        &[("A", "0")],
-        &[("C", "0")],
-        &[("C", "1e-300")],
-        &[("g", "-9.81")],
-        &[("p_phi", "-3"), ("p_psi", "0")],
+    let disc: &[Case] = &[
+        (&[], true),
+        (&[("m", "0")], false),
+        (&[("m", "-1")], false),
+        (&[("a", "-1")], false),
+        (&[("A", "0")], false),
+        (&[("C", "0")], false),
+        (&[("C", "1e-300")], true),
+        (&[("g", "-9.81")], false),
+        (&[("p_phi", "-3"), ("p_psi", "0")], true),
     ];
     let mut refused = 0;
     for id in SceneId::ALL {
@@ -197,18 +179,11 @@ fn conditions_accept_and_refuse_as_the_built_ins_do() {
             SceneId::ViscousDisc => viscous,
             _ => disc,
         };
-        for case in cases {
-            let want = built_in(id, case);
+        for (case, accepted) in cases {
             for v in Variant::ALL {
                 let got = file_of(id, v, case);
-                assert_eq!(
-                    got.is_ok(),
-                    want.is_ok(),
-                    "{id} {v} {case:?}: file {:?}, built-in {:?}",
-                    got.as_ref().err(),
-                    want.as_ref().err()
-                );
-                refused += usize::from(got.is_err());
+                assert_eq!(got.is_ok(), *accepted, "{id} {v} {case:?}: {:?}", got.err());
+                refused += usize::from(!accepted);
             }
         }
         // c0 is any number for the disc on ice.
@@ -240,86 +215,12 @@ fn conditions_accept_and_refuse_as_the_built_ins_do() {
     assert!(e.contains("`A > 0` does not hold with A = 0"), "{e}");
 }
 
-/// The energies (2.11) and (3.2) of the files against the built-ins' on
-/// sample points and boxes; the viscous disc has none in either.
+/// The functions of (2.12) and (3.3) in the disc files against the files'
+/// own mechanics: Π̃' (`potential_slope`) is the θ-derivative of the energy
+/// at θ̇ = 0 (dual numbers), `eq_2_12` is sin³θ·Π̃', `eq_3_3` is sin³θ·θ̈
+/// of `[dynamics]`, at 400 points; (2.12)'s text is the committed proof's.
 #[test]
-fn energies_agree_with_the_built_ins() {
-    for id in SceneId::ALL {
-        let b = built_in(id, &[]).unwrap();
-        for v in Variant::ALL {
-            let s = file_of(id, v, &[]).unwrap();
-            if id == SceneId::ViscousDisc {
-                assert!(s.energy(&Angle::new(1.0_f64), 0.0).is_none());
-                continue;
-            }
-            for (t, w) in samples(id, 400) {
-                let e = |sc: &Scene| {
-                    let sc = sc.clone();
-                    move |pa: &Angle<f64>, pw: f64, ba: &Angle<Interval>, bw: Interval| {
-                        (sc.energy(pa, pw).unwrap(), sc.energy(ba, bw).unwrap())
-                    }
-                };
-                agree(&format!("{id} {v} energy"), e(&s), e(&b), t, w);
-            }
-        }
-    }
-}
-
-/// θ̈ and the region coefficients of each file against the built-in in the
-/// same reading.
-#[test]
-fn accelerations_and_regions_agree_with_the_built_ins() {
-    for id in SceneId::ALL {
-        let b = built_in(id, &[]).unwrap();
-        for v in Variant::ALL {
-            let s = file_of(id, v, &[]).unwrap();
-            for (t, w) in samples(id, 300) {
-                let acc = |sc: &Scene, v: Variant| {
-                    let sc = sc.clone();
-                    move |pa: &Angle<f64>, pw: f64, ba: &Angle<Interval>, bw: Interval| {
-                        (sc.acceleration(v, pa, pw), sc.acceleration(v, ba, bw))
-                    }
-                };
-                let what = format!("{id} {v} acceleration");
-                agree(&what, acc(&s, Variant::Derived), acc(&b, v), t, w);
-                for k in 0..6 {
-                    let coef = |sc: &Scene, v: Variant| {
-                        let sc = sc.clone();
-                        move |pa: &Angle<f64>, _: f64, ba: &Angle<Interval>, _: Interval| {
-                            (
-                                coefficient(sc.constraints(v, pa), k),
-                                coefficient(sc.constraints(v, ba), k),
-                            )
-                        }
-                    };
-                    let what = format!("{id} {v} coefficient {k}");
-                    agree(&what, coef(&s, Variant::Derived), coef(&b, v), t, w);
-                }
-            }
-        }
-    }
-}
-
-/// `c₂, c₁, c₀` of Ω (k = 0, 1, 2), then of Ω₀ (k = 3, 4, 5).
-fn coefficient<T: Scalar>(c: detach::scene::Constraints<T>, k: usize) -> T {
-    let q = if k < 3 { c.omega } else { c.omega0 };
-    [q.c2, q.c1, q.c0][k % 3]
-}
-
-/// A file's function as the isolator's `RealFn`.
-struct Named<'a>(&'a Function);
-
-impl RealFn for Named<'_> {
-    fn eval<T: Scalar>(&self, x: T) -> T {
-        self.0.eval(x)
-    }
-}
-
-/// The functions of (2.12) and (3.3) in the disc files against the roots
-/// code's Rust: values at points and on boxes, the roots the isolator finds
-/// with them, and (2.12)'s text against the committed proof's statement.
-#[test]
-fn functions_agree_with_the_roots_code() {
+fn functions_agree_with_the_energy_and_dynamics() {
     let proof: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(
             Path::new(env!("CARGO_MANIFEST_DIR")).join("proofs/roots-2.12.json"),
@@ -332,68 +233,39 @@ fn functions_agree_with_the_roots_code() {
         .unwrap()
         .replace("(t)", "(theta)");
     for id in [SceneId::SmoothDisc, SceneId::IceDisc] {
-        let b = built_in(id, &[]).unwrap();
-        let (disc, ice) = match &b {
-            Scene::Smooth(d) => (d.clone(), None),
-            Scene::Ice(i) => (i.disc.clone(), Some(i.clone())),
-            _ => unreachable!(),
-        };
-        for v in Variant::ALL {
-            let s = file_of(id, v, &[]).unwrap();
-            let f = file(&s);
-            let slope = f.function("potential_slope").unwrap();
-            let eq212 = f.function("eq_2_12").unwrap();
-            assert_eq!(
-                eq212.text, stated,
-                "{id} {v}: (2.12) as the proof states it"
+        let s = file_of(id, Variant::Derived, &[]).unwrap();
+        let f = file(&s);
+        let slope = f.function("potential_slope").unwrap();
+        let eq212 = f.function("eq_2_12").unwrap();
+        assert_eq!(eq212.text, stated, "{id}: (2.12) as the proof states it");
+        for (t, _) in samples(id, 400) {
+            let sin3 = t.sin().powi(3);
+            let de = s
+                .energy(
+                    &Angle::new(Dual::<f64>::variable(t, 0)),
+                    Dual::<f64>::int(0),
+                )
+                .unwrap()
+                .grad[0];
+            let tol = |x: f64| 1e-9 * (1.0 + x.abs());
+            let pi_slope = slope.eval(t);
+            let v0 = de;
+            if id == SceneId::SmoothDisc {
+                // (2.11) at θ̇ = 0 is Π̃ itself.
+                assert!(
+                    (pi_slope - v0).abs() <= tol(v0),
+                    "{id} Π̃' at {t}: {pi_slope} vs {v0}"
+                );
+            }
+            let e212 = eq212.eval(t);
+            assert!(
+                (e212 - sin3 * pi_slope).abs() <= tol(e212),
+                "{id} (2.12) at {t}"
             );
-            for (t, _) in samples(id, 400) {
-                let named = |g: &Function| {
-                    let g = g.clone();
-                    move |pa: &Angle<f64>, _: f64, ba: &Angle<Interval>, _: Interval| {
-                        (g.eval(pa.theta), g.eval(ba.theta))
-                    }
-                };
-                let d = disc.clone();
-                let rust_slope =
-                    move |pa: &Angle<f64>, _: f64, ba: &Angle<Interval>, _: Interval| {
-                        (d.reduced_potential_slope(pa), d.reduced_potential_slope(ba))
-                    };
-                agree(&format!("{id} {v} Π̃'"), named(slope), rust_slope, t, 0.0);
-                let d = disc.clone();
-                let rust_212 = move |pa: &Angle<f64>, _: f64, ba: &Angle<Interval>, _: Interval| {
-                    let p = PotentialSlope(&d);
-                    (p.eval(pa.theta), p.eval(ba.theta))
-                };
-                agree(&format!("{id} {v} (2.12)"), named(eq212), rust_212, t, 0.0);
-                if let Some(ice) = &ice {
-                    let eq33 = f.function("eq_3_3").unwrap();
-                    let i = ice.clone();
-                    let rust_33 =
-                        move |pa: &Angle<f64>, _: f64, ba: &Angle<Interval>, _: Interval| {
-                            let p = IceAcceleration(&i);
-                            (p.eval(pa.theta), p.eval(ba.theta))
-                        };
-                    agree(&format!("{id} {v} (3.3)"), named(eq33), rust_33, t, 0.0);
-                }
-            }
-            // The isolator runs on the file's function and finds the roots
-            // `detach roots` finds, one for one.
-            let budget = Budget::default();
-            let mut problems = vec![(eq212, solve_2_12(&disc, &budget))];
-            if let Some(ice) = &ice {
-                problems.push((f.function("eq_3_3").unwrap(), solve_3_3(ice, &budget)));
-            }
-            for (g, want) in problems {
-                assert!(want.complete, "{id} {}", g.name);
-                let [lo, hi] = want.searched;
-                let got = isolate(&Named(g), lo, hi, &budget);
-                assert!(got.complete, "{id} {v} {}", g.name);
-                assert_eq!(got.roots.len(), want.roots.len(), "{id} {v} {}", g.name);
-                assert!(!want.roots.is_empty());
-                for (x, y) in got.roots.iter().zip(&want.roots) {
-                    assert!(!x.interval().disjoint(y.interval()), "{x:?} vs {y:?}");
-                }
+            if id == SceneId::IceDisc {
+                let e33 = f.function("eq_3_3").unwrap().eval(t);
+                let acc = s.acceleration(Variant::Derived, &Angle::new(t), 0.0);
+                assert!((e33 - sin3 * acc).abs() <= tol(e33), "{id} (3.3) at {t}");
             }
         }
     }
