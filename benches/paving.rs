@@ -118,95 +118,24 @@ fn one_box() {
     }
 }
 
-/// A paper scene from its built-in formulas and from its scene file
-/// (`scenes/`, compiled to a tape), each named by its source, built-in
-/// first.
-fn file_and_built_in(id: SceneId) -> [(&'static str, Scene); 2] {
-    let path = format!("{}/scenes/{}.toml", env!("CARGO_MANIFEST_DIR"), id.name());
-    let file = Scene::from_file(path.as_ref(), &[])
-        .expect("shipped file")
-        .0;
-    [("built-in", Scene::default_of(id)), ("file", file)]
-}
-
-/// One evaluation of a paper scene's coefficients, built-in against file,
-/// in each scalar the pavers use: `f64` (steering), decorated intervals
-/// with the correctly rounded functions (slabs) and their θ-duals (slab
-/// ends, centred forms).
+/// One evaluation of each paper scene's coefficients (its file compiled to
+/// a tape) in each scalar the pavers use: `f64` (steering), decorated
+/// intervals with the correctly rounded functions (slabs) and their θ-duals
+/// (slab ends, centred forms).
 fn tape() {
     let g = Group::new("tape").samples(9).time(Duration::from_secs(1));
-    // θ-slab and sines outside the timing: both sources share them.
+    // θ-slab and sines outside the timing.
     let th = Interval::try_from((1.1, 1.1 + 1e-3)).unwrap();
     let slab = CrDec(DecInterval::new(th));
     let dual = DualTheta::variable(slab, 0);
     for id in SceneId::ALL {
-        for (source, s) in &file_and_built_in(id) {
-            let v = Variant::Derived;
-            let name = format!("{}/{source}", id.name());
-            let (p, sl, du) = (Angle::new(1.1f64), Angle::new(slab), Angle::new(dual));
-            g.bench(&format!("f64/{name}"), || s.constraints(v, black_box(&p)));
-            g.bench(&format!("slab/{name}"), || s.constraints(v, black_box(&sl)));
-            g.bench(&format!("dual/{name}"), || s.constraints(v, black_box(&du)));
-        }
-    }
-}
-
-/// Each paper scene paved from its built-in formulas and from its scene
-/// file (`scenes/`, compiled to a tape), per method, on one thread and on
-/// two, derived reading, ε = 1e-4: the ratio is the tape's cost. Ends with
-/// the table of `docs/performance/scene-files.md` and the load average.
-fn scene_files() {
-    let g = Group::new("scene-file").samples(5);
-    let load = || std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
-    let load_before = load();
-    let mut rows = Vec::new();
-    for id in SceneId::ALL {
-        let sources = file_and_built_in(id);
-        for m in Method::ALL {
-            for threads in [1, 2] {
-                let pool = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build()
-                    .expect("thread pool");
-                let [b, f] = sources.each_ref().map(|(source, s)| {
-                    let d = s.domain();
-                    let case = format!("{}/{m}/threads={threads}/{source}", id.name());
-                    pool.install(|| {
-                        g.bench(&case, || {
-                            pave_scene_method(
-                                s,
-                                Variant::Derived,
-                                &d,
-                                PaveOptions {
-                                    eps: 1e-4,
-                                    max_boxes: 10_000_000,
-                                },
-                                &MethodOptions::new(m),
-                                |_, _, _| {},
-                            )
-                            .unwrap()
-                        })
-                    })
-                });
-                if let (Some(b), Some(f)) = (b, f) {
-                    rows.push(format!(
-                        "| {} | {m} | {threads} | {} | {} | {:.2} |",
-                        id.name(),
-                        timing::seconds(b),
-                        timing::seconds(f),
-                        f / b
-                    ));
-                }
-            }
-        }
-    }
-    if !rows.is_empty() {
-        println!("\n| scene | method | threads | built-in | file | file / built-in |");
-        println!("|---|---|---|---|---|---|");
-        for r in rows {
-            println!("{r}");
-        }
-        println!("\nload average before: {}after: {}", load_before, load());
+        let s = Scene::default_of(id);
+        let v = Variant::Derived;
+        let name = id.name();
+        let (p, sl, du) = (Angle::new(1.1f64), Angle::new(slab), Angle::new(dual));
+        g.bench(&format!("f64/{name}"), || s.constraints(v, black_box(&p)));
+        g.bench(&format!("slab/{name}"), || s.constraints(v, black_box(&sl)));
+        g.bench(&format!("dual/{name}"), || s.constraints(v, black_box(&du)));
     }
 }
 
@@ -215,5 +144,4 @@ fn main() {
     methods();
     one_box();
     tape();
-    scene_files();
 }
