@@ -15,7 +15,7 @@ use crate::pave::{
 };
 use crate::scene::expr::Program;
 use crate::scene::Quadratic;
-use crate::scene::{Domain, Scene, Variant};
+use crate::scene::{Constraints, Domain, Scene, Variant};
 use inari::{DecInterval, Interval};
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -77,6 +77,11 @@ pub struct Regions<'a> {
     same: bool,
     /// Factor signs by (factor, θ-range): boxes of one θ-range share them.
     signs: RefCell<HashMap<(usize, u64, u64), Option<bool>>>,
+    /// θ-slab coefficients by θ-range, for a scene whose regions are
+    /// quadratic in θ̇: the searches visit each θ-range with many θ̇-ranges
+    /// (and every set of a parameter box shares them), and the slab is
+    /// where nearly all the time goes.
+    slabs: RefCell<HashMap<(u64, u64), Constraints<DecInterval>>>,
 }
 
 /// Constraint `constraint` is constraint `other` times or divided by the
@@ -107,6 +112,7 @@ impl<'a> Regions<'a> {
             factors,
             same: scene.omega0_is_omega(variant),
             signs: RefCell::new(HashMap::new()),
+            slabs: RefCell::new(HashMap::new()),
         }
     }
 
@@ -123,7 +129,14 @@ impl<'a> Regions<'a> {
                     scene,
                     variant: self.variant,
                 };
-                s.enclose(&s.slab(t), w)
+                let key = (b.theta[0].to_bits(), b.theta[1].to_bits());
+                let cached = self.slabs.borrow().get(&key).copied();
+                let slab = cached.unwrap_or_else(|| {
+                    let slab = s.slab(t);
+                    self.slabs.borrow_mut().insert(key, slab);
+                    slab
+                });
+                s.enclose(&slab, w)
             }
         };
         [Label::from_enclosure(e[0]), Label::from_enclosure(e[1])]
@@ -301,24 +314,18 @@ impl<'a> Regions<'a> {
     }
 }
 
-/// Decides one set on one parameter box: `at_box` is the scene with the
-/// box's parameters as intervals, `at_centre` at the box's centre (where a
-/// witness is looked for before it is proved over the whole box).
-pub fn decide(
-    at_box: &Scene,
-    at_centre: &Scene,
-    variant: Variant,
-    cell: CellSpec,
-    opts: DecideOptions,
-) -> SetStatus {
+/// Decides one set on one parameter box: `over` is the scene with the
+/// box's parameters as intervals, `centre` at the box's centre (where a
+/// witness is looked for before it is proved over the whole box). The
+/// sets of one box share both, and with them their cached slabs.
+pub fn decide(over: &Regions, centre: &Regions, cell: CellSpec, opts: DecideOptions) -> SetStatus {
     let want = [cell.0[0], cell.0[1]];
-    let over = Regions::new(at_box, variant);
-    let centre = Regions::new(at_centre, variant);
-    let why_not_nonempty = match witness(&over, &centre, &at_box.domain(), &want, opts) {
+    let domain = over.scene.domain();
+    let why_not_nonempty = match witness(over, centre, &domain, &want, opts) {
         Ok(witness) => return SetStatus::Nonempty { witness },
         Err(e) => e,
     };
-    match prove_empty(&over, &at_box.domain(), &want, opts) {
+    match prove_empty(over, &domain, &want, opts) {
         Ok((tree, reasons)) => SetStatus::Empty { tree, reasons },
         Err(why_not_empty) => SetStatus::Undecided {
             reason: format!("{why_not_nonempty}; {why_not_empty}"),
