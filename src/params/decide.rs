@@ -35,7 +35,7 @@ pub struct DecideOptions {
 impl Default for DecideOptions {
     fn default() -> Self {
         DecideOptions {
-            line_boxes: 6_000,
+            line_boxes: 4_000,
             witness_boxes: 1_500,
             empty_leaves: 200_000,
         }
