@@ -691,3 +691,41 @@ fn a_thin_cell_gets_a_witness_from_lines_of_constant_theta() {
         );
     }
 }
+
+/// Example 1 over (b, μ): Ω̄ = {b sinθ θ̇² ≥ g} meets the domain |θ̇| ≤ 10
+/// only where b·100 ≥ g, so Ω̄∩Ω₀ is empty for every b ≤ g/100 (at b = g/100
+/// Ω̄ is the two points θ = π/2, θ̇ = ±10, where Ω₀'s expression is 0); for
+/// b > g/100 and μ > 0 it is non-empty (near Ω's boundary, Ω₀ holds where
+/// μh²h'θ̇ < 0, i.e. θ̇cosθ < 0). No box may state otherwise, and both
+/// statuses must appear.
+#[test]
+fn example_1_non_uniqueness_needs_b_above_g_over_100() {
+    let f = family(
+        Source::by_name("viscous-disc").unwrap(),
+        vec![axis("b", "0", "0.9"), axis("mu", "0.25", "2")],
+    );
+    let leaves = search(&f, &[Cell::Omega0NotOmega], &opts(1.0 / 32.0), |_, _, _| {})
+        .unwrap()
+        .atlas
+        .leaves;
+    let threshold = 9.81 / 100.0;
+    let (mut empty, mut nonempty) = (0, 0);
+    for leaf in &leaves {
+        let b = leaf.bounds[0];
+        match leaf.sets[0] {
+            SetStatus::Empty { .. } => {
+                assert!(b[1] <= threshold, "{leaf:?}");
+                empty += 1;
+            }
+            SetStatus::Nonempty { .. } => {
+                assert!(b[0] > threshold, "{leaf:?}");
+                nonempty += 1;
+            }
+            SetStatus::Undecided { .. } => {}
+        }
+    }
+    assert!(
+        empty > 0 && nonempty > 0,
+        "{empty} empty, {nonempty} non-empty"
+    );
+}
