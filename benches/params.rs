@@ -1,6 +1,6 @@
 //! Parameter atlases: the uniform rod's threshold μ* = 4/3 to 1e-9
 //! relative, and 2-D atlases at 1/256 of each axis (the ladder with a
-//! painter over (μ, r), the disc on ice over (p_φ, p_ψ)).
+//! painter over (μ, r), Example 1's disc over (b, μ)).
 
 #[path = "support/timing.rs"]
 mod timing;
@@ -53,7 +53,7 @@ fn undecided_share(f: &Family, r: &detach::params::AtlasRun) -> f64 {
 }
 
 fn main() {
-    let group = Group::new("params").samples(5);
+    let group = Group::new("params").samples(3);
     let rod = Family::new(
         Source::by_name("painleve-rod").unwrap(),
         Variant::Derived,
@@ -77,20 +77,16 @@ fn main() {
         vec![axis("mu", "0.5", "4"), axis("r", "0.5", "4")],
     )
     .unwrap();
-    let ice = Family::new(
-        Source::by_name("ice-disc").unwrap(),
+    let disc = Family::new(
+        Source::by_name("viscous-disc").unwrap(),
         Variant::Derived,
         Vec::new(),
-        vec![axis("p_phi", "0", "2"), axis("p_psi", "0", "2")],
+        vec![axis("b", "0", "0.9"), axis("mu", "0.25", "2")],
     )
     .unwrap();
     for (name, f, cells) in [
         ("ladder_mu_r_256", &ladder, &PARADOXES[..]),
-        (
-            "ice_disc_p_phi_p_psi_256",
-            &ice,
-            &[Cell::Omega0NotOmega][..],
-        ),
+        ("viscous_disc_b_mu_256", &disc, &PARADOXES[..]),
     ] {
         let r = run(f, cells, 1.0 / 256.0);
         println!(

@@ -15,7 +15,7 @@ use crate::pave::{
 };
 use crate::scene::expr::Program;
 use crate::scene::Quadratic;
-use crate::scene::{Domain, Scene, Variant};
+use crate::scene::{Constraints, Domain, Scene, Variant};
 use inari::{DecInterval, Interval};
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -23,7 +23,10 @@ use std::collections::HashMap;
 /// Budgets of one decision.
 #[derive(Clone, Copy, Debug)]
 pub struct DecideOptions {
-    /// Most phase boxes evaluated while looking for a witness.
+    /// Most phase boxes evaluated while looking for a witness on lines of
+    /// constant θ (cheap: one θ-slab per line).
+    pub line_boxes: usize,
+    /// Most phase boxes evaluated while looking for a witness in the plane.
     pub witness_boxes: usize,
     /// Most leaves of an emptiness tree.
     pub empty_leaves: usize,
@@ -32,6 +35,7 @@ pub struct DecideOptions {
 impl Default for DecideOptions {
     fn default() -> Self {
         DecideOptions {
+            line_boxes: 4_000,
             witness_boxes: 1_500,
             empty_leaves: 200_000,
         }
@@ -77,6 +81,11 @@ pub struct Regions<'a> {
     same: bool,
     /// Factor signs by (factor, θ-range): boxes of one θ-range share them.
     signs: RefCell<HashMap<(usize, u64, u64), Option<bool>>>,
+    /// θ-slab coefficients by θ-range, for a scene whose regions are
+    /// quadratic in θ̇: the searches visit each θ-range with many θ̇-ranges
+    /// (and every set of a parameter box shares them), and the slab is
+    /// where nearly all the time goes.
+    slabs: RefCell<HashMap<(u64, u64), Constraints<DecInterval>>>,
 }
 
 /// Constraint `constraint` is constraint `other` times or divided by the
@@ -105,6 +114,7 @@ impl<'a> Regions<'a> {
             factors,
             same: scene.omega0_is_omega(variant),
             signs: RefCell::new(HashMap::new()),
+            slabs: RefCell::new(HashMap::new()),
         }
     }
 
@@ -121,7 +131,14 @@ impl<'a> Regions<'a> {
                     scene: self.scene,
                     variant: self.variant,
                 };
-                s.enclose(&s.slab(t), w)
+                let key = (b.theta[0].to_bits(), b.theta[1].to_bits());
+                let cached = self.slabs.borrow().get(&key).copied();
+                let slab = cached.unwrap_or_else(|| {
+                    let slab = s.slab(t);
+                    self.slabs.borrow_mut().insert(key, slab);
+                    slab
+                });
+                s.enclose(&slab, w)
             }
         };
         [Label::from_enclosure(e[0]), Label::from_enclosure(e[1])]
@@ -299,24 +316,18 @@ impl<'a> Regions<'a> {
     }
 }
 
-/// Decides one set on one parameter box: `at_box` is the scene with the
-/// box's parameters as intervals, `at_centre` at the box's centre (where a
-/// witness is looked for before it is proved over the whole box).
-pub fn decide(
-    at_box: &Scene,
-    at_centre: &Scene,
-    variant: Variant,
-    cell: CellSpec,
-    opts: DecideOptions,
-) -> SetStatus {
+/// Decides one set on one parameter box: `over` is the scene with the
+/// box's parameters as intervals, `centre` at the box's centre (where a
+/// witness is looked for before it is proved over the whole box). The
+/// sets of one box share both, and with them their cached slabs.
+pub fn decide(over: &Regions, centre: &Regions, cell: CellSpec, opts: DecideOptions) -> SetStatus {
     let want = [cell.0[0], cell.0[1]];
-    let over = Regions::new(at_box, variant);
-    let centre = Regions::new(at_centre, variant);
-    let why_not_nonempty = match witness(&over, &centre, &at_box.domain(), &want, opts) {
+    let domain = over.scene.domain();
+    let why_not_nonempty = match witness(over, centre, &domain, &want, opts) {
         Ok(witness) => return SetStatus::Nonempty { witness },
         Err(e) => e,
     };
-    match prove_empty(&over, &at_box.domain(), &want, opts) {
+    match prove_empty(over, &domain, &want, opts) {
         Ok((tree, reasons)) => SetStatus::Empty { tree, reasons },
         Err(why_not_empty) => SetStatus::Undecided {
             reason: format!("{why_not_nonempty}; {why_not_empty}"),
@@ -355,10 +366,12 @@ fn split_axis(
 }
 
 /// A phase box on which every literal of `want` is proved for the whole
-/// parameter box: boxes in the set at the centre parameters (a
-/// breadth-first search of the domain that drops boxes proved out of the
-/// set, [`Regions::implied_in`]), each then proved over the parameter box,
-/// shrunk about its centre until it is or its centre alone fails.
+/// parameter box. Candidates come first from lines of constant θ
+/// ([`witness_on_lines`]: finds thin sets), then from a breadth-first
+/// search of the domain at the centre parameters that drops boxes proved
+/// out of the set ([`Regions::implied_in`]); each is proved over the
+/// parameter box, shrunk about its centre until it is or its centre alone
+/// fails. Each search has its own budget.
 fn witness(
     over: &Regions,
     centre: &Regions,
@@ -374,20 +387,22 @@ fn witness(
         theta: inner[0],
         theta_dot: inner[1],
     };
+    let mut on_lines = Tries::new(opts.line_boxes);
+    if let Some(w) = witness_on_lines(over, &root, want, &mut on_lines) {
+        return Ok(w);
+    }
     let rules = centre.rules_for(want);
+    let mut at_centre = Tries::new(opts.witness_boxes);
     let mut level = vec![root];
-    let mut evaluated = 0;
-    let mut found_at_centre = 0;
-    while !level.is_empty() && evaluated < opts.witness_boxes && found_at_centre < MAX_CANDIDATES {
+    while !level.is_empty() && at_centre.open() {
         let mut next = Vec::new();
         for b in level {
-            evaluated += 1;
+            at_centre.evaluated += 1;
             if centre.implied_in(&b, want) {
-                found_at_centre += 1;
-                if let Some(w) = prove_about(over, &b, want) {
+                if let Some(w) = at_centre.candidate(over, &b, want) {
                     return Ok(w);
                 }
-                if found_at_centre >= MAX_CANDIDATES {
+                if !at_centre.open() {
                     break;
                 }
                 continue;
@@ -398,23 +413,156 @@ fn witness(
             let (lo, hi) = b.split(split_axis(centre, &b, &root, &rules));
             next.push(lo);
             next.push(hi);
-            if evaluated >= opts.witness_boxes {
+            if !at_centre.open() {
                 break;
             }
         }
         level = next;
     }
-    Err(if found_at_centre == 0 {
-        "no witness at the centre of the box".into()
-    } else {
-        format!("{found_at_centre} witnesses at the centre, none for the whole box")
+    Err(match (on_lines.candidates, at_centre.candidates) {
+        (0, 0) => "no witness on lines of constant θ or at the centre of the box".into(),
+        (l, c) => format!(
+            "{l} witnesses on lines of constant θ and {c} at the centre, none for the whole box"
+        ),
     })
 }
 
-/// Most boxes in the set at the centre parameters tried as witnesses.
+/// What one witness search has spent: boxes evaluated, and candidates
+/// found (boxes in the set, before they are proved over the parameter box).
+struct Tries {
+    evaluated: usize,
+    candidates: usize,
+    budget: usize,
+}
+
+impl Tries {
+    fn new(budget: usize) -> Tries {
+        Tries {
+            evaluated: 0,
+            candidates: 0,
+            budget,
+        }
+    }
+
+    fn open(&self) -> bool {
+        self.evaluated < self.budget && self.candidates < MAX_CANDIDATES
+    }
+
+    /// The candidate `b` tried over the parameter box.
+    fn candidate(
+        &mut self,
+        over: &Regions,
+        b: &PhaseBox,
+        want: &[Option<bool>; 2],
+    ) -> Option<PhaseBox> {
+        self.candidates += 1;
+        prove_about(over, b, want)
+    }
+}
+
+/// Lines θ = const through the domain, at 1/2, then 1/4 and 3/4, … of its
+/// θ-range (each level halves the spacing, up to [`LINE_LEVELS`]): on each,
+/// the θ̇-intervals proved in the set for the whole parameter box, by
+/// bisection of θ̇ alone (every box of a line shares one θ-slab). The widest
+/// becomes a candidate as wide in θ as the lines' spacing. A set that is
+/// thin in θ̇ (a band along a curve, which moves with the parameters)
+/// crosses many lines, where a search of the whole plane must split it to
+/// its thinness in both axes before a box fits, and a box found at the
+/// centre parameters must then also fit the band's other positions.
+fn witness_on_lines(
+    over: &Regions,
+    root: &PhaseBox,
+    want: &[Option<bool>; 2],
+    tries: &mut Tries,
+) -> Option<PhaseBox> {
+    let width = root.theta[1] - root.theta[0];
+    for level in 1..=LINE_LEVELS {
+        let n = 1u32 << level;
+        for k in (1..n).step_by(2) {
+            let theta = root.theta[0] + width * (f64::from(k) / f64::from(n));
+            let Some(run) = widest_run(over, theta, root, want, tries) else {
+                if !tries.open() {
+                    return None;
+                }
+                continue;
+            };
+            let h = width / f64::from(2 * n);
+            let b = PhaseBox {
+                theta: [
+                    (theta - h).max(root.theta[0]),
+                    (theta + h).min(root.theta[1]),
+                ],
+                theta_dot: run,
+            };
+            if let Some(w) = tries.candidate(over, &b, want) {
+                return Some(w);
+            }
+            if !tries.open() {
+                return None;
+            }
+        }
+    }
+    None
+}
+
+/// Levels of lines [`witness_on_lines`] tries: 2^LINE_LEVELS − 1 lines.
+const LINE_LEVELS: u32 = 8;
+
+/// θ̇-pieces narrower than the domain's θ̇-range over 2^this are not split.
+const LINE_DEPTH: u32 = 14;
+
+/// The widest θ̇-interval on the line θ = `theta` that is a union of
+/// adjacent pieces each proved in the set for the whole parameter box.
+fn widest_run(
+    over: &Regions,
+    theta: f64,
+    root: &PhaseBox,
+    want: &[Option<bool>; 2],
+    tries: &mut Tries,
+) -> Option<[f64; 2]> {
+    let rules = over.rules_for(want);
+    let finest = (root.theta_dot[1] - root.theta_dot[0]) / f64::from(1u32 << LINE_DEPTH);
+    let mut inside: Vec<[f64; 2]> = Vec::new();
+    let mut stack = vec![root.theta_dot];
+    while let Some(w) = stack.pop() {
+        if tries.evaluated >= tries.budget {
+            break;
+        }
+        tries.evaluated += 1;
+        let b = PhaseBox {
+            theta: [theta, theta],
+            theta_dot: w,
+        };
+        if over.proved_in(&b, want) {
+            inside.push(w);
+            continue;
+        }
+        let m = b.midpoint(1);
+        if over.reason(&b, want, &rules).is_some()
+            || w[1] - w[0] <= finest
+            || !(w[0] < m && m < w[1])
+        {
+            continue;
+        }
+        stack.push([m, w[1]]);
+        stack.push([w[0], m]);
+    }
+    // Depth first, low half first: the pieces come in increasing θ̇.
+    let mut runs: Vec<[f64; 2]> = Vec::new();
+    for w in inside {
+        match runs.last_mut() {
+            Some(r) if r[1] == w[0] => r[1] = w[1],
+            _ => runs.push(w),
+        }
+    }
+    runs.into_iter()
+        .max_by(|x, y| (x[1] - x[0]).total_cmp(&(y[1] - y[0])))
+}
+
+/// Most candidates one witness search tries over the parameter box.
 const MAX_CANDIDATES: usize = 16;
 
-/// `b` (proved in the set at the centre) shrunk about its centre until the
+/// The candidate `b` shrunk about its centre until the
 /// set's literals are proved on it for the whole parameter box.
 fn prove_about(over: &Regions, b: &PhaseBox, want: &[Option<bool>; 2]) -> Option<PhaseBox> {
     let c = [b.midpoint(0), b.midpoint(1)];

@@ -36,6 +36,7 @@ pub fn empty_tree(
     cell: Cell,
 ) -> Option<(Vec<crate::pave::Node>, Vec<model::EmptyReason>)> {
     let opts = DecideOptions {
+        line_boxes: 0,
         witness_boxes: 0,
         empty_leaves: 20_000,
     };

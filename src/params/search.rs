@@ -9,7 +9,7 @@
 //! `i mod n = k` alone: joining the shards' boxes in base order gives
 //! exactly the boxes of one run.
 
-use super::decide::{decide, DecideOptions};
+use super::decide::{decide, DecideOptions, Regions};
 use super::family::Family;
 use super::model::{ParamAtlas, ParamLeaf, ParamNode, SetStatus};
 use crate::scene::Cell;
@@ -211,13 +211,13 @@ fn decide_box(
     let at_box = family.scene_at(&c.bounds)?;
     let centre: Vec<f64> = c.bounds.iter().map(|r| midpoint(*r)).collect();
     let at_centre = family.scene_at_point(&centre)?;
+    let over = Regions::new(&at_box, family.variant);
+    let centre = Regions::new(&at_centre, family.variant);
     Ok(cells
         .iter()
         .zip(&c.sets)
         .map(|(cell, s)| match s {
-            SetStatus::Undecided { .. } => {
-                decide(&at_box, &at_centre, family.variant, cell.spec(), opts)
-            }
+            SetStatus::Undecided { .. } => decide(&over, &centre, cell.spec(), opts),
             decided => decided.clone(),
         })
         .collect())

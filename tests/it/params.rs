@@ -4,7 +4,7 @@
 
 use crate::common::{assert_bad_input, detach, json, Rng};
 use detach::params::model::{ParamAxis, SetStatus};
-use detach::params::{search, DecideOptions, Family, SearchOptions, Source};
+use detach::params::{decide, search, DecideOptions, Family, Regions, SearchOptions, Source};
 use detach::scene::Cell;
 use detach::scene::{SceneText, Variant};
 use inari::Interval;
@@ -621,4 +621,111 @@ fn cells_asking_one_constraint_both_ways_are_empty() {
     let s = statuses(&v, Cell::Omega0NotOmega.name());
     assert!(s.iter().all(|s| s != "empty"), "{s:?}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The disc on ice's Ω̄∩Ω₀ at p_φ ≈ 1.3, p_ψ ≈ 0.4 (c₀ = 0): a thin band
+/// (area about 0.02 of the domain's 63, by `detach area`). The search on
+/// lines of constant θ proves a witness over the whole parameter box (1/256
+/// of [0, 2] on each axis); the search of the plane at the box's centre
+/// finds none. The witness is checked in plain f64 against the paper's
+/// (2.7), (3.1) and (3.3), at its corners and at random points, for
+/// parameters at the box's corners and at random.
+#[test]
+fn a_thin_cell_gets_a_witness_from_lines_of_constant_theta() {
+    let f = family(
+        Source::by_name("ice-disc").unwrap(),
+        vec![
+            axis("p_phi", "1.3", "1.3078125"),
+            axis("p_psi", "0.4", "0.4078125"),
+        ],
+    );
+    let at_box = f.scene_at(&f.root).unwrap();
+    let centre: Vec<f64> = f.root.iter().map(|r| 0.5 * (r[0] + r[1])).collect();
+    let at_centre = f.scene_at_point(&centre).unwrap();
+    let over = Regions::new(&at_box, Variant::Derived);
+    let mid = Regions::new(&at_centre, Variant::Derived);
+    let cell = Cell::Omega0NotOmega.spec();
+    let plane_only = DecideOptions {
+        line_boxes: 0,
+        ..DecideOptions::default()
+    };
+    let s = decide(&over, &mid, cell, plane_only);
+    assert!(!matches!(s, SetStatus::Nonempty { .. }), "{s:?}");
+    let SetStatus::Nonempty { witness } = decide(&over, &mid, cell, DecideOptions::default())
+    else {
+        panic!("no witness");
+    };
+    // (2.7), (3.1), (3.3) with m = 1, a = 1, A = 0.25, g = 9.81, c₀ = 0.
+    let in_cell = |t: f64, w: f64, p_phi: f64, p_psi: f64| {
+        let (a, big_a, g) = (1.0, 0.25, 9.81);
+        let (s, c) = t.sin_cos();
+        let tau = (p_psi - p_phi * c) / (big_a * s);
+        let tau1 = (p_phi - p_psi * c) / (big_a * s * s);
+        let u = a * s * w * w + a * tau * tau1 * c - g;
+        let vx = -a / big_a * (p_psi * (t / 2.0).tan().ln() - p_phi * s.ln());
+        let acc = (-g * a * c + a * vx * tau - big_a * tau * tau1) / (big_a + a * a);
+        let minus_n = a * s * w * w - g - a * c * acc;
+        u >= 0.0 && minus_n < 0.0
+    };
+    let mut rng = Rng(0x2545f4914f6cdd1d);
+    let pick = |rng: &mut Rng, r: [f64; 2]| r[0] + (r[1] - r[0]) * rng.unit();
+    let (x, y) = (f.root[0], f.root[1]);
+    for i in 0..400 {
+        // First every corner of the witness with every corner of the box.
+        let (t, w) = if i < 16 {
+            (witness.theta[i & 1], witness.theta_dot[(i >> 1) & 1])
+        } else {
+            (
+                pick(&mut rng, witness.theta),
+                pick(&mut rng, witness.theta_dot),
+            )
+        };
+        let (p, q) = if i < 16 {
+            (x[(i >> 2) & 1], y[(i >> 3) & 1])
+        } else {
+            (pick(&mut rng, x), pick(&mut rng, y))
+        };
+        assert!(
+            in_cell(t, w, p, q),
+            "{witness:?} at θ = {t}, θ̇ = {w}, p_φ = {p}, p_ψ = {q}"
+        );
+    }
+}
+
+/// Example 1 over (b, μ): Ω̄ = {b sinθ θ̇² ≥ g} meets the domain |θ̇| ≤ 10
+/// only where b·100 ≥ g, so Ω̄∩Ω₀ is empty for every b ≤ g/100 (at b = g/100
+/// Ω̄ is the two points θ = π/2, θ̇ = ±10, where Ω₀'s expression is 0); for
+/// b > g/100 and μ > 0 it is non-empty (near Ω's boundary, Ω₀ holds where
+/// μh²h'θ̇ < 0, i.e. θ̇cosθ < 0). No box may state otherwise, and both
+/// statuses must appear.
+#[test]
+fn example_1_non_uniqueness_needs_b_above_g_over_100() {
+    let f = family(
+        Source::by_name("viscous-disc").unwrap(),
+        vec![axis("b", "0", "0.9"), axis("mu", "0.25", "2")],
+    );
+    let leaves = search(&f, &[Cell::Omega0NotOmega], &opts(1.0 / 32.0), |_, _, _| {})
+        .unwrap()
+        .atlas
+        .leaves;
+    let threshold = 9.81 / 100.0;
+    let (mut empty, mut nonempty) = (0, 0);
+    for leaf in &leaves {
+        let b = leaf.bounds[0];
+        match leaf.sets[0] {
+            SetStatus::Empty { .. } => {
+                assert!(b[1] <= threshold, "{leaf:?}");
+                empty += 1;
+            }
+            SetStatus::Nonempty { .. } => {
+                assert!(b[0] > threshold, "{leaf:?}");
+                nonempty += 1;
+            }
+            SetStatus::Undecided { .. } => {}
+        }
+    }
+    assert!(
+        empty > 0 && nonempty > 0,
+        "{empty} empty, {nonempty} non-empty"
+    );
 }
