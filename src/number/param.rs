@@ -7,24 +7,11 @@ use inari::Interval;
 use std::collections::BTreeMap;
 use thiserror::Error;
 
-/// What a parameter must satisfy.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Sign {
-    /// strictly positive
-    Positive,
-    /// zero or positive
-    NonNegative,
-    /// any finite value
-    Any,
-}
-
 /// Declaration of one scene parameter.
 #[derive(Clone, Copy, Debug, serde::Serialize)]
 pub struct ParamSpec {
     pub name: &'static str,
     pub default: &'static str,
-    pub sign: Sign,
     pub meaning: &'static str,
     /// The unit the value is in (`m`, `kg`, `m/s^2`), or empty.
     pub unit: &'static str,
@@ -43,10 +30,6 @@ pub enum ParamError {
         "parameter `{name}`: `{text}` is not a finite decimal number (examples: 9.81, -0.5, 2e-3)"
     )]
     NotDecimal { name: String, text: String },
-    #[error("parameter `{name}` must be positive, got {text}")]
-    NotPositive { name: String, text: String },
-    #[error("parameter `{name}` must be zero or positive, got {text}")]
-    Negative { name: String, text: String },
     #[error("unknown parameter `{name}` for scene `{scene}` (known: {known})")]
     Unknown {
         name: String,
@@ -287,26 +270,10 @@ pub fn parse_count(text: &str) -> Result<usize, String> {
 }
 
 impl Param {
-    /// Parses and validates one parameter against its declaration.
+    /// Parses one parameter's decimal text and encloses it (a scene's
+    /// `[conditions]` then check the values).
     pub fn parse(spec: &ParamSpec, text: &str) -> Result<Param, ParamError> {
         let value = enclose_decimal(spec.name, text)?;
-        let d = scan_decimal(text).expect("checked by enclose_decimal");
-        let err_text = text.trim().to_string();
-        match spec.sign {
-            Sign::Positive if d.negative || d.zero() => {
-                return Err(ParamError::NotPositive {
-                    name: spec.name.into(),
-                    text: err_text,
-                })
-            }
-            Sign::NonNegative if d.negative && !d.zero() => {
-                return Err(ParamError::Negative {
-                    name: spec.name.into(),
-                    text: err_text,
-                })
-            }
-            _ => {}
-        }
         Ok(Param {
             text: text.trim().to_string(),
             value,
@@ -419,7 +386,6 @@ mod tests {
     const G: ParamSpec = ParamSpec {
         name: "g",
         default: "9.81",
-        sign: Sign::Positive,
         meaning: "gravity",
         unit: "",
     };
@@ -492,34 +458,16 @@ mod tests {
     }
 
     #[test]
-    fn signs_are_checked_from_the_text() {
-        assert!(matches!(
-            Param::parse(&G, "0"),
-            Err(ParamError::NotPositive { .. })
-        ));
-        assert!(matches!(
-            Param::parse(&G, "-0.0"),
-            Err(ParamError::NotPositive { .. })
-        ));
-        assert!(matches!(
-            Param::parse(&G, "-1"),
-            Err(ParamError::NotPositive { .. })
-        ));
-        // Positive text, but its enclosure reaches 0: refused as overflow is.
+    fn a_value_is_any_finite_decimal_whose_enclosure_is_not_zero_by_accident() {
+        // Signs are the scene's `[conditions]`; a value is only checked as
+        // text: 0 and negatives are values, a nonzero text whose enclosure
+        // reaches 0 is refused as overflow is.
+        for t in ["0", "-0.0", "-1", "5e-324"] {
+            assert!(Param::parse(&G, t).is_ok(), "{t}");
+        }
         assert!(matches!(
             Param::parse(&G, "1e-400"),
             Err(ParamError::TooSmall { .. })
-        ));
-        assert!(Param::parse(&G, "5e-324").is_ok());
-        let mu = ParamSpec {
-            sign: Sign::NonNegative,
-            ..G
-        };
-        assert!(Param::parse(&mu, "0").is_ok());
-        assert!(Param::parse(&mu, "-0").is_ok());
-        assert!(matches!(
-            Param::parse(&mu, "-0.1"),
-            Err(ParamError::Negative { .. })
         ));
     }
 

@@ -45,7 +45,8 @@ pub struct Family {
 
 impl Family {
     /// One or two axes `name=lo:hi`; each end is checked as the parameter's
-    /// value would be (its sign rule), and `lo < hi`.
+    /// value would be (decimal text), and `lo < hi`; the whole box must then
+    /// satisfy the scene's `[conditions]`.
     pub fn new(
         source: Source,
         variant: Variant,

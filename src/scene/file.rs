@@ -10,7 +10,7 @@
 use super::expr::{enclose_constant, ExprError, Program};
 use super::{Angle, Domain, Quadratic};
 use crate::number::param::{
-    enclose_decimal, enclose_window_end, short_num, ParamError, ParamSet, ParamSpec, Sign,
+    enclose_decimal, enclose_window_end, short_num, ParamError, ParamSet, ParamSpec,
 };
 use crate::number::scalar::Scalar;
 use inari::Interval;
@@ -784,7 +784,6 @@ fn parameters(
         specs.push(ParamSpec {
             name: interned(name),
             default: interned(&text),
-            sign: Sign::Any,
             meaning: interned(raw.description.as_deref().unwrap_or_default()),
             unit: interned(raw.unit.as_deref().unwrap_or_default()),
         });
