@@ -13,9 +13,7 @@ use super::paving::{paving_proof, PavingStatement};
 use super::roots::{build_pieces, kappa0_proof, roots_proof, RootsStatement};
 use super::statement::in_proof_names;
 use crate::pave::{pave_scene, PaveOptions};
-use crate::roots::equations::{
-    eq_2_10, eq_2_9, scene_function, SceneFunction, TEXT_2_10, TEXT_2_9,
-};
+use crate::roots::equations::{eq_2_10, eq_2_9, scene_function, TEXT_2_10, TEXT_2_9};
 use crate::roots::isolate::Budget;
 use crate::roots::request::Problem;
 use crate::roots::{prove_kappa0, EquationId, EquationRoots, RootsInputs, RootsRequest};
@@ -207,7 +205,7 @@ pub fn roots_proof_of(request: &RootsRequest, roots: &EquationRoots) -> Result<V
                     function: in_proof_names(&f.text),
                     domain: ["0", "pi"],
                 },
-                &build_pieces(&SceneFunction(f), 0.0, pi, &roots.roots),
+                &build_pieces(f, 0.0, pi, &roots.roots),
             ))
         }
         (_, eq) => Err(format!(

@@ -31,7 +31,7 @@ use super::witness::{find_difference, window};
 use super::{dec, enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::pave::PhaseBox;
-use crate::roots::equations::{scene_function, SceneFunction};
+use crate::roots::equations::scene_function;
 use crate::roots::isolate::{isolate, point, RealFn};
 use crate::roots::{solve_3_3, Budget, EquationId};
 use crate::scene::{Angle, Scene, SceneId};
@@ -1588,7 +1588,7 @@ pub fn s3_sub3(mutant: bool) -> Outcome {
 /// sign is that of `d(sin³θ θ̈)/dθ` on the certified root enclosure.
 fn ice_types(pf: &str, ps: &str, c0: &str) -> (Option<Vec<&'static str>>, serde_json::Value) {
     let (r, scene) = ice_roots(pf, ps, c0);
-    let f = SceneFunction(scene_function(&scene, EquationId::E3_3).expect("(3.3)"));
+    let f = scene_function(&scene, EquationId::E3_3).expect("(3.3)");
     let types: Vec<&'static str> = r
         .roots
         .iter()

@@ -9,7 +9,6 @@ use super::isolate::{isolate, point, Budget, RootEnclosure, RootStatus, Stats, U
 use super::{RealFn, RootsError};
 use crate::number::param::ParamSet;
 use crate::number::scalar::Scalar;
-use crate::scene::expr::Program;
 use crate::scene::file::Function;
 use crate::scene::Scene;
 use inari::{const_interval, Interval};
@@ -141,61 +140,34 @@ pub const TEXT_2_9: &str =
 /// (2.10) as `g(μ) = μ(1 − μ)(1 + μ) − 2κ`, in μ with the parameter κ.
 pub const TEXT_2_10: &str = "mu*(1 - mu)*(1 + mu) - 2*kappa";
 
-/// An equation's text compiled once over its parameters' enclosures (the
-/// scene-file compiler: the same operations, in the order written).
-#[derive(Clone, Debug)]
-pub struct TextEquation {
-    program: Program,
+/// An equation's text compiled once over its parameters' enclosures, as a
+/// scene file's function is: the same operations, in the order written.
+fn equation(name: &str, variable: &str, text: &str, params: &[(&str, Interval)]) -> Function {
+    let params: Vec<(String, Interval)> = params.iter().map(|(n, x)| (n.to_string(), *x)).collect();
+    Function::of_variable(name, variable, text, &params).expect("the equation texts compile")
 }
 
-impl TextEquation {
-    /// `text` in the one variable `variable`, with `params` enclosed.
-    fn compile(variable: &str, text: &str, params: &[(&str, Interval)]) -> TextEquation {
-        let params: Vec<(String, Interval)> =
-            params.iter().map(|(n, x)| (n.to_string(), *x)).collect();
-        let text = with_variable_as_theta(text, variable);
-        let program = Program::compile(&params, &[], &[("f".to_string(), text)])
-            .expect("the equation texts compile");
-        TextEquation { program }
-    }
-}
-
-impl RealFn for TextEquation {
+/// A compiled function of one variable (a scene's `[functions]`, or an
+/// equation's text) is what the isolator solves.
+impl RealFn for Function {
     fn eval<T: Scalar>(&self, x: T) -> T {
-        let mut out = [x];
-        self.program.eval(x, T::int(0), &mut out);
-        out[0]
+        Function::eval(self, x)
     }
-}
-
-/// `text` with the name `variable` written `theta`, the compiler's variable.
-fn with_variable_as_theta(text: &str, variable: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    let mut word = String::new();
-    let flush = |word: &mut String, out: &mut String| {
-        out.push_str(if word == variable { "theta" } else { word });
-        word.clear();
-    };
-    for ch in text.chars() {
-        if ch.is_ascii_alphanumeric() || ch == '_' {
-            word.push(ch);
-        } else {
-            flush(&mut word, &mut out);
-            out.push(ch);
-        }
-    }
-    flush(&mut word, &mut out);
-    out
 }
 
 /// (2.9) at κ, α ([`TEXT_2_9`]).
-pub fn eq_2_9(kappa: Interval, alpha: Interval) -> TextEquation {
-    TextEquation::compile("theta", TEXT_2_9, &[("kappa", kappa), ("alpha", alpha)])
+pub fn eq_2_9(kappa: Interval, alpha: Interval) -> Function {
+    equation(
+        "2.9",
+        "theta",
+        TEXT_2_9,
+        &[("kappa", kappa), ("alpha", alpha)],
+    )
 }
 
 /// (2.10) at κ ([`TEXT_2_10`]).
-pub fn eq_2_10(kappa: Interval) -> TextEquation {
-    TextEquation::compile("mu", TEXT_2_10, &[("kappa", kappa)])
+pub fn eq_2_10(kappa: Interval) -> Function {
+    equation("2.10", "mu", TEXT_2_10, &[("kappa", kappa)])
 }
 
 /// (2.9) multiplied by `(1 + s²)³`, `s = tan(θ/2)`:
@@ -377,15 +349,6 @@ pub fn kappa_alpha(params: &ParamSet) -> Result<(Interval, Interval), RootsError
     Ok((kappa, alpha.intersection(unit)))
 }
 
-/// A scene's named θ-function (`[functions]`) as the isolator's function.
-pub struct SceneFunction<'a>(pub &'a Function);
-
-impl RealFn for SceneFunction<'_> {
-    fn eval<T: Scalar>(&self, theta: T) -> T {
-        self.0.eval(theta)
-    }
-}
-
 /// The scene function an equation is solved on: (2.12) is `eq_2_12`, (3.3)
 /// `eq_3_3` of the scene's `[functions]` (each with its singular factors
 /// cleared, so defined wherever the scene's formulas are).
@@ -476,13 +439,7 @@ fn scene_edges(
 /// enclosed by evaluating it there).
 pub fn solve_2_12(f: &Function, budget: &Budget) -> EquationRoots {
     let enclose = |theta: Interval, _s, _c, _near_pi| f.eval(theta);
-    solve_scene_on_theta(
-        EquationId::E2_12,
-        enclose,
-        "sin³θ·Π̃'(θ)",
-        &SceneFunction(f),
-        budget,
-    )
+    solve_scene_on_theta(EquationId::E2_12, enclose, "sin³θ·Π̃'(θ)", f, budget)
 }
 
 /// Equilibria of (3.3) (zeros of θ̈, which does not depend on θ̇) on
@@ -521,7 +478,7 @@ pub fn solve_3_3(f: &Function, params: &ParamSet, budget: &Budget) -> EquationRo
         EquationId::E3_3,
         enclose,
         "(A + m a²) sin³θ·θ̈(θ)",
-        &SceneFunction(f),
+        f,
         budget,
     )
 }

@@ -325,6 +325,30 @@ pub struct Function {
 }
 
 impl Function {
+    /// `text`, a function of the one variable `variable` (`theta`, or a
+    /// name bound to θ as a definition: the same node, no operation added)
+    /// with `params` enclosed, compiled as a scene file's function is.
+    pub fn of_variable(
+        name: &str,
+        variable: &str,
+        text: &str,
+        params: &[(String, Interval)],
+    ) -> Result<Function, ExprError> {
+        let alias = [(variable.to_string(), "theta".to_string())];
+        let definitions = if variable == "theta" {
+            &[][..]
+        } else {
+            &alias[..]
+        };
+        let program =
+            Program::compile(params, definitions, &[(name.to_string(), text.to_string())])?;
+        Ok(Function {
+            name: name.to_string(),
+            text: text.to_string(),
+            program,
+        })
+    }
+
     /// The function at θ.
     pub fn eval<T: Scalar>(&self, theta: T) -> T {
         let mut out = [theta];

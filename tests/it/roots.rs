@@ -5,12 +5,13 @@ use detach::inari::{const_interval, Interval};
 use detach::number::param::enclose_decimal;
 use detach::number::scalar::Scalar;
 use detach::roots::cluster::bound_cluster;
-use detach::roots::equations::{eq_2_10, eq_2_9, Eq29TanHalf, TextEquation};
+use detach::roots::equations::{eq_2_10, eq_2_9, Eq29TanHalf};
 use detach::roots::isolate::point;
 use detach::roots::{
     isolate, prove_kappa0, solve_2_10, solve_2_12, solve_2_9, Budget, EquationRoots, RealFn,
     RootStatus,
 };
+use detach::scene::file::Function;
 use detach::scene::{Scene, SceneId};
 use proptest::prelude::*;
 
@@ -293,7 +294,7 @@ fn away_from_kappa0_nothing_is_clustered() {
 }
 
 /// (2.10) plus `w (μ − 1/2)²` with `w ∈ [−10, 10]`: f'' = −6μ + 2w may vanish.
-struct WobblySecondDerivative(TextEquation);
+struct WobblySecondDerivative(Function);
 impl RealFn for WobblySecondDerivative {
     fn eval<T: Scalar>(&self, mu: T) -> T {
         let w = T::lift(const_interval!(-10.0, 10.0));
