@@ -149,9 +149,7 @@ fn build(
     boxes: &[(String, Interval)],
 ) -> Result<(Scene, ParamSet), String> {
     let text = match source {
-        Source::Paper(id) => {
-            SceneText::embedded(&id.file_name(variant)).expect("every paper scene is embedded")
-        }
+        Source::Paper(id) => id.text(variant),
         Source::File(t) => t.clone(),
     };
     let f = FileScene::parse_enclosed(&text.text, overrides, boxes)

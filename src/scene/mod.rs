@@ -282,6 +282,20 @@ impl SceneId {
         }
     }
 
+    /// The embedded text of one reading.
+    pub fn text(self, v: Variant) -> SceneText {
+        SceneText::embedded(&self.file_name(v)).expect("every paper scene is embedded")
+    }
+
+    /// One reading compiled, with `name=value` parameter overrides.
+    pub fn reading(
+        self,
+        v: Variant,
+        overrides: &[(String, String)],
+    ) -> Result<FileScene, SceneFileError> {
+        self.text(v).compile(overrides)
+    }
+
     /// The scene's title, from its derived file.
     pub fn title(self) -> &'static str {
         self.declared().0
@@ -300,8 +314,8 @@ impl SceneId {
         DECLARED.get_or_init(|| {
             SceneId::ALL
                 .map(|id| {
-                    let f = FileScene::shipped(&id.file_name(Variant::Derived), &[])
-                        .expect("every paper scene is embedded")
+                    let f = id
+                        .reading(Variant::Derived, &[])
                         .expect("defaults are valid");
                     let title: &'static str = Box::leak(f.title.into_boxed_str());
                     (title, f.params.specs)
@@ -367,11 +381,8 @@ impl Scene {
         id: SceneId,
         overrides: &[(String, String)],
     ) -> Result<(Scene, ParamSet), SceneFileError> {
-        let compile = |v: Variant| {
-            FileScene::shipped(&id.file_name(v), overrides).expect("every paper scene is embedded")
-        };
-        let derived = compile(Variant::Derived)?;
-        let printed = compile(Variant::Printed)?;
+        let derived = id.reading(Variant::Derived, overrides)?;
+        let printed = id.reading(Variant::Printed, overrides)?;
         let params = derived.params.clone();
         Ok((
             Scene::Paper(Box::new(PaperScene {
@@ -417,8 +428,7 @@ impl Scene {
         variant: Variant,
         overrides: &[(String, String)],
     ) -> Result<(Scene, ParamSet), SceneFileError> {
-        let f = FileScene::shipped(&id.file_name(variant), overrides)
-            .expect("every paper scene is embedded")?;
+        let f = id.reading(variant, overrides)?;
         let params = f.params.clone();
         Ok((Scene::File(Box::new(f)), params))
     }
