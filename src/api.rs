@@ -497,32 +497,8 @@ mod tests {
             }
         }
 
-        /// `θ̇ < 1/2` on the unit square.
-        struct Below;
-        impl crate::pave::ConstraintSet for Below {
-            type Slab = ();
-            fn names(&self) -> Vec<String> {
-                vec!["below".into()]
-            }
-            fn slab(&self, _theta: inari::Interval) {}
-            fn enclose(
-                &self,
-                _slab: &(),
-                theta_dot: inari::Interval,
-            ) -> PerConstraint<inari::DecInterval> {
-                let half = inari::DecInterval::new(inari::const_interval!(0.5, 0.5));
-                PerConstraint::new(&[inari::DecInterval::new(theta_dot) - half]).unwrap()
-            }
-        }
-        let unit = PhaseBox {
-            theta: [0.0, 1.0],
-            theta_dot: [0.0, 1.0],
-        };
-        let opts = PaveOptions {
-            eps: 1.0 / 64.0,
-            ..PaveOptions::default()
-        };
-        let p = crate::pave::pave(&Below, unit, opts, |_, _, _| ()).unwrap();
+        // One constraint (`θ̇ < 1/2`): one label per leaf.
+        let p = crate::pave::area::tests::below_on_the_unit_square();
         assert!(p.leaves.len() > 100);
         for leaf in &p.leaves {
             assert_eq!(leaf.labels.len(), 1, "{:?}", leaf);

@@ -276,7 +276,7 @@ pub fn standard_cell_bounds(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::pave::{pave, ConstraintSet, PaveOptions, PerConstraint, PhaseBox};
     use inari::{const_interval, DecInterval};
@@ -293,6 +293,19 @@ mod tests {
             let half = DecInterval::new(const_interval!(0.5, 0.5));
             PerConstraint::new(&[DecInterval::new(theta_dot) - half]).unwrap()
         }
+    }
+
+    /// `θ̇ < 1/2` (one constraint) paved on the unit square at ε = 1/64.
+    pub(crate) fn below_on_the_unit_square() -> Paving {
+        let unit = PhaseBox {
+            theta: [0.0, 1.0],
+            theta_dot: [0.0, 1.0],
+        };
+        let opts = PaveOptions {
+            eps: 1.0 / 64.0,
+            ..PaveOptions::default()
+        };
+        pave(&Below, unit, opts, |_, _, _| ()).unwrap()
     }
 
     /// A set of no constraints is refused with an error, not paved.
@@ -323,15 +336,7 @@ mod tests {
     /// brackets the exact 1/2.
     #[test]
     fn a_literal_past_the_constraints_is_never_proved() {
-        let unit = PhaseBox {
-            theta: [0.0, 1.0],
-            theta_dot: [0.0, 1.0],
-        };
-        let opts = PaveOptions {
-            eps: 1.0 / 64.0,
-            ..PaveOptions::default()
-        };
-        let p = pave(&Below, unit, opts, |_, _, _| ()).unwrap();
+        let p = below_on_the_unit_square();
         let own = p.area_bounds(&CellSpec::of(&[Some(true)]), 0.0);
         assert!(0.45 < own.inner_area && own.inner_area <= 0.5 && 0.5 <= own.outer_area);
         for second in [Some(true), Some(false)] {
