@@ -17,11 +17,12 @@ use super::figures::{
     axis, grid, marks, params_text, series, Curves, FigureOf, FigureSpec, Region, Series, Shape,
     THETA_RAD,
 };
+use super::files::{formula, trig};
 use super::witness::{find_difference, find_leaf, labels_on, window};
 use super::{dec, enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::pave::{Label, PhaseBox};
-use crate::scene::Angle;
+use crate::scene::{Angle, SceneId, Variant};
 use inari::{DecInterval, Interval};
 use serde_json::json;
 
@@ -41,6 +42,12 @@ pub const DEFAULTS: [&str; 6] = ["1", "0.5", "1", "0.3", "0.8", "9.81"];
 const NAMES: [&str; 6] = ["a", "b", "m", "C", "mu", "g"];
 
 impl<T: Copy> P1<T> {
+    /// The values under the names of the scene files.
+    pub fn values(&self) -> [(&'static str, T); 6] {
+        let v = [self.a, self.b, self.m, self.c, self.mu, self.g];
+        [0, 1, 2, 3, 4, 5].map(|i| (NAMES[i], v[i]))
+    }
+
     pub fn map<U>(&self, f: impl Fn(T) -> U) -> P1<U> {
         P1 {
             a: f(self.a),
@@ -95,7 +102,8 @@ pub fn params_json(t: [&str; 6]) -> serde_json::Value {
         .into()
 }
 
-/// `h(θ)` of (1.3) as printed.
+/// The height of G above the lowest rim point, from the geometry: the
+/// centre is `b sin θ` below G and the rim `a` below the centre.
 pub fn h<T: Scalar>(p: &P1<T>, an: &Angle<T>) -> T {
     p.a + p.b * an.sin
 }
@@ -147,30 +155,39 @@ pub fn newton<T: Scalar>(p: &P1<T>, s: T, c: T, w: T, friction_sign: i32) -> (T,
     (x[1], x[2])
 }
 
-/// θ̈ from (1.7) as printed (`factor` 2; a mutant passes 1).
-pub fn printed_1_7<T: Scalar>(p: &P1<T>, s: T, c: T, w: T, factor: i32) -> T {
-    let (hh, h1, h2) = h_jet(p, s, c);
-    let k = T::int(factor);
-    (-(p.m * p.g * h1) - p.mu * hh.sqr() * w - k * p.m * h1 * h2 * w.sqr())
-        / (k * (p.c + p.m * h1.sqr()))
+/// The text at `key` of Example 1's file in reading `v`.
+fn file<T: Scalar>(v: Variant, key: &str, p: &P1<T>, s: T, c: T, w: T) -> T {
+    formula(SceneId::ViscousDisc, v, key, &p.values(), trig(s, c), w)
 }
 
-/// The bracket of (1.9)–(1.11) as printed, `μh²h'θ̇ − g(2C + m h'²) − 2C h''θ̇²`
-/// (`with_friction = false`: (1.10)).
+/// `h(θ)` of (1.3) as printed (`viscous-disc-printed.toml`).
+pub fn printed_h<T: Scalar>(p: &P1<T>, s: T, c: T) -> T {
+    file(Variant::Printed, "definitions.h", p, s, c, T::int(0))
+}
+
+/// θ̈ of (1.7) as printed (`viscous-disc-printed.toml`), or in the
+/// derived reading (`viscous-disc.toml`: the same equation without the
+/// factor 2 on its left side).
+pub fn theta_ddot_1_7<T: Scalar>(v: Variant, p: &P1<T>, s: T, c: T, w: T) -> T {
+    file(v, "dynamics.theta_ddot", p, s, c, w)
+}
+
+/// The bracket of (1.9)–(1.11) as printed, `μh²h'θ̇ − g(2C + m h'²) −
+/// 2C h''θ̇²`: the left side of the printed Ω₀ (1.11), or without the
+/// friction term (`with_friction = false`) that of Ω (1.10).
 pub fn printed_bracket<T: Scalar>(p: &P1<T>, s: T, c: T, w: T, with_friction: bool) -> T {
-    let (hh, h1, h2) = h_jet(p, s, c);
-    let two = T::int(2);
-    let fr = if with_friction {
-        p.mu * hh.sqr() * h1 * w
+    let key = if with_friction {
+        "regions.omega0"
     } else {
-        T::int(0)
+        "regions.omega"
     };
-    fr - p.g * (two * p.c + p.m * h1.sqr()) - two * p.c * h2 * w.sqr()
+    file(Variant::Printed, key, p, s, c, w)
 }
 
-/// Λ̈ of (1.9) as printed.
+/// Λ̈ of (1.9) as printed: `N/m` plus the bracket over `2(C + m h'²)`, the
+/// bracket and `h'` from the printed file.
 pub fn printed_1_9<T: Scalar>(p: &P1<T>, s: T, c: T, w: T, n: T) -> T {
-    let (_, h1, _) = h_jet(p, s, c);
+    let h1 = file(Variant::Printed, "definitions.h1", p, s, c, w);
     n / p.m + printed_bracket(p, s, c, w, true) / (T::int(2) * (p.c + p.m * h1.sqr()))
 }
 
@@ -255,7 +272,11 @@ pub fn f1_3(mutant: bool) -> Outcome {
             sin: s,
             cos: c,
         };
-        let hp = if mutant { p.a + p.b * c } else { h(&p, &an) };
+        let hp = if mutant {
+            p.a + p.b * c
+        } else {
+            printed_h(&p, s, c)
+        };
         Sample {
             point: pt,
             lhs: y - hp,
@@ -279,7 +300,11 @@ pub fn f1_4(mutant: bool) -> Outcome {
             cos: c,
         };
         let yd = r.signed();
-        let printed = if mutant { w * p.a } else { w * h(&p, &an) };
+        let printed = if mutant {
+            w * p.a
+        } else {
+            w * printed_h(&p, s, c)
+        };
         Sample {
             point: pt,
             lhs: printed,
@@ -346,7 +371,7 @@ pub fn f1_5(mutant: bool) -> Outcome {
             / (half(p.m * h1) + p.c * w);
         Sample {
             point: pt,
-            lhs: printed_1_7(&p, s, c, w, 2),
+            lhs: theta_ddot_1_7(Variant::Printed, &p, s, c, w),
             rhs: thdd,
         }
     });
@@ -361,7 +386,7 @@ pub fn f1_5(mutant: bool) -> Outcome {
             / (half(p.m * h1) + p.c * w0);
     let witness = json!({
         "printed_T_vs_mechanics": shown_at(&t_id, shown_json(&[("y_dot", "2")]), t_printed, t_derived),
-        "printed_1_7_vs_energy_theorem_with_printed_T": shown_at(&used, shown_json(&[]), printed_1_7(&p, s0, c0, w0, 2), thdd_printed_t)});
+        "printed_1_7_vs_energy_theorem_with_printed_T": shown_at(&used, shown_json(&[]), theta_ddot_1_7(Variant::Printed, &p, s0, c0, w0), thdd_printed_t)});
     if used.agrees() {
         Outcome::new(
             Verdict::Error,
@@ -411,15 +436,19 @@ pub fn f1_6(mutant: bool) -> Outcome {
     )
 }
 
-/// F1.7: θ̈ of (1.7) against the Newton equations. Mutant: factor 1 (i.e.
-/// the corrected equation).
+/// F1.7: θ̈ of (1.7) against the Newton equations. Mutant: the derived
+/// reading's (1.7), without the factor 2.
 pub fn f1_7(mutant: bool) -> Outcome {
-    let k = if mutant { 1 } else { 2 };
+    let k = if mutant {
+        Variant::Derived
+    } else {
+        Variant::Printed
+    };
     let id = identity_test(17, |r| {
         let (p, s, c, w, pt) = rand_point(r);
         Sample {
             point: pt,
-            lhs: printed_1_7(&p, s, c, w, k),
+            lhs: theta_ddot_1_7(k, &p, s, c, w),
             rhs: newton(&p, s, c, w, 1).0,
         }
     });
@@ -431,7 +460,7 @@ pub fn f1_7(mutant: bool) -> Outcome {
         let (p, s, c, w, pt) = rand_point(r);
         Sample {
             point: pt,
-            lhs: printed_1_7(&p, s, c, w, 1),
+            lhs: theta_ddot_1_7(Variant::Derived, &p, s, c, w),
             rhs: newton(&p, s, c, w, 1).0,
         }
     });
@@ -439,14 +468,14 @@ pub fn f1_7(mutant: bool) -> Outcome {
     let p = P1::texts(DEFAULTS).map(DecInterval::new);
     let (s, c) = dec_angle(iv(0.0, 0.0));
     let one = DecInterval::new(iv(1.0, 1.0));
-    let pr = printed_1_7(&p, s, c, one, k).interval().unwrap();
+    let pr = theta_ddot_1_7(k, &p, s, c, one).interval().unwrap();
     let de = newton(&p, s, c, one, 1).0.interval().unwrap();
     let (qp, qs, qc, qw) = shown_point();
     Outcome::new(Verdict::Error, Strength::Certified,
         format!("θ̈ at θ = 0, θ̇ = 1 (default parameters): printed {:.4} vs Newton {:.4}, certified disjoint; removing the factor 2 on the left {} the Newton equations", pr.mid(), de.mid(), if corrected.agrees() { "reproduces" } else { "does not reproduce" }),
         json!({"params": params_json(DEFAULTS), "theta": "0", "theta_dot": "1",
                "printed_theta_ddot": enc(pr), "newton_theta_ddot": enc(de), "disjoint": pr.disjoint(de),
-               "identity": shown_at(&id, shown_json(&[]), printed_1_7(&qp, qs, qc, qw, k), newton(&qp, qs, qc, qw, 1).0),
+               "identity": shown_at(&id, shown_json(&[]), theta_ddot_1_7(k, &qp, qs, qc, qw), newton(&qp, qs, qc, qw, 1).0),
                "without_factor_2": corrected.json()}))
         .correct("(C + m h'²) θ̈ + m h' h'' θ̇² = −m g h' − μ h² θ̇ (no factor 2 on the left); it changes (1.9)–(1.11), see F1.9–F1.11")
 }
@@ -484,7 +513,7 @@ fn f1_7_figure(_mark: Option<PhaseBox>) -> FigureSpec {
     let pi = std::f64::consts::PI;
     let theta_dd = "θ\u{308}";
     let p = P1::texts(DEFAULTS).map(|x| x.mid());
-    let printed = |t: f64| printed_1_7(&p, t.sin(), t.cos(), 1.0, 2);
+    let printed = |t: f64| theta_ddot_1_7(Variant::Printed, &p, t.sin(), t.cos(), 1.0);
     let newton = |t: f64| newton(&p, t.sin(), t.cos(), 1.0, 1).0;
     FigureSpec::Lines(Curves {
         title: format!("F1.7: {theta_dd} of (1.7) as printed against the Newton equations"),
@@ -606,7 +635,7 @@ pub fn f1_9(mutant: bool) -> Outcome {
         let (p, s, c, w, pt) = rand_point(r);
         let n = r.positive();
         let (_, h1, h2) = h_jet(&p, s, c);
-        let rhs = n / p.m - p.g - h2 * w.sqr() - h1 * printed_1_7(&p, s, c, w, 2);
+        let rhs = n / p.m - p.g - h2 * w.sqr() - h1 * theta_ddot_1_7(Variant::Printed, &p, s, c, w);
         Sample {
             point: pt,
             lhs: printed_1_9(&p, s, c, w, n),
@@ -652,7 +681,12 @@ fn f1_9_figure(_mark: Option<PhaseBox>) -> FigureSpec {
                 dashed: true,
                 ..series(
                     format!("(1.8) with {theta_dd} of (1.7) as printed (dashed): equal to (1.9)"),
-                    pts(&|t| by_1_8(t, printed_1_7(&p, t.sin(), t.cos(), 1.0, 2))),
+                    pts(&|t| {
+                        by_1_8(
+                            t,
+                            theta_ddot_1_7(Variant::Printed, &p, t.sin(), t.cos(), 1.0),
+                        )
+                    }),
                 )
             },
         ],

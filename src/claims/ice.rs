@@ -23,6 +23,7 @@ use super::figures::{
     axis, grid, marks, momenta, series, signed, Curves, FigureOf, FigureSpec, Series, Shape,
     THETA_DOT_UNITS, THETA_RAD,
 };
+use super::files::{formula, trig};
 use super::smooth::{
     dt_dtheta, free_lambda_ddot, p2_text, p2_texts, spin_rates, t_rot_printed, tau_printed,
     u_printed, P2,
@@ -34,13 +35,30 @@ use crate::pave::PhaseBox;
 use crate::roots::equations::scene_function;
 use crate::roots::isolate::{isolate, point, RealFn};
 use crate::roots::{solve_3_3, Budget, EquationId};
-use crate::scene::{Angle, Scene, SceneId};
+use crate::scene::{Angle, ExactTheta, Scene, SceneId, Variant};
 use inari::{DecInterval, Interval};
 use serde_json::json;
 
-/// v_x of (3.1) as printed, with the two logarithms given.
-pub fn vx_printed<T: Scalar>(p: &P2<T>, c0: T, l1: T, l2: T, sign_pf: i32) -> T {
-    c0 - p.a / p.big_a * (p.ps * l1 - T::int(sign_pf) * p.pf * l2)
+/// The printed §3 file's text at `key` (`ice-disc-printed.toml`), with
+/// `given` values past the parameters (c₀, or v_x and τ' taken as given).
+fn printed<T: Scalar>(key: &str, p: &P2<T>, theta: ExactTheta<T>, w: T, given: &[(&str, T)]) -> T {
+    let values: Vec<_> = p
+        .values()
+        .into_iter()
+        .chain(given.iter().copied())
+        .collect();
+    formula(SceneId::IceDisc, Variant::Printed, key, &values, theta, w)
+}
+
+/// v_x of (3.1) as printed, with the two logarithms `ln tg(θ/2)`, `ln sin θ`
+/// given.
+pub fn vx_printed<T: Scalar>(p: &P2<T>, s: T, c: T, c0: T, l1: T, l2: T) -> T {
+    let theta = ExactTheta {
+        sin: s,
+        cos: c,
+        logs: Some((l1, l2)),
+    };
+    printed("definitions.vx", p, theta, T::int(0), &[("c0", c0)])
 }
 
 /// `(ln tg(θ/2), ln sin θ)` from θ itself (intervals, f64).
@@ -49,18 +67,25 @@ pub fn logs<T: Scalar>(an: &Angle<T>) -> (T, T) {
     ((half.sin() / half.cos()).ln(), an.sin.ln())
 }
 
-/// Right side of (3.5) as printed: `g − a cos θ/(A + m a²)·(m g a cos θ − m a v_x τ + A τ τ')`.
+/// Right side of (3.5) as printed, `g − a cos θ/(A + m a²)·(m g a cos θ −
+/// m a v_x τ + A τ τ')` at the given v_x: the printed Ω₀'s left side at
+/// θ̇ = 0, negated.
 pub fn rhs_3_5<T: Scalar>(p: &P2<T>, s: T, c: T, vx: T) -> T {
-    let (t, t1) = tau_printed(p, s, c);
-    p.g - p.a * c / (p.big_a + p.m * p.a.sqr())
-        * (p.m * p.g * p.a * c - p.m * p.a * vx * t + p.big_a * t * t1)
+    let zero = T::int(0);
+    -printed("regions.omega0", p, trig(s, c), zero, &[("vx", vx)])
 }
 
-/// θ̈ of (3.3) as printed (`sign` −1 on Aττ': a mutant).
+/// θ̈ of (3.3) as printed at the given v_x (`sign` −1: a mutant, `A ττ'`
+/// with τ' negated).
 pub fn thdd_3_3<T: Scalar>(p: &P2<T>, s: T, c: T, vx: T, sign: i32) -> T {
-    let (t, t1) = tau_printed(p, s, c);
-    (-(p.m * p.g * p.a * c) + p.m * p.a * vx * t - T::int(sign) * p.big_a * t * t1)
-        / (p.big_a + p.m * p.a.sqr())
+    let key = "dynamics.theta_ddot";
+    let zero = T::int(0);
+    if sign < 0 {
+        let t1 = tau_printed(p, s, c).1;
+        printed(key, p, trig(s, c), zero, &[("vx", vx), ("tau1", -t1)])
+    } else {
+        printed(key, p, trig(s, c), zero, &[("vx", vx)])
+    }
 }
 
 /// `(θ̈, N)` in contact from Newton–Euler.
@@ -167,13 +192,11 @@ pub fn f3_1(mutant: bool) -> Outcome {
             value: x.l2,
             grad: [c / s, z],
         };
-        let vx = vx_printed(
-            &x.p.map(Dual::constant),
-            Dual::constant(x.c0),
-            l1,
-            l2,
-            if mutant { -1 } else { 1 },
-        );
+        // the mutant flips the sign of ln sin θ: `+ p_φ ln sin θ`
+        let l2 = if mutant { -l2 } else { l2 };
+        let an = angle_d(s, c);
+        let c0 = Dual::constant(x.c0);
+        let vx = vx_printed(&x.p.map(Dual::constant), an.sin, an.cos, c0, l1, l2);
         let (psid, _) = spin_rates(&x.p, s, c);
         Sample {
             point: x.pt,
@@ -337,7 +360,12 @@ fn rhs(pf: &str, ps: &str, c0: f64, t: f64) -> f64 {
     let p = p2_texts(pf, ps).map(|x| x.mid());
     let an = Angle::new(t);
     let (l1, l2) = logs(&an);
-    rhs_3_5(&p, an.sin, an.cos, vx_printed(&p, c0, l1, l2, 1))
+    rhs_3_5(
+        &p,
+        an.sin,
+        an.cos,
+        vx_printed(&p, an.sin, an.cos, c0, l1, l2),
+    )
 }
 
 /// The picture of F3.4.
@@ -480,7 +508,7 @@ fn omega0_dec(p: &P2<Interval>, c0: Interval, th: Interval, w: Interval) -> DecI
     let pd = p.map(DecInterval::new);
     let an = Angle::new(DecInterval::new(th));
     let (l1, l2) = logs(&an);
-    let vx = vx_printed(&pd, DecInterval::new(c0), l1, l2, 1);
+    let vx = vx_printed(&pd, an.sin, an.cos, DecInterval::new(c0), l1, l2);
     pd.a * DecInterval::new(w).sqr() * an.sin - rhs_3_5(&pd, an.sin, an.cos, vx)
 }
 
@@ -500,7 +528,8 @@ pub fn s3_c0changes(mutant: bool) -> Outcome {
     let thdd = |c0: &str| {
         let an = Angle::new(point(1.0));
         let (l1, l2) = logs(&an);
-        thdd_3_3(&p, an.sin, an.cos, vx_printed(&p, dec(c0), l1, l2, 1), 1)
+        let vx = vx_printed(&p, an.sin, an.cos, dec(c0), l1, l2);
+        thdd_3_3(&p, an.sin, an.cos, vx, 1)
     };
     let (a0, a1) = (thdd("0"), thdd("1"));
     let zero_p = identity_test(37, |r| {
@@ -508,7 +537,7 @@ pub fn s3_c0changes(mutant: bool) -> Outcome {
         x.p.pf = Q::int(0);
         x.p.ps = Q::int(0);
         let c1 = r.signed();
-        let v = |c0: Q| vx_printed(&x.p, c0, x.l1, x.l2, 1);
+        let v = |c0: Q| vx_printed(&x.p, x.s, x.c, c0, x.l1, x.l2);
         Sample {
             point: x.pt,
             lhs: rhs_3_5(&x.p, x.s, x.c, v(x.c0)) + thdd_3_3(&x.p, x.s, x.c, v(x.c0), 1),
@@ -533,7 +562,8 @@ fn s3_c0changes_figure(mark: Option<PhaseBox>) -> FigureSpec {
         let pd = p.map(DecInterval::new);
         let an = Angle::new(DecInterval::new(th));
         let (l1, l2) = logs(&an);
-        let vx = vx_printed(&pd, DecInterval::new(super::dec(c0)), l1, l2, 1);
+        let c0 = DecInterval::new(super::dec(c0));
+        let vx = vx_printed(&pd, an.sin, an.cos, c0, l1, l2);
         pd.a * DecInterval::new(w).sqr() * an.sin - rhs_3_5(&pd, an.sin, an.cos, vx)
     };
     FigureSpec::Region {
@@ -550,7 +580,10 @@ fn s3_c0changes_figure(mark: Option<PhaseBox>) -> FigureSpec {
 /// S3.c0linear: second difference in c₀ of (3.5)'s right side vanishes and the
 /// slope is `m a² cos θ τ/(A + m a²)` (exact). Mutant: v_x with c₀².
 pub fn s3_c0linear(mutant: bool) -> Outcome {
-    let v = |x: &Pt, c0: Q| vx_printed(&x.p, if mutant { c0.sqr() } else { c0 }, x.l1, x.l2, 1);
+    let v = |x: &Pt, c0: Q| {
+        let c0 = if mutant { c0.sqr() } else { c0 };
+        vx_printed(&x.p, x.s, x.c, c0, x.l1, x.l2)
+    };
     let second = identity_test(38, |r| {
         let x = rp(r);
         let f = |c0: i32| rhs_3_5(&x.p, x.s, x.c, v(&x, Q::int(c0)));
@@ -586,7 +619,7 @@ pub fn s3_c0linear(mutant: bool) -> Outcome {
 /// Exact right side of (3.5) at tan(θ/2) = t for given c₀ (the logs as symbols).
 fn rhs_exact(p: &P2<Q>, t: Q, c0: Q, l1: Q, l2: Q) -> Q {
     let (s, c) = sin_cos_of_tan_half(t);
-    rhs_3_5(p, s, c, vx_printed(p, c0, l1, l2, 1))
+    rhs_3_5(p, s, c, vx_printed(p, s, c, c0, l1, l2))
 }
 
 /// S3.c0invariant: the c₀-slope `m a² cos θ τ/(A + m a²)` vanishes at θ = π/2
@@ -797,7 +830,7 @@ impl RealFn for Rhs35 {
             &p,
             an.sin,
             an.cos,
-            vx_printed(&p, T::lift(self.c0), l1, l2, 1),
+            vx_printed(&p, an.sin, an.cos, T::lift(self.c0), l1, l2),
         )
     }
 }
@@ -877,7 +910,7 @@ fn s3_forms_figure(_mark: Option<PhaseBox>) -> FigureSpec {
             .map(|t| {
                 let an = Angle::new(t);
                 let (l1, l2) = logs(&an);
-                let vx = vx_printed(&p, *c0, l1, l2, 1);
+                let vx = vx_printed(&p, an.sin, an.cos, *c0, l1, l2);
                 (t, rhs_3_5(&p, an.sin, an.cos, vx))
             })
             .collect();
@@ -916,8 +949,8 @@ pub fn s3_symmetry(mutant: bool) -> Outcome {
             q.ps = -x.p.ps;
         }
         let (c, w) = (-x.c, -x.w);
-        let v1 = vx_printed(&x.p, x.c0, x.l1, x.l2, 1);
-        let v2 = vx_printed(&q, x.c0, -x.l1, x.l2, 1);
+        let v1 = vx_printed(&x.p, x.s, x.c, x.c0, x.l1, x.l2);
+        let v2 = vx_printed(&q, x.s, c, x.c0, -x.l1, x.l2);
         // random combination of the four invariants
         let k = [r.signed(), r.signed(), r.signed()];
         let lhs = v1
@@ -988,8 +1021,8 @@ pub fn s3_symreduce(mutant: bool) -> Outcome {
         q.pf = -x.p.pf;
         q.ps = -x.p.ps;
         let c0 = if mutant { x.c0 } else { -x.c0 };
-        let v1 = vx_printed(&x.p, x.c0, x.l1, x.l2, 1);
-        let v2 = vx_printed(&q, c0, x.l1, x.l2, 1);
+        let v1 = vx_printed(&x.p, x.s, x.c, x.c0, x.l1, x.l2);
+        let v2 = vx_printed(&q, x.s, x.c, c0, x.l1, x.l2);
         let k = [r.signed(), r.signed()];
         let slack = |p: &P2<Q>, v: Q, w: Q| rhs_3_5(p, x.s, x.c, v) - p.a * w.sqr() * x.s;
         Sample {
@@ -1042,7 +1075,7 @@ pub fn s3_sub1(mutant: bool) -> Outcome {
         x.p.pf = if mutant { Q::int(1) } else { Q::int(0) };
         x.p.ps = Q::int(0);
         let p = x.p;
-        let v = vx_printed(&p, x.c0, x.l1, x.l2, 1);
+        let v = vx_printed(&p, x.s, x.c, x.c0, x.l1, x.l2);
         let k = r.signed();
         let lhs = rhs_3_5(&p, x.s, x.c, v)
             + k * (thdd_3_3(&p, x.s, x.c, v, 1) * (p.big_a + p.m * p.a.sqr()));
@@ -1138,7 +1171,7 @@ fn u_on(pf: &str, ps: &str, th: [f64; 2]) -> Interval {
 fn in_omega0_identity() -> Identity {
     identity_test(311, |r| {
         let x = rp(r);
-        let v = vx_printed(&x.p, x.c0, x.l1, x.l2, 1);
+        let v = vx_printed(&x.p, x.s, x.c, x.c0, x.l1, x.l2);
         Sample {
             point: x.pt,
             lhs: rhs_3_5(&x.p, x.s, x.c, v),
@@ -1249,7 +1282,7 @@ pub fn s3_sub2(mutant: bool) -> Outcome {
         if !mutant {
             q.ps = q.pf;
         }
-        let vx = vx_printed(&q, x.c0, x.l1, x.l2, 1);
+        let vx = vx_printed(&q, x.s, x.c, x.c0, x.l1, x.l2);
         Sample {
             point: x.pt,
             lhs: thdd_3_3(&q, x.s, x.c, vx, 1) * (q.big_a + q.m * q.a.sqr()),

@@ -14,6 +14,7 @@
 //!   [`Scalar`](crate::number::scalar::Scalar) trait, identity proofs, small
 //!   exact linear solves.
 //! * [`symbolic`]: the polynomials and rational functions of those proofs.
+//! * [`files`]: the formulas a scene file states, evaluated from its text.
 //! * [`witness`]: certified region differences found with the paver.
 //! * [`example1`], [`smooth`], [`ice`]: the checks of §1, §2, §3.
 //! * [`report`]: `REPORT.md`, `report.json` and `claims.toml`.
@@ -22,6 +23,7 @@
 pub mod exact;
 pub mod example1;
 pub mod figures;
+pub mod files;
 pub mod ice;
 pub mod report;
 pub mod smooth;

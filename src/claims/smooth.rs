@@ -15,6 +15,7 @@ use super::figures::{
     axis, grid, marks, momenta, params_text, series, Curves, FigureOf, FigureSpec, Series, Shape,
     THETA_RAD,
 };
+use super::files::{formula, trig};
 use super::{enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::pave::PhaseBox;
@@ -22,7 +23,7 @@ use crate::roots::critical::{band_cell, g as g_crit};
 use crate::roots::equations::kappa_alpha;
 use crate::roots::isolate::{point, RealFn};
 use crate::roots::{prove_kappa0, solve_2_10, solve_2_9, Budget, EquationRoots};
-use crate::scene::{Scene, SceneId};
+use crate::scene::{Scene, SceneId, Variant};
 use inari::Interval;
 use serde_json::json;
 
@@ -39,6 +40,14 @@ pub struct P2<T> {
 }
 
 impl<T: Copy> P2<T> {
+    /// The values under the names of the scene files.
+    pub fn values(&self) -> [(&'static str, T); 7] {
+        let v = [
+            self.m, self.a, self.big_a, self.big_c, self.g, self.pf, self.ps,
+        ];
+        [0, 1, 2, 3, 4, 5, 6].map(|i| (NAMES[i], v[i]))
+    }
+
     pub fn map<U>(&self, f: impl Fn(T) -> U) -> P2<U> {
         P2 {
             m: f(self.m),
@@ -131,11 +140,29 @@ pub fn spin_rates<T: Scalar>(p: &P2<T>, s: T, c: T) -> (T, T) {
     (psid, p.pf / p.big_c - psid * c)
 }
 
+/// The printed §2 file's text at `key` (`smooth-disc-printed.toml`),
+/// `values` past the parameters taken as given.
+fn printed<T: Scalar>(key: &str, p: &P2<T>, s: T, c: T, given: &[(&'static str, T)]) -> T {
+    let values: Vec<_> = p
+        .values()
+        .into_iter()
+        .chain(given.iter().copied())
+        .collect();
+    formula(
+        SceneId::SmoothDisc,
+        Variant::Printed,
+        key,
+        &values,
+        trig(s, c),
+        T::int(0),
+    )
+}
+
 /// τ, τ' of (2.7) as printed.
 pub fn tau_printed<T: Scalar>(p: &P2<T>, s: T, c: T) -> (T, T) {
     (
-        (p.ps - p.pf * c) / (p.big_a * s),
-        (p.pf - p.ps * c) / (p.big_a * s.sqr()),
+        printed("definitions.tau", p, s, c, &[]),
+        printed("definitions.tau1", p, s, c, &[]),
     )
 }
 
@@ -175,7 +202,7 @@ pub fn u_printed<T: Scalar>(p: &P2<T>, s: T, c: T, w: T) -> T {
 
 /// Φ of (2.8) as printed.
 pub fn phi_printed<T: Scalar>(p: &P2<T>, s: T, c: T) -> T {
-    p.g / (p.a * s) - c / (p.big_a.sqr() * s.sqr().sqr()) * (p.pf - p.ps * c) * (p.ps - p.pf * c)
+    printed("definitions.Phi", p, s, c, &[])
 }
 
 /// Π̃ of (2.5) as printed.
@@ -183,10 +210,15 @@ pub fn pi_tilde<T: Scalar>(p: &P2<T>, s: T, c: T) -> T {
     p.m * p.g * p.a * s + (p.ps - p.pf * c).sqr() / (T::int(2) * p.big_a * s.sqr())
 }
 
-/// Π̃' of (2.12) as printed (`sign` −1: a mutant).
+/// Π̃' of (2.12) as printed (`sign` −1: a mutant, `A ττ'` with τ' negated).
 pub fn pi_slope_printed<T: Scalar>(p: &P2<T>, s: T, c: T, sign: i32) -> T {
-    let (t, t1) = tau_printed(p, s, c);
-    p.m * p.g * p.a * c + T::int(sign) * p.big_a * t * t1
+    let key = "functions.potential_slope";
+    if sign < 0 {
+        let t1 = tau_printed(p, s, c).1;
+        printed(key, p, s, c, &[("tau1", -t1)])
+    } else {
+        printed(key, p, s, c, &[])
+    }
 }
 
 /// Λ̈ of (2.6) for a given normal reaction N (a free force), θ̈ from the θ

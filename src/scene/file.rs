@@ -7,7 +7,7 @@
 //! an expression) the character, when it is not TOML, lacks a key, has an
 //! unknown one, or holds a bad name, number, domain, region or expression.
 
-use super::expr::{enclose_constant, ExprError, Program};
+use super::expr::{enclose_constant, eval_exact, ExactTheta, ExprError, Program};
 use super::{Angle, Domain, Quadratic};
 use crate::number::param::{
     enclose_decimal, enclose_window_end, short_num, ParamError, ParamSet, ParamSpec,
@@ -15,6 +15,7 @@ use crate::number::param::{
 use crate::number::scalar::Scalar;
 use inari::Interval;
 use serde::Deserialize;
+use std::collections::HashMap;
 use std::path::Path;
 use toml::Spanned;
 
@@ -279,6 +280,17 @@ pub struct Region {
     pub expr: String,
 }
 
+/// Where [`FileScene::exact`] evaluates a text: θ (its sine, cosine and
+/// the logarithms of (3.1), [`ExactTheta`]), θ̇, and values for names:
+/// every parameter the text reaches, and any definition to be taken as
+/// given rather than from its text.
+#[derive(Clone, Copy, Debug)]
+pub struct ExactPoint<'a, T> {
+    pub theta: ExactTheta<T>,
+    pub theta_dot: T,
+    pub values: &'a [(&'a str, T)],
+}
+
 /// A scene read from a file, with its parameters enclosed.
 #[derive(Clone, Debug)]
 pub struct FileScene {
@@ -307,6 +319,8 @@ pub struct FileScene {
     dynamics: Option<Program>,
     /// The conserved energy whose level lines are the phase curves, if given.
     energy: Option<Program>,
+    /// θ̈ and the energy as written, if given.
+    dynamics_text: [Option<String>; 2],
     /// `[functions]`, in the order written.
     pub functions: Vec<Function>,
     /// Parameter-only subexpressions that may be undefined (one line each).
@@ -508,16 +522,16 @@ impl FileScene {
         ])?;
         let coefficients = program.quadratics(&[0, 1]);
         let factored = program.factored_quadratics(&[0, 1]);
-        let (dynamics, energy) = match raw.dynamics {
-            Some(d) => (
-                Some(compile(&[("dynamics.theta_ddot".into(), d.theta_ddot)])?),
-                match d.energy {
-                    Some(e) => Some(compile(&[("dynamics.energy".into(), e)])?),
-                    None => None,
-                },
-            ),
-            None => (None, None),
+        let dynamics_text = match raw.dynamics {
+            Some(d) => [Some(d.theta_ddot), d.energy],
+            None => [None, None],
         };
+        let compiled = |key: &str, text: &Option<String>| match text {
+            Some(t) => compile(&[(key.into(), t.clone())]).map(Some),
+            None => Ok(None),
+        };
+        let dynamics = compiled("dynamics.theta_ddot", &dynamics_text[0])?;
+        let energy = compiled("dynamics.energy", &dynamics_text[1])?;
         let mut functions = Vec::with_capacity(raw.functions.0.len());
         for (name, text) in raw.functions.0 {
             let key = format!("functions.{name}");
@@ -570,6 +584,7 @@ impl FileScene {
             factored,
             dynamics,
             energy,
+            dynamics_text,
             functions,
             warnings,
         })
@@ -659,6 +674,66 @@ impl FileScene {
     /// The function of `[functions]` named `name`, if there is one.
     pub fn function(&self, name: &str) -> Option<&Function> {
         self.functions.iter().find(|f| f.name == name)
+    }
+
+    /// The text at `key` evaluated as written over an exact scalar, at `at`
+    /// (see [`eval_exact`]): `key` is `definitions.NAME`, `regions.omega`,
+    /// `regions.omega0` (the `expr` of `{expr < 0}`), `dynamics.theta_ddot`,
+    /// `dynamics.energy` or `functions.NAME`. Definitions it names are
+    /// evaluated from their texts, each once, unless `at` gives them a value.
+    pub fn exact<T: Scalar>(&self, key: &str, at: &ExactPoint<T>) -> Result<T, ExprError> {
+        let missing = |message: String| ExprError {
+            key: key.to_string(),
+            offset: None,
+            message,
+        };
+        let text = match key.split_once('.') {
+            Some(("definitions", n)) => self.definitions.iter().find(|d| d.0 == n).map(|d| &d.1),
+            Some(("regions", "omega")) => Some(&self.regions[0].expr),
+            Some(("regions", "omega0")) => Some(&self.regions[1].expr),
+            Some(("dynamics", "theta_ddot")) => self.dynamics_text[0].as_ref(),
+            Some(("dynamics", "energy")) => self.dynamics_text[1].as_ref(),
+            Some(("functions", n)) => self.function(n).map(|f| &f.text),
+            _ => None,
+        };
+        let text = text.ok_or_else(|| missing(format!("no such text in `{}`", self.name)))?;
+        self.exact_text(key, text, at, &mut HashMap::new())
+    }
+
+    fn exact_text<T: Scalar>(
+        &self,
+        key: &str,
+        text: &str,
+        at: &ExactPoint<T>,
+        memo: &mut HashMap<String, T>,
+    ) -> Result<T, ExprError> {
+        let mut name = |n: &str| -> Option<Result<T, ExprError>> {
+            if let Some(&(_, v)) = at.values.iter().find(|(m, _)| *m == n) {
+                return Some(Ok(v));
+            }
+            if n == "theta_dot" {
+                return Some(Ok(at.theta_dot));
+            }
+            if let Some(&v) = memo.get(n) {
+                return Some(Ok(v));
+            }
+            if let Some((_, t)) = self.definitions.iter().find(|d| d.0 == n) {
+                let v = self.exact_text(&format!("definitions.{n}"), t, at, memo);
+                if let Ok(v) = v {
+                    memo.insert(n.to_string(), v);
+                }
+                return Some(v);
+            }
+            if self.params.specs.iter().any(|s| s.name == n) {
+                return Some(Err(ExprError {
+                    key: key.to_string(),
+                    offset: None,
+                    message: format!("parameter `{n}` has no value given"),
+                }));
+            }
+            None
+        };
+        eval_exact(key, text, &at.theta, &mut name)
     }
 
     /// θ̈ from `[dynamics]`; NaN without it.

@@ -21,7 +21,8 @@ use std::fmt;
 use std::str::FromStr;
 
 pub use cell::{Cell, UnknownCell};
-pub use file::{FileScene, SceneFileError, SceneText};
+pub use expr::{decimal, ExactTheta};
+pub use file::{ExactPoint, FileScene, SceneFileError, SceneText};
 
 /// Which reading of the paper a formula follows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]

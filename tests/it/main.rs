@@ -13,6 +13,7 @@ mod claims;
 mod claims_cli;
 mod cli;
 mod elementary;
+mod exact_text;
 mod files;
 mod findings;
 mod fuzz_cli;

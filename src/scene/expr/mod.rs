@@ -8,6 +8,8 @@
 //! definition is one node wherever it is named), and the nodes the outputs
 //! need are flattened into a tape evaluated over any
 //! [`Scalar`](crate::number::scalar::Scalar) (`parse`, `graph`, `tape`).
+//! A text can also be evaluated over an exact scalar as it is written
+//! (`exact`), for claims about a file's formulas.
 //!
 //! Nothing is rewritten: every node is one operation of the text,
 //! left-associative, in the order written, so an interval evaluation of the
@@ -15,6 +17,7 @@
 //! evaluation plan only does arithmetic on constants alone once, where that
 //! gives every scalar type the very value the operation would.
 
+mod exact;
 mod factor;
 mod graph;
 mod parse;
@@ -22,6 +25,7 @@ mod tape;
 #[cfg(test)]
 mod tests;
 
+pub use exact::{decimal, eval_exact, ExactTheta};
 pub use factor::FactorOf;
 pub use tape::{ConstantIssue, Program};
 
