@@ -5,9 +5,10 @@
 //! the file every paving of the printed reading uses.
 //!
 //! The text is evaluated as written over any scalar, θ entering as
-//! `(sin θ, cos θ)` (and the logarithms of (3.1) as given values): over [`Q`](super::exact::Q) with the parameters as
-//! variables it is a rational function for an identity proof, over
-//! intervals an enclosure for a certified witness, over `f64` a curve.
+//! `(sin θ, cos θ)` (and the logarithms of (3.1) as given values): over
+//! [`Q`](super::exact::Q) with the parameters as variables it is a rational
+//! function for an identity proof, over intervals an enclosure for a
+//! certified witness, over `f64` a curve.
 
 use crate::number::scalar::Scalar;
 use crate::scene::{ExactPoint, ExactTheta, FileScene, SceneId, Variant};

@@ -143,6 +143,11 @@ pub fn spin_rates<T: Scalar>(p: &P2<T>, s: T, c: T) -> (T, T) {
 /// The printed §2 file's text at `key` (`smooth-disc-printed.toml`),
 /// `values` past the parameters taken as given.
 fn printed<T: Scalar>(key: &str, p: &P2<T>, s: T, c: T, given: &[(&'static str, T)]) -> T {
+    printed_at(key, p, s, c, T::int(0), given)
+}
+
+/// [`printed`] at θ̇ = `w`.
+fn printed_at<T: Scalar>(key: &str, p: &P2<T>, s: T, c: T, w: T, given: &[(&'static str, T)]) -> T {
     let values: Vec<_> = p
         .values()
         .into_iter()
@@ -154,7 +159,7 @@ fn printed<T: Scalar>(key: &str, p: &P2<T>, s: T, c: T, given: &[(&'static str, 
         key,
         &values,
         trig(s, c),
-        T::int(0),
+        w,
     )
 }
 
@@ -698,27 +703,30 @@ pub fn f2_10(mutant: bool) -> Outcome {
     verdict_of(&[("tan_half_substitution", &id)], "(2.9) at α = 1 times (1+μ²)³ = 8μ³(κ − μ(1−μ)(1+μ)/2), μ = tan(θ/2) > 0: positive roots of (2.10) ↔ roots of (2.9)", "2κ = μ(1 − μ)(1 + μ)")
 }
 
-/// F2.11: the reduced energy `T̃ + Π̃` is constant along the contact motion:
-/// its time derivative `θ̇ (J θ̈ + ½ J' θ̇² + Π̃')` vanishes with θ̈ from the
-/// Lagrange equations in contact (J = A + m a² cos²θ), so the phase curves
-/// are its level lines; a contact motion keeps contact while N ≥ 0, i.e. in
-/// Ω₀ = Ω (S2.omega). Mutant: Π̃ with `A sin θ` in the denominator.
+/// F2.11: the reduced energy `T̃ + Π̃` of (2.11), as the printed file states
+/// it, is constant along the contact motion: its time derivative
+/// `E_θ θ̇ + E_θ̇ θ̈` vanishes with θ̈ from the Lagrange equations in contact,
+/// so the phase curves are its level lines; a contact motion keeps contact
+/// while N ≥ 0, i.e. in Ω₀ = Ω (S2.omega). Mutant: τ without its 1/sin θ.
 pub fn f2_11(mutant: bool) -> Outcome {
     let id = identity_test(2110, |r| {
         let (p, s, c, w, pt) = rp(r);
         let an = angle_d(s, c);
         let pd = p.map(Dual::constant);
-        let jj = pd.big_a + pd.m * pd.a.sqr() * an.cos.sqr();
-        let pi = if mutant {
-            pd.m * pd.g * pd.a * an.sin
-                + (pd.ps - pd.pf * an.cos).sqr() / (Dual::int(2) * pd.big_a * an.sin)
+        // (2.11) as the printed file states it, in (θ, θ̇) by duals
+        let wd = Dual::variable(w, 1);
+        let key = "dynamics.energy";
+        let e = if mutant {
+            // τ taken as (p_ψ − p_φ cos θ)/A, without its 1/sin θ
+            let tau = tau_printed(&pd, an.sin, an.cos).0 * an.sin;
+            printed_at(key, &pd, an.sin, an.cos, wd, &[("tau", tau)])
         } else {
-            pi_tilde(&pd, an.sin, an.cos)
+            printed_at(key, &pd, an.sin, an.cos, wd, &[])
         };
         let thdd = lagrange(&p, s, c, w).0;
         Sample {
             point: pt,
-            lhs: w * (jj.value * thdd + jj.grad[0] * w.sqr() / Q::int(2) + pi.grad[0]),
+            lhs: e.grad[0] * w + e.grad[1] * thdd,
             rhs: Q::int(0),
         }
     });
