@@ -1120,10 +1120,8 @@ impl RealFn for EqualP {
         let one = T::int(1);
         let vx = T::lift(self.1) + p.a * p.pf / p.big_a * (one + c).ln();
         let tan_half = s / (one + c);
-        // τ = p tg(θ/2)/A, τ τ' = p² tg²(θ/2)/(A² sin θ)
+        // τ = p tg(θ/2)/A; A τ τ' = p² sin θ/(A (1 + cos θ)²)
         let tau = p.pf * tan_half / p.big_a;
-        let tau_tau1 = p.pf.sqr() * tan_half.sqr() / (p.big_a.sqr() * s);
-        let _ = tau_tau1;
         -(p.m * p.g * p.a * c) + p.m * p.a * vx * tau - p.pf.sqr() * s / (p.big_a * (one + c).sqr())
     }
 }
