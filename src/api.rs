@@ -1,8 +1,10 @@
 //! The library in four steps, as the command line takes them: a scene
 //! ([`Problem`]), its paving ([`Problem::pave`]), certified areas
 //! ([`Problem::area`]), a proof file and its check ([`Paved::write_proof`],
-//! [`verify`]). The numbers are those of `detach pave`, `detach area` and
-//! `detach verify` on the same input. The paper's internals (its claims and
+//! [`verify`]); and over a range of parameters, a certified parameter atlas
+//! ([`Problem::param_atlas`], [`ParamAtlasRun::write_proof`]). The numbers
+//! are those of `detach pave`, `detach area`, `detach params` and `detach
+//! verify` on the same input. The paper's internals (its claims and
 //! figures, the paving engine's parts) stay in their modules.
 //!
 //! ```
@@ -17,7 +19,9 @@
 //! ```
 
 use crate::area::{certified_areas, Provenance};
-use crate::number::param::ParamSet;
+use crate::number::param::{parse_assignment, ParamSet};
+use crate::params::report::atlas_json;
+use crate::params::{search, AtlasRun, DecideOptions, Family, SearchOptions, Source};
 use crate::pave::{pave_scene_method, standard_cell_bounds, MethodOptions, PaveOptions};
 use crate::quadrature::AreaOptions;
 use crate::scene::{Domain, SceneText};
@@ -25,6 +29,8 @@ use std::path::Path;
 use std::time::Instant;
 
 pub use crate::check::{Report, Verdict};
+pub use crate::params::model::{ParamAxis, SetStatus};
+pub use crate::params::Shard;
 pub use crate::pave::{
     Emptiness, Label, Leaf, LevelFlow, Method, Paving, PerConstraint, PhaseBox, StopReason,
 };
@@ -41,6 +47,8 @@ pub struct Problem {
     pub params: ParamSet,
     /// The reading of the paper (a scene file has one: `Derived`).
     pub variant: Variant,
+    /// Where the scene came from: a parameter atlas rebuilds it per box.
+    source: Source,
 }
 
 /// `name=value` pairs as owned strings.
@@ -68,6 +76,7 @@ impl Problem {
             scene,
             params,
             variant: Variant::Derived,
+            source: Source::by_name(name)?,
         })
     }
 
@@ -85,11 +94,13 @@ impl Problem {
 
     /// A scene file (TOML, `docs/scene-files.md`).
     pub fn from_file(path: &Path, params: &[(&str, &str)]) -> Result<Problem, String> {
-        let (scene, params) = Scene::from_file(path, &owned(params)).map_err(|e| e.to_string())?;
+        let text = SceneText::read(path).map_err(|e| e.to_string())?;
+        let f = text.compile(&owned(params)).map_err(|e| e.to_string())?;
         Ok(Problem {
-            scene,
-            params,
+            params: f.params.clone(),
+            scene: Scene::File(Box::new(f)),
             variant: Variant::Derived,
+            source: Source::File(text),
         })
     }
 
@@ -116,11 +127,11 @@ impl Problem {
             text: text.to_string().into(),
         };
         let f = text.compile(&owned(params)).map_err(|e| e.to_string())?;
-        let params = f.params.clone();
         Ok(Problem {
+            params: f.params.clone(),
             scene: Scene::File(Box::new(f)),
-            params,
             variant: Variant::Derived,
+            source: Source::File(text),
         })
     }
 
@@ -404,18 +415,260 @@ impl Paved {
     /// # Ok::<(), String>(())
     /// ```
     pub fn write_proof(&self, problem: &Problem, path: &Path) -> Result<(), String> {
-        let bytes = crate::certificate::to_bytes(&self.proof(problem));
-        let shown = crate::files::shown(path);
-        let report = crate::check::check_bytes(&bytes)
-            .map_err(|e| format!("{shown}: the checker cannot read it: {e}"))?;
-        match &report.verdict {
-            Verdict::Valid => {}
-            Verdict::Invalid(why) => return Err(format!("{shown}: the checker rejects it: {why}")),
-            Verdict::Unchecked(why) => {
-                return Err(format!("{shown}: the checker cannot check it: {why}"))
+        write_valid(&self.proof(problem), path)
+    }
+}
+
+/// Writes a proof file to `path` once the checker says VALID.
+fn write_valid(proof: &serde_json::Value, path: &Path) -> Result<(), String> {
+    let bytes = crate::certificate::to_bytes(proof);
+    let shown = crate::files::shown(path);
+    let report = crate::check::check_bytes(&bytes)
+        .map_err(|e| format!("{shown}: the checker cannot read it: {e}"))?;
+    match &report.verdict {
+        Verdict::Valid => {}
+        Verdict::Invalid(why) => return Err(format!("{shown}: the checker rejects it: {why}")),
+        Verdict::Unchecked(why) => {
+            return Err(format!("{shown}: the checker cannot check it: {why}"))
+        }
+    }
+    crate::files::write_atomic(path, &bytes).map_err(|e| format!("cannot write {shown}: {e}"))
+}
+
+// ------------------------------------------------------ parameter atlases
+
+/// What to decide over a box of parameters: `detach params`'s options.
+///
+/// ```
+/// use detach::api::{Cell, ParamRequest, Problem};
+///
+/// let rod = Problem::load("painleve-rod", &[])?;
+/// let req = ParamRequest {
+///     axes: vec![ParamRequest::axis("mu=1:2")?],
+///     sets: vec![Cell::OmegaNotOmega0],
+///     eps: Some(1.0 / 64.0),
+///     ..ParamRequest::default()
+/// };
+/// let atlas = rod.param_atlas(&req)?;
+/// // Ω ∖ Ω₀ is empty below μ* = 4/3 and not above: the threshold's box
+/// let t = &atlas.json()["thresholds"][0]["enclosure"];
+/// let (lo, hi): (f64, f64) = (t[0].as_str().unwrap().parse().unwrap(), t[1].as_str().unwrap().parse().unwrap());
+/// assert!(lo < 4.0 / 3.0 && 4.0 / 3.0 < hi);
+/// # Ok::<(), String>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct ParamRequest {
+    /// One or two parameters and their ranges, as decimal text.
+    pub axes: Vec<ParamAxis>,
+    /// The sets whose emptiness is decided on each parameter box.
+    pub sets: Vec<Cell>,
+    /// Resolution per axis relative to its range, in (0, 1]; `None`: 2⁻³⁴
+    /// in one parameter (a threshold to about 1e-10), 1/256 in two.
+    pub eps: Option<f64>,
+    /// Most parameter boxes; when reached the atlas is coarser (and says so).
+    pub max_boxes: usize,
+    /// Part K of N of the atlas, joined by [`crate::params::report::merge`].
+    pub shard: Option<Shard>,
+}
+
+impl Default for ParamRequest {
+    /// The two paradox cells, `detach params`'s defaults.
+    fn default() -> Self {
+        ParamRequest {
+            axes: Vec::new(),
+            sets: vec![Cell::Omega0NotOmega, Cell::OmegaNotOmega0],
+            eps: None,
+            max_boxes: 100_000,
+            shard: None,
+        }
+    }
+}
+
+impl ParamRequest {
+    /// `NAME=LO:HI` (decimal text), as `detach params --x` takes it.
+    ///
+    /// ```
+    /// let a = detach::api::ParamRequest::axis("mu = 0:2.5")?;
+    /// assert_eq!((a.name.as_str(), a.lo.as_str(), a.hi.as_str()), ("mu", "0", "2.5"));
+    /// assert!(detach::api::ParamRequest::axis("mu=2").is_err());
+    /// # Ok::<(), String>(())
+    /// ```
+    pub fn axis(text: &str) -> Result<ParamAxis, String> {
+        let bad = || format!("expected NAME=LO:HI, got `{text}`");
+        let (name, range) = parse_assignment(text).map_err(|_| bad())?;
+        let (lo, hi) = range.split_once(':').ok_or_else(bad)?;
+        Ok(ParamAxis {
+            name,
+            lo: lo.trim().to_string(),
+            hi: hi.trim().to_string(),
+        })
+    }
+
+    /// The resolution used: [`ParamRequest::eps`] or its default.
+    pub fn resolution(&self) -> f64 {
+        self.eps.unwrap_or(if self.axes.len() == 1 {
+            2f64.powi(-34)
+        } else {
+            1.0 / 256.0
+        })
+    }
+}
+
+/// One set's share of the parameter box by status (fractions of its
+/// volume, summing to 1 up to rounding).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SetShare {
+    pub set: String,
+    pub nonempty: f64,
+    pub empty: f64,
+    pub undecided: f64,
+}
+
+/// A parameter atlas with what `detach params` reports of it.
+pub struct ParamAtlasRun {
+    pub family: Family,
+    pub run: AtlasRun,
+    pub eps: f64,
+    pub shard: Option<Shard>,
+    pub elapsed_s: f64,
+}
+
+impl ParamAtlasRun {
+    /// The atlas as `detach params --json` writes it: boxes, statuses with
+    /// their witnesses or reasons, and in one parameter the thresholds.
+    pub fn json(&self) -> serde_json::Value {
+        let shard = self.shard.map(|s| (s.k, s.n));
+        atlas_json(&self.family, &self.run, self.eps, shard)
+    }
+
+    /// Per set, the share of the parameter box proved non-empty, proved
+    /// empty and undecided.
+    pub fn shares(&self) -> Vec<SetShare> {
+        let atlas = &self.run.atlas;
+        let root: Vec<f64> = self.family.root.iter().map(|r| r[1] - r[0]).collect();
+        let leaves: Vec<_> = atlas
+            .leaves
+            .iter()
+            .filter(|l| !l.bounds.is_empty())
+            .collect();
+        atlas
+            .sets
+            .iter()
+            .enumerate()
+            .map(|(k, set)| {
+                let mut share = [0.0f64; 3];
+                for leaf in &leaves {
+                    let frac: f64 = leaf
+                        .bounds
+                        .iter()
+                        .zip(&root)
+                        .map(|(b, w)| (b[1] - b[0]) / w)
+                        .product();
+                    share[status_index(&leaf.sets[k])] += frac;
+                }
+                SetShare {
+                    set: set.clone(),
+                    nonempty: share[0],
+                    empty: share[1],
+                    undecided: share[2],
+                }
+            })
+            .collect()
+    }
+
+    /// The atlas as a proof file (`proofs/FORMAT.md`), as `detach params
+    /// --proof` writes it; a shard states no whole atlas and has none.
+    pub fn proof(&self) -> Result<serde_json::Value, String> {
+        if self.shard.is_some() {
+            return Err("--proof states a whole atlas: run without --shard".into());
+        }
+        let atlas = &self.run.atlas;
+        let ranges: Vec<String> = atlas
+            .axes
+            .iter()
+            .map(|a| format!("{} in [{}, {}]", a.name, a.lo, a.hi))
+            .collect();
+        let statement = crate::certificate::params::ParamAtlasStatement {
+            scene: &self.family.base,
+            variant: self.family.variant,
+            params: &self.family.params,
+            title: format!(
+                "{}: parameter atlas over {}",
+                self.family.base.name(),
+                ranges.join(", ")
+            ),
+        };
+        crate::certificate::params::param_atlas_proof(&statement, atlas)
+    }
+
+    /// Writes [`ParamAtlasRun::proof`] to `path` once the checker says VALID.
+    pub fn write_proof(&self, path: &Path) -> Result<(), String> {
+        write_valid(&self.proof()?, path)
+    }
+}
+
+impl Problem {
+    /// A certified parameter atlas, as `detach params` computes it: the
+    /// scene rebuilt with the request's parameters as intervals, and each
+    /// set's emptiness decided on boxes of them (the others at this
+    /// problem's values).
+    pub fn param_atlas(&self, req: &ParamRequest) -> Result<ParamAtlasRun, String> {
+        self.param_atlas_with_progress(req, |_, _, _| {})
+    }
+
+    /// [`Problem::param_atlas`], with `progress(level, open boxes, boxes)`
+    /// called as the search goes down each level.
+    pub fn param_atlas_with_progress(
+        &self,
+        req: &ParamRequest,
+        progress: impl Fn(u32, usize, usize) + Sync,
+    ) -> Result<ParamAtlasRun, String> {
+        let overrides = self
+            .params
+            .texts()
+            .into_iter()
+            .map(|(n, t)| (n.to_string(), t))
+            .collect();
+        let family = Family::new(
+            self.source.clone(),
+            self.variant,
+            overrides,
+            req.axes.clone(),
+        )?;
+        if req.sets.is_empty() {
+            return Err("give at least one set to decide".into());
+        }
+        let mut sets: Vec<Cell> = Vec::new();
+        for c in &req.sets {
+            if !sets.contains(c) {
+                sets.push(*c);
             }
         }
-        crate::files::write_atomic(path, &bytes).map_err(|e| format!("cannot write {shown}: {e}"))
+        let eps = req.resolution();
+        let opts = SearchOptions {
+            eps,
+            max_boxes: req.max_boxes,
+            decide: DecideOptions::default(),
+            shard: req.shard,
+        };
+        let start = Instant::now();
+        let run = search(&family, &sets, &opts, progress)?;
+        Ok(ParamAtlasRun {
+            family,
+            run,
+            eps,
+            shard: req.shard,
+            elapsed_s: start.elapsed().as_secs_f64(),
+        })
+    }
+}
+
+/// 0 non-empty, 1 empty, 2 undecided.
+pub fn status_index(s: &SetStatus) -> usize {
+    match s {
+        SetStatus::Nonempty { .. } => 0,
+        SetStatus::Empty { .. } => 1,
+        SetStatus::Undecided { .. } => 2,
     }
 }
 

@@ -232,6 +232,39 @@ impl SceneSource {
     }
 }
 
+impl SceneSource {
+    /// The scene as the library's [`detach::api::Problem`], with
+    /// `NAME=VALUE` overrides and a reading, refused as [`SceneSource::build`]
+    /// refuses them.
+    pub fn problem(
+        &self,
+        params: &[String],
+        variant: detach::scene::Variant,
+    ) -> Result<detach::api::Problem, CliError> {
+        use detach::api::Problem;
+        let overrides = params
+            .iter()
+            .map(|t| detach::number::param::parse_assignment(t).map_err(CliError::usage))
+            .collect::<Result<Vec<_>, _>>()?;
+        let pairs: Vec<(&str, &str)> = overrides
+            .iter()
+            .map(|(n, v)| (n.as_str(), v.as_str()))
+            .collect();
+        let problem = match (&self.scene, &self.scene_file) {
+            (Some(name), _) => Problem::load(name, &pairs).map_err(CliError::usage)?,
+            (None, Some(path)) => Problem::from_file(path, &pairs).map_err(CliError::usage)?,
+            (None, None) => return Err(CliError::usage("give --scene NAME or --scene-file FILE")),
+        };
+        if problem.scene.id().is_none() {
+            one_reading(variant)?;
+        }
+        for w in problem.scene.warnings() {
+            eprintln!("warning: {w}");
+        }
+        problem.in_reading(variant).map_err(CliError::usage)
+    }
+}
+
 /// A scene file has one reading: `--variant printed` is refused for it.
 pub fn one_reading(variant: detach::scene::Variant) -> CliResult {
     match variant {

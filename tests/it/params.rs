@@ -729,3 +729,81 @@ fn example_1_non_uniqueness_needs_b_above_g_over_100() {
         "{empty} empty, {nonempty} non-empty"
     );
 }
+
+/// The library's atlas (`api::Problem::param_atlas`) is the command line's
+/// to the byte, and its shares of the box add up: the ladder (a scene file,
+/// r fixed by `--param`) over μ, and the viscous disc over (b, μ).
+#[test]
+fn the_library_atlas_is_the_command_lines() {
+    use detach::api::{ParamRequest, Problem};
+    let cases: [(&[&str], Problem, &str, Option<&str>); 2] = [
+        (
+            &["--scene-file", LADDER, "--param", "r=2"],
+            Problem::from_file(std::path::Path::new(LADDER), &[("r", "2")]).unwrap(),
+            "mu=0:3",
+            None,
+        ),
+        (
+            &["--scene", "viscous-disc"],
+            Problem::load("viscous-disc", &[]).unwrap(),
+            "b=0:0.9",
+            Some("mu=0.25:2"),
+        ),
+    ];
+    for (source, problem, x, y) in cases {
+        let eps = "0.0625";
+        let mut args = vec!["params", "--x", x, "--eps", eps, "--json"];
+        args.extend_from_slice(source);
+        if let Some(y) = y {
+            args.extend_from_slice(&["--y", y]);
+        }
+        let cli = json(&args);
+        let mut axes = vec![ParamRequest::axis(x).unwrap()];
+        axes.extend(y.map(|y| ParamRequest::axis(y).unwrap()));
+        let req = ParamRequest {
+            axes,
+            eps: Some(0.0625),
+            ..ParamRequest::default()
+        };
+        let atlas = problem.param_atlas(&req).unwrap();
+        assert_eq!(atlas.json(), cli, "{args:?}");
+        let shares = atlas.shares();
+        assert_eq!(shares.len(), 2);
+        for s in &shares {
+            let total = s.nonempty + s.empty + s.undecided;
+            assert!((total - 1.0).abs() < 1e-12, "{s:?}");
+        }
+        // Both statuses occur somewhere on both planes.
+        assert!(shares.iter().any(|s| s.nonempty > 0.0), "{shares:?}");
+        assert!(shares.iter().any(|s| s.empty > 0.0), "{shares:?}");
+    }
+}
+
+/// A request the atlas cannot answer is refused with the command line's
+/// words, not a panic.
+#[test]
+fn the_library_atlas_refuses_bad_requests() {
+    use detach::api::{ParamRequest, Problem};
+    let rod = Problem::load("painleve-rod", &[]).unwrap();
+    let ask = |axes: &[&str], sets: Vec<Cell>, eps: Option<f64>| {
+        let req = ParamRequest {
+            axes: axes
+                .iter()
+                .map(|a| ParamRequest::axis(a).unwrap())
+                .collect(),
+            sets,
+            eps,
+            ..ParamRequest::default()
+        };
+        rod.param_atlas(&req).err().unwrap_or_default()
+    };
+    let all = PARADOXES.to_vec();
+    assert!(ask(&["nu=1:2"], all.clone(), None).contains("unknown parameter `nu`"));
+    assert!(ask(&[], all.clone(), None).contains("one or two parameters"));
+    assert!(ask(&["mu=1:2"], vec![], None).contains("at least one set"));
+    assert!(ask(&["mu=1:2"], all.clone(), Some(0.0)).contains("eps must be"));
+    assert!(ask(&["mu=2:1"], all, None).contains("mu"));
+    assert!(ParamRequest::axis("mu=1")
+        .unwrap_err()
+        .contains("NAME=LO:HI"));
+}
