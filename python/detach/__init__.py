@@ -25,6 +25,8 @@ from ._text import decimal_text
 __all__ = [
     "Scene",
     "Paving",
+    "ParamAtlas",
+    "Share",
     "SetArea",
     "Area",
     "Verification",
@@ -34,12 +36,15 @@ __all__ = [
     "palette",
     "LABELS",
     "CLASSES",
+    "STATUSES",
 ]
 
 __version__ = _detach.VERSION.split()[0]
 
 #: Label words of a leaf per constraint, as in `detach pave --leaves`.
 LABELS = ("in", "out", "undecided", "undefined")
+#: A parameter box's status per set, as `detach params` reports it.
+STATUSES = ("nonempty", "empty", "undecided")
 #: A leaf's class: the four cells (both labels decided), then undecided and
 #: undefined; the order of `palette()`.
 CLASSES = (
@@ -184,6 +189,34 @@ class Scene:
             raise Interrupted(paving)
         return paving
 
+    def param_atlas(
+        self,
+        x,
+        y=None,
+        sets=("not_omega_and_omega0", "omega_and_not_omega0"),
+        eps=None,
+        max_boxes=100_000,
+    ):
+        """A certified parameter atlas, as `detach params`: where in a range
+        of one parameter (`x`) or two (`x`, `y`) each set is proved
+        non-empty, proved empty, or undecided; the other parameters keep
+        this scene's values.
+
+        `x`, `y`: `"mu=0:2"` or `("mu", "0", "2")` (decimal ends). `sets`:
+        names among `CLASSES[:4]`, `"omega"`, `"omega0"`. `eps`: resolution
+        per axis relative to its range (default 2⁻³⁴ in one parameter, so a
+        threshold is enclosed to about 1e-10, and 1/256 in two). The GIL is
+        released while it runs."""
+        if isinstance(max_boxes, bool) or not isinstance(max_boxes, int) or max_boxes < 1:
+            raise ValueError(f"max-boxes must be a positive integer, got {max_boxes!r}")
+        if isinstance(sets, str):
+            sets = [sets]
+        axes = [_axis("x", x)] + ([] if y is None else [_axis("y", y)])
+        native = self._native.param_atlas(
+            axes, list(sets), None if eps is None else float(eps), max_boxes
+        )
+        return ParamAtlas(native, self)
+
     def area(self, digits=10):
         """Certified areas of Ω, Ω₀ and the four cells to `digits` places, as
         `detach area`: `{name: Area}`, each saying how it was obtained."""
@@ -191,6 +224,21 @@ class Scene:
             name: Area(name, label, lower, upper, how)
             for name, label, lower, upper, how in self._native.area(int(digits))
         }
+
+
+def _axis(flag, axis):
+    """`"mu=0:2"`, or `("mu", lo, hi)` with decimal ends."""
+    if isinstance(axis, str):
+        name, sep, rng = axis.partition("=")
+        lo, sep2, hi = rng.partition(":")
+        if not (sep and sep2 and name.strip()):
+            raise ValueError(f"{flag}: expected NAME=LO:HI, got {axis!r}")
+        return (name.strip(), lo.strip(), hi.strip())
+    try:
+        name, lo, hi = axis
+    except (TypeError, ValueError):
+        raise ValueError(f"{flag} must be 'NAME=LO:HI' or (name, lo, hi), got {axis!r}") from None
+    return (str(name), decimal_text(name, lo), decimal_text(name, hi))
 
 
 @dataclass(frozen=True)
@@ -356,3 +404,106 @@ def verify(path):
     """Checks a proof file with the independent checker, as `detach verify`
     does; a file that cannot be read raises ValueError."""
     return Verification(*_detach.verify(str(path)))
+
+
+@dataclass(frozen=True)
+class Share:
+    """A set's share of the parameter box by status (fractions of its
+    volume)."""
+
+    name: str
+    label: str
+    nonempty: float
+    empty: float
+    undecided: float
+
+
+class ParamAtlas:
+    """The result of `Scene.param_atlas`: boxes of parameters and each set's
+    certified status on them, thresholds in one parameter, a proof file."""
+
+    def __init__(self, native, scene):
+        self._native = native
+        self.scene = scene
+        self._json = None
+
+    @property
+    def axes(self):
+        """`[(name, lo, hi)]` as given."""
+        return [tuple(a) for a in self._native.axes]
+
+    @property
+    def sets(self):
+        return list(self._native.sets)
+
+    @property
+    def bounds(self):
+        """Box bounds as a `(boxes, axes, 2)` array: per box and axis, the
+        lower and upper ends (the enclosures' outer doubles)."""
+        n = len(self.axes)
+        b = np.frombuffer(self._native.bounds(), dtype=np.float64).reshape(-1, n, 2)
+        b.flags.writeable = False
+        return b
+
+    @property
+    def status(self):
+        """`{set: array of STATUSES}`, one entry per box of `bounds`."""
+        codes = self._codes()
+        names = np.array(STATUSES)
+        return {s: names[codes[:, k]] for k, s in enumerate(self.sets)}
+
+    def _codes(self):
+        return np.frombuffer(self._native.statuses(), dtype=np.uint8).reshape(-1, len(self.sets) + 1)
+
+    @property
+    def shares(self):
+        """`{set: Share}`: the box's volume proved non-empty, proved empty
+        and undecided."""
+        return {name: Share(name, label, ne, e, u) for name, label, ne, e, u in self._native.shares()}
+
+    @property
+    def json(self):
+        """The atlas as `detach params --json` writes it (a dict)."""
+        if self._json is None:
+            import json
+
+            self._json = json.loads(self._native.json())
+        return self._json
+
+    @property
+    def thresholds(self):
+        """In one parameter: where each set changes status, `{set, param,
+        below, above, enclosure: [lo, hi]}` with decimal ends."""
+        return list(self.json.get("thresholds", []))
+
+    @property
+    def complete(self):
+        """False when the box budget stopped refinement (a coarser atlas)."""
+        return self._native.complete
+
+    @property
+    def elapsed(self):
+        return self._native.elapsed
+
+    @property
+    def eps(self):
+        return self._native.eps
+
+    def __len__(self):
+        return len(self._codes())
+
+    def __repr__(self):
+        axes = ", ".join(f"{n} in [{lo}, {hi}]" for n, lo, hi in self.axes)
+        return f"<detach.ParamAtlas {self.scene.name}: {axes}, {len(self)} boxes>"
+
+    def save_proof(self, path):
+        """Writes the atlas as a proof file (proofs/FORMAT.md), once the
+        independent checker says VALID, as `detach params --proof`."""
+        self._native.save_proof(str(path))
+
+    def plot(self, ax=None, legend=True):
+        """The plane of a two-parameter atlas (or the line of a
+        one-parameter one) in the colours of `detach params --out`."""
+        from ._plot import plot_param_atlas
+
+        return plot_param_atlas(self, ax=ax, legend=legend)

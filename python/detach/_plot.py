@@ -1,4 +1,5 @@
-"""The atlas of a paving in matplotlib, in the colours of `detach atlas`."""
+"""Atlases in matplotlib, in the colours of `detach atlas` and `detach
+params --out`."""
 
 from __future__ import annotations
 
@@ -54,6 +55,47 @@ def plot_paving(paving, ax=None, legend=True):
     params = " ".join(f"{k}={v}" for k, v in paving.scene.params.items())
     note = "" if paving.complete else f" [{paving.stop_text}]"
     ax.set_title(f"{paving.scene.name} {params}{note}")
+    if legend and shown:
+        ax.legend(handles=shown, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
+    return ax
+
+
+def plot_param_atlas(atlas, ax=None, legend=True):
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import PolyCollection
+    from matplotlib.patches import Patch
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(8, 5))
+    b = atlas.bounds
+    if b.shape[1] == 1:
+        # one parameter: each box as a bar over [0, 1]
+        b = np.concatenate([b, np.tile([[0.0, 1.0]], (len(b), 1, 1))], axis=1)
+    classes = atlas._native.classes()
+    codes = atlas._codes()[:, -1]
+    shown = []
+    for k, (text, rgb) in enumerate(classes):
+        part = b[codes == k]
+        if len(part) == 0:
+            continue
+        x0, x1, y0, y1 = part[:, 0, 0], part[:, 0, 1], part[:, 1, 0], part[:, 1, 1]
+        verts = np.stack(
+            [np.stack([x0, y0], 1), np.stack([x1, y0], 1), np.stack([x1, y1], 1), np.stack([x0, y1], 1)],
+            axis=1,
+        )
+        ax.add_collection(PolyCollection(verts, facecolors=rgb, edgecolors="none", linewidths=0.0))
+        shown.append(Patch(facecolor=rgb, edgecolor="#222222", label=text))
+    root = atlas._native.root
+    ax.set_xlim(*root[0])
+    ax.set_xlabel(atlas.axes[0][0])
+    if len(root) == 2:
+        ax.set_ylim(*root[1])
+        ax.set_ylabel(atlas.axes[1][0])
+    else:
+        ax.set_ylim(0.0, 1.0)
+        ax.set_yticks([])
+    note = "" if atlas.complete else " [box budget reached: coarser]"
+    ax.set_title(f"{atlas.scene.name}: certified parameter atlas{note}")
     if legend and shown:
         ax.legend(handles=shown, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
     return ax

@@ -3,8 +3,8 @@
 //! pictures and sympy scenes on top; every number comes from here.
 
 use detach::api::{
-    cell_named, verify as check_file, How, Label, Method, PaveRequest, Paved, Problem, Variant,
-    Verdict,
+    cell_named, status_index, verify as check_file, How, Label, Method, ParamAtlasRun, ParamAxis,
+    ParamRequest, PaveRequest, Paved, Problem, Variant, Verdict,
 };
 use detach::figures::Class;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
@@ -134,6 +134,37 @@ impl Scene {
             Some(e) if !e.is_instance_of::<PyKeyboardInterrupt>(py) => Err(e),
             s => Ok((Paving { paved }, s.is_some())),
         }
+    }
+
+    /// A certified parameter atlas with the GIL released: `axes` one or two
+    /// `(name, lo, hi)` ranges as decimal text, `sets` by name, `eps` the
+    /// resolution per axis (`None`: the command line's default).
+    fn param_atlas(
+        &self,
+        py: Python<'_>,
+        axes: Vec<(String, String, String)>,
+        sets: Vec<String>,
+        eps: Option<f64>,
+        max_boxes: usize,
+    ) -> PyResult<ParamAtlas> {
+        let req = ParamRequest {
+            axes: axes
+                .into_iter()
+                .map(|(name, lo, hi)| ParamAxis { name, lo, hi })
+                .collect(),
+            sets: sets
+                .iter()
+                .map(|s| cell_named(s))
+                .collect::<Result<_, _>>()
+                .map_err(value_error)?,
+            eps,
+            max_boxes,
+            shard: None,
+        };
+        let run = py
+            .detach(|| self.problem.param_atlas(&req))
+            .map_err(value_error)?;
+        Ok(ParamAtlas { run })
     }
 
     /// Certified areas: `(name, label, lower, upper, how)` per set.
@@ -270,6 +301,136 @@ impl Paving {
     }
 }
 
+/// A finished (possibly coarser) parameter atlas.
+#[pyclass(module = "detach._detach", frozen)]
+struct ParamAtlas {
+    run: ParamAtlasRun,
+}
+
+#[pymethods]
+impl ParamAtlas {
+    /// `(name, lo, hi)` per varied parameter, as given.
+    #[getter]
+    fn axes(&self) -> Vec<(String, String, String)> {
+        let a = &self.run.run.atlas.axes;
+        a.iter()
+            .map(|a| (a.name.clone(), a.lo.clone(), a.hi.clone()))
+            .collect()
+    }
+
+    /// The sets decided, by name.
+    #[getter]
+    fn sets(&self) -> Vec<String> {
+        self.run.run.atlas.sets.clone()
+    }
+
+    /// The root box, per axis the outer ends of the ranges' enclosures.
+    #[getter]
+    fn root(&self) -> Vec<[f64; 2]> {
+        self.run.family.root.clone()
+    }
+
+    /// Box bounds, `2 × axes × boxes` doubles (lo, hi per axis per box),
+    /// native byte order.
+    fn bounds<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        let mut bytes = Vec::new();
+        for l in self.leaves() {
+            for b in &l.bounds {
+                bytes.extend_from_slice(&b[0].to_ne_bytes());
+                bytes.extend_from_slice(&b[1].to_ne_bytes());
+            }
+        }
+        PyBytes::new(py, &bytes)
+    }
+
+    /// Per box, one status code per set (0 non-empty, 1 empty, 2
+    /// undecided), then its class's index in `classes()`.
+    fn statuses<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        let classes = self.class_list();
+        let mut bytes = Vec::new();
+        for l in self.leaves() {
+            bytes.extend(l.sets.iter().map(|s| status_index(s) as u8));
+            let c = detach::figures::params::class(&l.sets);
+            bytes.push(classes.iter().position(|&k| k == c).unwrap_or(0) as u8);
+        }
+        PyBytes::new(py, &bytes)
+    }
+
+    /// The classes present, as the command line's plane draws them:
+    /// `(text, "#rrggbb")`, undecided last.
+    fn classes(&self) -> Vec<(String, String)> {
+        let sets = &self.run.run.atlas.sets;
+        self.class_list()
+            .into_iter()
+            .map(|c| {
+                let rgb = detach::figures::params::class_colour(c);
+                (
+                    detach::figures::params::class_text(c, sets),
+                    format!("#{:02x}{:02x}{:02x}", rgb.0, rgb.1, rgb.2),
+                )
+            })
+            .collect()
+    }
+
+    /// `(set, label, non-empty, empty, undecided)` shares of the box.
+    fn shares(&self) -> Vec<(String, String, f64, f64, f64)> {
+        self.run
+            .shares()
+            .into_iter()
+            .map(|s| {
+                let label = cell_named(&s.set).map(|c| c.label()).unwrap_or_default();
+                (s.set, label.to_string(), s.nonempty, s.empty, s.undecided)
+            })
+            .collect()
+    }
+
+    /// The atlas as `detach params --json` writes it.
+    fn json(&self) -> String {
+        self.run.json().to_string()
+    }
+
+    #[getter]
+    fn complete(&self) -> bool {
+        self.run.run.complete
+    }
+
+    #[getter]
+    fn elapsed(&self) -> f64 {
+        self.run.elapsed_s
+    }
+
+    #[getter]
+    fn eps(&self) -> f64 {
+        self.run.eps
+    }
+
+    /// Writes the atlas as a proof file, once the checker says VALID.
+    fn save_proof(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        py.detach(|| self.run.write_proof(&path))
+            .map_err(value_error)
+    }
+}
+
+impl ParamAtlas {
+    fn leaves(&self) -> impl Iterator<Item = &detach::params::model::ParamLeaf> {
+        let atlas = &self.run.run.atlas;
+        atlas.leaves.iter().filter(|l| !l.bounds.is_empty())
+    }
+
+    /// The classes present, sorted as the plane's legend (undecided last).
+    fn class_list(&self) -> Vec<Option<u32>> {
+        let mut out: Vec<Option<u32>> = Vec::new();
+        for l in self.leaves() {
+            let c = detach::figures::params::class(&l.sets);
+            if !out.contains(&c) {
+                out.push(c);
+            }
+        }
+        out.sort_by_key(|c| c.map_or(u32::MAX, |b| b));
+        out
+    }
+}
+
 /// Checks a proof file: `(verdict, claim, why)` with verdict `VALID`,
 /// `INVALID` or `UNCHECKED`.
 #[pyfunction]
@@ -318,6 +479,7 @@ fn scene_names() -> Vec<String> {
 fn _detach(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_class::<Paving>()?;
+    m.add_class::<ParamAtlas>()?;
     m.add_function(wrap_pyfunction!(verify, m)?)?;
     m.add_function(wrap_pyfunction!(palette, m)?)?;
     m.add_function(wrap_pyfunction!(scene_names, m)?)?;

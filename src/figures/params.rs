@@ -27,7 +27,7 @@ const COMBINATIONS: [RGBColor; 8] = [
 
 /// A box's class: `None` when a set is undecided, else which sets are
 /// non-empty (a bit per set).
-fn class(sets: &[SetStatus]) -> Option<u32> {
+pub fn class(sets: &[SetStatus]) -> Option<u32> {
     let mut bits = 0;
     for (k, s) in sets.iter().enumerate() {
         match s {
@@ -37,6 +37,30 @@ fn class(sets: &[SetStatus]) -> Option<u32> {
         }
     }
     Some(bits)
+}
+
+/// A class's colour in the plane.
+pub fn class_colour(c: Option<u32>) -> RGBColor {
+    match c {
+        None => UNDECIDED,
+        Some(0) => NONE,
+        Some(b) => COMBINATIONS[(b as usize - 1) % COMBINATIONS.len()],
+    }
+}
+
+/// A class in the legend, the sets by their labels (Ω, Ω̄∩Ω₀, …).
+pub fn class_text(c: Option<u32>, sets: &[String]) -> String {
+    match c {
+        None => "undecided".to_string(),
+        Some(0) => "all proved empty".to_string(),
+        Some(b) => {
+            let names: Vec<&str> = (0..sets.len())
+                .filter(|k| b & (1 << k) != 0)
+                .map(|k| label(&sets[k]))
+                .collect();
+            format!("{} proved non-empty, the others empty", names.join(", "))
+        }
+    }
 }
 
 fn label(name: &str) -> &'static str {
@@ -79,24 +103,10 @@ fn render(root: &Area, family: &Family, atlas: &ParamAtlas) -> Result<(), Figure
         }
     }
     classes.sort_by_key(|c| c.map_or(u32::MAX, |b| b));
-    let colour = |c: Option<u32>| match c {
-        None => UNDECIDED,
-        Some(0) => NONE,
-        Some(b) => COMBINATIONS[(b as usize - 1) % COMBINATIONS.len()],
-    };
+    let colour = class_colour;
     let small = ("sans-serif", 17).into_font();
     for (k, c) in classes.iter().enumerate() {
-        let text = match c {
-            None => "undecided".to_string(),
-            Some(0) => "all proved empty".to_string(),
-            Some(b) => {
-                let names: Vec<&str> = (0..atlas.sets.len())
-                    .filter(|k| b & (1 << k) != 0)
-                    .map(|k| label(&atlas.sets[k]))
-                    .collect();
-                format!("{} proved non-empty, the others empty", names.join(", "))
-            }
-        };
+        let text = class_text(*c, &atlas.sets);
         let (cx, cy) = (16 + 480 * (k as i32 % 2), 46 + 24 * (k as i32 / 2));
         root.draw(&Rectangle::new(
             [(cx, cy), (cx + 20, cy + 16)],
