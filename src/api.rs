@@ -617,11 +617,13 @@ impl Problem {
     }
 
     /// [`Problem::param_atlas`], with `progress(level, open boxes, boxes)`
-    /// called as the search goes down each level.
-    pub fn param_atlas_with_progress(
+    /// called as the search goes down each level; returning
+    /// `ControlFlow::Break(())` stops it there with a valid, coarser atlas
+    /// (`run.interrupted`), as [`Problem::pave_with_progress`] does.
+    pub fn param_atlas_with_progress<F: LevelFlow>(
         &self,
         req: &ParamRequest,
-        progress: impl Fn(u32, usize, usize) + Sync,
+        progress: impl FnMut(u32, usize, usize) -> F,
     ) -> Result<ParamAtlasRun, String> {
         let overrides = self
             .params

@@ -68,12 +68,15 @@ def palette():
 
 
 class Interrupted(KeyboardInterrupt):
-    """Ctrl-C during `Scene.pave`: `.paving` is the valid, coarser result
-    reached (its `stop` is `"interrupted"`)."""
+    """Ctrl-C during `Scene.pave` or `Scene.param_atlas`: `.paving` (its
+    `stop` is `"interrupted"`) or `.atlas` (not `complete`) is the valid,
+    coarser result reached; `.result` is either."""
 
-    def __init__(self, paving):
-        super().__init__("paving interrupted; the partial result is in .paving")
-        self.paving = paving
+    def __init__(self, result):
+        what = "atlas" if isinstance(result, ParamAtlas) else "paving"
+        super().__init__(f"{what} interrupted; the partial result is in .{what}")
+        self.result = result
+        setattr(self, what, result)
 
 
 def _pairs(params):
@@ -206,16 +209,20 @@ class Scene:
         names among `CLASSES[:4]`, `"omega"`, `"omega0"`. `eps`: resolution
         per axis relative to its range (default 2⁻³⁴ in one parameter, so a
         threshold is enclosed to about 1e-10, and 1/256 in two). The GIL is
-        released while it runs."""
+        released while it runs; Ctrl-C stops it between levels and raises
+        `Interrupted`, which carries the valid, coarser atlas reached."""
         if isinstance(max_boxes, bool) or not isinstance(max_boxes, int) or max_boxes < 1:
             raise ValueError(f"max-boxes must be a positive integer, got {max_boxes!r}")
         if isinstance(sets, str):
             sets = [sets]
         axes = [_axis("x", x)] + ([] if y is None else [_axis("y", y)])
-        native = self._native.param_atlas(
+        native, interrupted = self._native.param_atlas(
             axes, list(sets), None if eps is None else float(eps), max_boxes
         )
-        return ParamAtlas(native, self)
+        atlas = ParamAtlas(native, self)
+        if interrupted:
+            raise Interrupted(atlas)
+        return atlas
 
     def area(self, digits=10):
         """Certified areas of Ω, Ω₀ and the four cells to `digits` places, as

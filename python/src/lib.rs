@@ -20,6 +20,19 @@ fn value_error(message: String) -> PyErr {
     PyValueError::new_err(message)
 }
 
+/// Between two levels of a long computation: Python's pending signals
+/// checked (with the GIL taken for that moment), the first error kept in
+/// `signal`, and the computation stopped once there is one.
+fn interrupted(signal: &mut Option<PyErr>) -> ControlFlow<()> {
+    if signal.is_none() {
+        *signal = Python::attach(|py| py.check_signals()).err();
+    }
+    match signal {
+        Some(_) => ControlFlow::Break(()),
+        None => ControlFlow::Continue(()),
+    }
+}
+
 /// A scene at given parameters in one reading of the paper.
 #[pyclass(module = "detach._detach", frozen)]
 struct Scene {
@@ -118,15 +131,8 @@ impl Scene {
         };
         let mut signal: Option<PyErr> = None;
         let paved = py.detach(|| {
-            self.problem.pave_with_progress(&req, |_, _, _| {
-                if signal.is_none() {
-                    signal = Python::attach(|py| py.check_signals()).err();
-                }
-                match signal {
-                    Some(_) => ControlFlow::Break(()),
-                    None => ControlFlow::Continue(()),
-                }
-            })
+            self.problem
+                .pave_with_progress(&req, |_, _, _| interrupted(&mut signal))
         });
         let paved = paved.map_err(value_error)?;
         match signal {
@@ -138,7 +144,9 @@ impl Scene {
 
     /// A certified parameter atlas with the GIL released: `axes` one or two
     /// `(name, lo, hi)` ranges as decimal text, `sets` by name, `eps` the
-    /// resolution per axis (`None`: the command line's default).
+    /// resolution per axis (`None`: the command line's default). Ctrl-C is
+    /// seen between levels and stops the search there: `(atlas,
+    /// interrupted)`.
     fn param_atlas(
         &self,
         py: Python<'_>,
@@ -146,7 +154,7 @@ impl Scene {
         sets: Vec<String>,
         eps: Option<f64>,
         max_boxes: usize,
-    ) -> PyResult<ParamAtlas> {
+    ) -> PyResult<(ParamAtlas, bool)> {
         let req = ParamRequest {
             axes: axes
                 .into_iter()
@@ -161,10 +169,16 @@ impl Scene {
             max_boxes,
             shard: None,
         };
-        let run = py
-            .detach(|| self.problem.param_atlas(&req))
-            .map_err(value_error)?;
-        Ok(ParamAtlas { run })
+        let mut signal: Option<PyErr> = None;
+        let run = py.detach(|| {
+            self.problem
+                .param_atlas_with_progress(&req, |_, _, _| interrupted(&mut signal))
+        });
+        let run = run.map_err(value_error)?;
+        match signal {
+            Some(e) if !e.is_instance_of::<PyKeyboardInterrupt>(py) => Err(e),
+            s => Ok((ParamAtlas { run }, s.is_some())),
+        }
     }
 
     /// Certified areas: `(name, label, lower, upper, how)` per set.

@@ -62,3 +62,19 @@ def test_other_threads_run_while_paving():
         t.join()
     assert p.elapsed > 0.05, "the paving is too short to tell"
     assert during >= 10
+
+
+def test_ctrl_c_returns_the_partial_atlas(tmp_path):
+    scene = detach.Scene.load("viscous-disc")
+    start = time.monotonic()
+    timer = sigint_after(0.3)
+    with pytest.raises(detach.Interrupted) as e:
+        # Far too fine to finish in a test: only an interruption ends it soon.
+        scene.param_atlas("b=0:0.9", y="mu=0.25:2", eps=2.0**-14, max_boxes=10_000_000)
+    timer.join()
+    assert time.monotonic() - start < 60
+    partial = e.value.atlas
+    assert e.value.result is partial and not partial.complete and len(partial) > 0
+    path = tmp_path / "partial-atlas.json"
+    partial.save_proof(path)
+    assert detach.verify(path).valid

@@ -12,6 +12,7 @@
 use super::decide::{decide, DecideOptions, Regions};
 use super::family::Family;
 use super::model::{ParamAtlas, ParamLeaf, ParamNode, SetStatus};
+use crate::pave::LevelFlow;
 use crate::scene::Cell;
 use rayon::prelude::*;
 
@@ -62,8 +63,10 @@ pub struct AtlasRun {
     pub base: Vec<u32>,
     /// How many base boxes the root has.
     pub base_boxes: usize,
-    /// False when the box budget stopped refinement.
+    /// False when the box budget or an interruption stopped refinement.
     pub complete: bool,
+    /// Stopped by its progress callback.
+    pub interrupted: bool,
 }
 
 /// One box of the search, split or not.
@@ -105,12 +108,14 @@ fn split(b: &[[f64; 2]], axis: usize) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
 }
 
 /// Builds the atlas of `cells` over the family's box. `progress` gets
-/// (level, open boxes, boxes so far) once per level.
-pub fn search(
+/// (level, open boxes, boxes so far) once per level, and may stop the
+/// search there: the boxes of that level are leaves with the statuses they
+/// inherited (valid for them, as for the larger box they came from).
+pub fn search<F: LevelFlow>(
     family: &Family,
     cells: &[Cell],
     opts: &SearchOptions,
-    progress: impl Fn(u32, usize, usize) + Sync,
+    mut progress: impl FnMut(u32, usize, usize) -> F,
 ) -> Result<AtlasRun, String> {
     if !(opts.eps.is_finite() && opts.eps > 0.0 && opts.eps <= 1.0) {
         return Err(format!(
@@ -151,9 +156,13 @@ pub fn search(
     let top: Vec<usize> = open.clone();
     let mut leaves = open.len();
     let mut complete = true;
+    let mut interrupted = false;
     let mut level = 0;
     while !open.is_empty() {
-        progress(level, open.len(), leaves);
+        if !progress(level, open.len(), leaves).go_on() {
+            (complete, interrupted) = (false, true);
+            break;
+        }
         let decided: Vec<Result<Vec<SetStatus>, String>> = open
             .par_iter()
             .map(|&i| decide_box(family, cells, &all[i], opts.decide))
@@ -191,7 +200,9 @@ pub fn search(
         open = next;
         level += 1;
     }
-    Ok(assemble(family, cells, all, &top, bases.len(), complete))
+    let mut run = assemble(family, cells, all, &top, bases.len(), complete);
+    run.interrupted = interrupted;
+    Ok(run)
 }
 
 fn is_undecided(s: &SetStatus) -> bool {
@@ -305,6 +316,7 @@ fn assemble(
         base,
         base_boxes,
         complete,
+        interrupted: false,
     }
 }
 

@@ -807,3 +807,71 @@ fn the_library_atlas_refuses_bad_requests() {
         .unwrap_err()
         .contains("NAME=LO:HI"));
 }
+
+/// An atlas stopped by its callback at a level is valid and coarser: its
+/// decided statuses agree with a finished atlas's wherever their boxes
+/// overlap, and its proof file is VALID.
+#[test]
+fn a_stopped_atlas_is_valid_and_coarser() {
+    use detach::api::{ParamRequest, Problem};
+    use std::ops::ControlFlow;
+    let disc = Problem::load("viscous-disc", &[]).unwrap();
+    let req = ParamRequest {
+        axes: vec![
+            ParamRequest::axis("b=0:0.9").unwrap(),
+            ParamRequest::axis("mu=0.25:2").unwrap(),
+        ],
+        eps: Some(1.0 / 64.0),
+        ..ParamRequest::default()
+    };
+    let stopped = disc
+        .param_atlas_with_progress(&req, |level, _, _| {
+            if level < 5 {
+                ControlFlow::Continue(())
+            } else {
+                ControlFlow::Break(())
+            }
+        })
+        .unwrap();
+    let full = disc.param_atlas(&req).unwrap();
+    assert!(stopped.run.interrupted && !stopped.run.complete);
+    assert!(full.run.complete && !full.run.interrupted);
+    let leaves = |a: &detach::api::ParamAtlasRun| -> Vec<detach::params::model::ParamLeaf> {
+        let l = &a.run.atlas.leaves;
+        l.iter().filter(|l| !l.bounds.is_empty()).cloned().collect()
+    };
+    let (coarse, fine) = (leaves(&stopped), leaves(&full));
+    assert!(
+        coarse.len() < fine.len(),
+        "{} vs {}",
+        coarse.len(),
+        fine.len()
+    );
+    let overlap =
+        |a: &[[f64; 2]], b: &[[f64; 2]]| a.iter().zip(b).all(|(x, y)| x[0] < y[1] && y[0] < x[1]);
+    let decided = |s: &SetStatus| !matches!(s, SetStatus::Undecided { .. });
+    let mut compared = 0;
+    for c in &coarse {
+        for f in fine.iter().filter(|f| overlap(&c.bounds, &f.bounds)) {
+            for (a, b) in c.sets.iter().zip(&f.sets) {
+                if decided(a) && decided(b) {
+                    assert_eq!(
+                        std::mem::discriminant(a),
+                        std::mem::discriminant(b),
+                        "{c:?} vs {f:?}"
+                    );
+                    compared += 1;
+                }
+            }
+        }
+    }
+    assert!(compared > 0);
+    let path =
+        std::env::temp_dir().join(format!("detach-stopped-atlas-{}.json", std::process::id()));
+    stopped.write_proof(&path).unwrap();
+    assert_eq!(
+        detach::api::verify(&path).unwrap().verdict,
+        detach::api::Verdict::Valid
+    );
+    std::fs::remove_file(&path).ok();
+}
