@@ -88,6 +88,9 @@ fn main() {
         ("ladder_mu_r_256", &ladder, &PARADOXES[..]),
         ("viscous_disc_b_mu_256", &disc, &PARADOXES[..]),
     ] {
+        if !group.wants(name) {
+            continue;
+        }
         let r = run(f, cells, 1.0 / 256.0);
         println!(
             "params/{name}: {} boxes, undecided share {:.4} %",
