@@ -10,7 +10,9 @@
 
 use super::bisection::Bisection;
 use super::labels::Scope;
-use super::level::{par_each_mut, refill, Done, Labels, Local, Open, Outcome, Plan, Work, PAR_MIN};
+use super::level::{
+    par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan, Work, PAR_MIN,
+};
 use super::tree::Tree;
 use super::{
     BudgetStop, ConstraintSet, Label, LevelFlow, PaveOptions, PaveStats, Paving, PerConstraint,
@@ -323,7 +325,7 @@ fn share_slabs<S: ConstraintSet>(set: &S, frontier: &mut [Open<S::Slab>]) -> usi
         let o = &frontier[k];
         o.slab.is_none().then(|| slab_key(&o.bx))
     };
-    let mut missing: Vec<(u64, u64)> = if frontier.len() < PAR_MIN {
+    let mut missing: Vec<(u64, u64)> = if serial(frontier.len(), PAR_MIN) {
         (0..frontier.len()).filter_map(needs_slab).collect()
     } else {
         (0..frontier.len())
@@ -331,7 +333,7 @@ fn share_slabs<S: ConstraintSet>(set: &S, frontier: &mut [Open<S::Slab>]) -> usi
             .filter_map(needs_slab)
             .collect()
     };
-    if missing.len() < PAR_MIN {
+    if serial(missing.len(), PAR_MIN) {
         missing.sort_unstable();
     } else {
         missing.par_sort_unstable();
@@ -460,7 +462,7 @@ fn slab_key(b: &PhaseBox) -> (u64, u64) {
 const PAR_MIN_HEAVY: usize = 512;
 
 fn par_map<T: Sync, U: Send>(xs: &[T], min: usize, f: impl Fn(&T) -> U + Sync + Send) -> Vec<U> {
-    if xs.len() < min {
+    if serial(xs.len(), min) {
         xs.iter().map(f).collect()
     } else {
         xs.par_iter().map(f).collect()
@@ -469,7 +471,7 @@ fn par_map<T: Sync, U: Send>(xs: &[T], min: usize, f: impl Fn(&T) -> U + Sync + 
 
 /// Empties `v`, dropping its items in parallel; its buffer stays.
 fn par_clear<T: Send>(v: &mut Vec<T>) {
-    if v.len() < PAR_MIN {
+    if serial(v.len(), PAR_MIN) {
         v.clear();
     } else {
         v.par_drain(..).for_each(drop);
@@ -484,7 +486,7 @@ fn par_fold<T: Copy + Send + Sync>(
     f: impl Fn(usize) -> T + Sync + Send,
     op: impl Fn(T, T) -> T + Sync + Send,
 ) -> T {
-    if n < PAR_MIN {
+    if serial(n, PAR_MIN) {
         (0..n).map(f).fold(zero, op)
     } else {
         (0..n).into_par_iter().map(f).reduce(|| zero, op)

@@ -105,6 +105,12 @@ impl Plan {
 /// the pool costs more (tens of µs per call) than the work.
 pub(super) const PAR_MIN: usize = 1024;
 
+/// Whether `n` items run on the calling thread: fewer than `min`, or a pool
+/// of one thread (where handing work to it only adds a switch per call).
+pub(super) fn serial(n: usize, min: usize) -> bool {
+    n < min || rayon::current_num_threads() == 1
+}
+
 /// `v` holding `f(k)` for `k` in `0..n`, written in parallel from `min`
 /// items (so a new buffer's pages are first touched by the
 /// pool's threads). A buffer too small is replaced, not grown: nothing
@@ -123,7 +129,7 @@ pub(super) fn refill<T: Send>(
         *v = Vec::new();
         *v = Vec::with_capacity(cap);
     }
-    if n < min {
+    if serial(n, min) {
         v.extend((0..n).map(f));
     } else {
         v.par_extend((0..n).into_par_iter().map(f));
@@ -131,7 +137,7 @@ pub(super) fn refill<T: Send>(
 }
 
 pub(super) fn par_each_mut<T: Send>(xs: &mut [T], f: impl Fn(&mut T) + Sync + Send) {
-    if xs.len() < PAR_MIN {
+    if serial(xs.len(), PAR_MIN) {
         xs.iter_mut().for_each(f)
     } else {
         xs.par_iter_mut().for_each(f)

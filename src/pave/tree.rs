@@ -6,7 +6,9 @@
 //! A leaf keeps only its labels: its box is replayed from the root and the
 //! splits when the tree is assembled, exactly as the paving computed it.
 
-use super::level::{par_each_mut, refill, Done, Labels, Local, Open, Outcome, Plan, PAR_MIN};
+use super::level::{
+    par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan, PAR_MIN,
+};
 use super::{Leaf, Node, PhaseBox};
 use rayon::prelude::*;
 use std::mem::size_of;
@@ -177,7 +179,7 @@ impl Tree {
                     };
                 }
             };
-            if runs.len() == 1 {
+            if serial(runs.len(), 2) {
                 runs.into_iter().for_each(sizes);
             } else {
                 runs.into_par_iter().for_each(sizes);
@@ -329,7 +331,7 @@ fn prefix_sums(plan: &[Plan], offsets: &mut Vec<[usize; 2]>) -> ([usize; 3], Vec
         }
     };
     refill(offsets, plan.len(), PAR_MIN, |_| [0usize; 2]);
-    if plan.len() < PAR_MIN {
+    if serial(plan.len(), PAR_MIN) {
         fill(offsets, plan, starts[0]);
     } else {
         offsets
