@@ -541,6 +541,16 @@ impl ParamAtlasRun {
         atlas_json(&self.family, &self.run, self.eps, shard)
     }
 
+    /// The varied parameters' ranges as given: `mu in [1, 2], b in [0, 0.9]`.
+    pub fn ranges(&self) -> String {
+        let axes = &self.run.atlas.axes;
+        let ranges: Vec<String> = axes
+            .iter()
+            .map(|a| format!("{} in [{}, {}]", a.name, a.lo, a.hi))
+            .collect();
+        ranges.join(", ")
+    }
+
     /// Per set, the share of the parameter box proved non-empty, proved
     /// empty and undecided.
     pub fn shares(&self) -> Vec<SetShare> {
@@ -582,12 +592,6 @@ impl ParamAtlasRun {
         if self.shard.is_some() {
             return Err("--proof states a whole atlas: run without --shard".into());
         }
-        let atlas = &self.run.atlas;
-        let ranges: Vec<String> = atlas
-            .axes
-            .iter()
-            .map(|a| format!("{} in [{}, {}]", a.name, a.lo, a.hi))
-            .collect();
         let statement = crate::certificate::params::ParamAtlasStatement {
             scene: &self.family.base,
             variant: self.family.variant,
@@ -595,10 +599,10 @@ impl ParamAtlasRun {
             title: format!(
                 "{}: parameter atlas over {}",
                 self.family.base.name(),
-                ranges.join(", ")
+                self.ranges()
             ),
         };
-        crate::certificate::params::param_atlas_proof(&statement, atlas)
+        crate::certificate::params::param_atlas_proof(&statement, &self.run.atlas)
     }
 
     /// Writes [`ParamAtlasRun::proof`] to `path` once the checker says VALID.

@@ -3,7 +3,6 @@
 use super::{CliError, CliResult};
 use detach::area::{certified_areas, AreasError, Provenance, Source};
 use detach::certificate::numbers::{fixed, Round};
-use detach::number::param::parse_assignment;
 use detach::quadrature::AreaOptions;
 use detach::scene::{Cell, Variant};
 use serde::Serialize;
@@ -93,11 +92,7 @@ struct AreaReport {
 }
 
 pub fn run_area(args: &AreaArgs) -> CliResult {
-    let overrides = args
-        .params
-        .iter()
-        .map(|t| parse_assignment(t).map_err(CliError::usage))
-        .collect::<Result<Vec<_>, _>>()?;
+    let overrides = super::parse_overrides(&args.params)?;
     let (scene, params) = args.source.build(&overrides, args.variant)?;
     let (th, thd) = (
         super::atlas::split_window("theta", &args.theta)?,

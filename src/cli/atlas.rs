@@ -1,17 +1,16 @@
 //! `detach atlas`, `detach pave`, `detach scenes`.
 
-use super::{CliError, CliResult};
+use super::{parse_overrides, progress_bar, CliError, CliResult};
 use detach::certificate::numbers::{decimal, fixed, Round};
 use detach::figures::{
     draw_atlas_files, parse_size, plot_area_pixels, AtlasStyle, Formats, PictureInfo, MIN_HEIGHT,
     MIN_WIDTH,
 };
-use detach::number::param::{parse_assignment, ParamSet};
+use detach::number::param::ParamSet;
 use detach::pave::{
     pave_scene_method, standard_cell_bounds, Emptiness, Method, MethodOptions, PaveOptions, Paving,
 };
 use detach::scene::{Cell, Domain, Scene, SceneId, SceneText, UnknownCell, Variant};
-use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -239,25 +238,6 @@ pub struct PaveReport {
     #[serde(skip_serializing_if = "Vec::is_empty")]
     warnings: Vec<String>,
     regions: Vec<RegionReport>,
-}
-
-fn parse_overrides(texts: &[String]) -> Result<Vec<(String, String)>, CliError> {
-    texts
-        .iter()
-        .map(|t| parse_assignment(t).map_err(CliError::usage))
-        .collect()
-}
-
-/// A bar on stderr, drawn only when stderr is a terminal.
-fn progress_bar(levels: u64, label: &str) -> ProgressBar {
-    let bar = ProgressBar::new(levels);
-    bar.set_style(
-        ProgressStyle::with_template("{prefix:>14} [{bar:30}] level {pos}/{len} {elapsed} {msg}")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
-    bar.set_prefix(label.to_string());
-    bar
 }
 
 /// Paves one scene with a progress bar, and summarises it.

@@ -209,43 +209,15 @@ pub struct SceneSource {
 }
 
 impl SceneSource {
-    /// The scene with its parameters; a scene file has one reading, so
+    /// The scene as the library's [`detach::api::Problem`], in a reading,
+    /// with `NAME=VALUE` overrides; a scene file has one reading, so
     /// `--variant printed` is refused for it.
-    pub fn build(
+    pub fn problem(
         &self,
         overrides: &[(String, String)],
         variant: detach::scene::Variant,
-    ) -> Result<(detach::scene::Scene, detach::number::param::ParamSet), CliError> {
-        use detach::scene::Scene;
-        let built = match (&self.scene, &self.scene_file) {
-            (Some(name), _) => Scene::by_name(name, overrides).map_err(CliError::usage)?,
-            (None, Some(path)) => Scene::from_file(path, overrides).map_err(CliError::usage)?,
-            (None, None) => return Err(CliError::usage("give --scene NAME or --scene-file FILE")),
-        };
-        if built.0.id().is_none() {
-            one_reading(variant)?;
-        }
-        for w in built.0.warnings() {
-            eprintln!("warning: {w}");
-        }
-        Ok(built)
-    }
-}
-
-impl SceneSource {
-    /// The scene as the library's [`detach::api::Problem`], with
-    /// `NAME=VALUE` overrides and a reading, refused as [`SceneSource::build`]
-    /// refuses them.
-    pub fn problem(
-        &self,
-        params: &[String],
-        variant: detach::scene::Variant,
     ) -> Result<detach::api::Problem, CliError> {
         use detach::api::Problem;
-        let overrides = params
-            .iter()
-            .map(|t| detach::number::param::parse_assignment(t).map_err(CliError::usage))
-            .collect::<Result<Vec<_>, _>>()?;
         let pairs: Vec<(&str, &str)> = overrides
             .iter()
             .map(|(n, v)| (n.as_str(), v.as_str()))
@@ -263,6 +235,38 @@ impl SceneSource {
         }
         problem.in_reading(variant).map_err(CliError::usage)
     }
+
+    /// [`SceneSource::problem`]'s scene and parameters.
+    pub fn build(
+        &self,
+        overrides: &[(String, String)],
+        variant: detach::scene::Variant,
+    ) -> Result<(detach::scene::Scene, detach::number::param::ParamSet), CliError> {
+        let p = self.problem(overrides, variant)?;
+        Ok((p.scene, p.params))
+    }
+}
+
+/// `--param NAME=VALUE` texts as `(name, value)` pairs.
+pub fn parse_overrides(texts: &[String]) -> Result<Vec<(String, String)>, CliError> {
+    texts
+        .iter()
+        .map(|t| detach::number::param::parse_assignment(t).map_err(CliError::usage))
+        .collect()
+}
+
+/// A bar on stderr, drawn only when stderr is a terminal.
+pub fn progress_bar(levels: u64, label: &str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(levels);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{prefix:>14} [{bar:30}] level {pos}/{len} {elapsed} {msg}",
+        )
+        .expect("valid template")
+        .progress_chars("=> "),
+    );
+    bar.set_prefix(label.to_string());
+    bar
 }
 
 /// A scene file has one reading: `--variant printed` is refused for it.

@@ -4,7 +4,6 @@
 use super::{CliError, CliResult};
 use detach::api::{Cell, ParamAtlasRun, ParamRequest, Shard, Variant};
 use detach::params::report::merge;
-use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -82,7 +81,8 @@ fn cells(names: &[String]) -> Result<Vec<Cell>, CliError> {
 }
 
 pub fn run_params(args: &ParamsArgs) -> CliResult {
-    let problem = args.source.problem(&args.params, args.variant)?;
+    let overrides = super::parse_overrides(&args.params)?;
+    let problem = args.source.problem(&overrides, args.variant)?;
     let axis = |flag: &str, text: &str| {
         ParamRequest::axis(text).map_err(|e| CliError::usage(format!("{flag}: {e}")))
     };
@@ -110,13 +110,7 @@ pub fn run_params(args: &ParamsArgs) -> CliResult {
     let dims = req.axes.len();
     let levels =
         (dims as f64 * (1.0 / req.resolution()).log2().ceil().clamp(0.0, 1100.0)) as u64 + 1;
-    let bar = ProgressBar::new(levels);
-    bar.set_style(
-        ProgressStyle::with_template("{prefix:>14} [{bar:30}] level {pos}/{len} {elapsed} {msg}")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
-    bar.set_prefix(problem.scene.name().to_string());
+    let bar = super::progress_bar(levels, problem.scene.name());
     bar.enable_steady_tick(std::time::Duration::from_millis(500));
     let atlas = problem
         .param_atlas_with_progress(&req, |level, open, boxes| {
@@ -151,18 +145,11 @@ pub fn run_params(args: &ParamsArgs) -> CliResult {
 
 fn print_table(atlas: &ParamAtlasRun, json: &serde_json::Value) {
     let family = &atlas.family;
-    let names: Vec<String> = atlas
-        .run
-        .atlas
-        .axes
-        .iter()
-        .map(|a| format!("{} in [{}, {}]", a.name, a.lo, a.hi))
-        .collect();
     outln!(
         "{}{}: {} ({} boxes, {:.2} s{})",
         family.base.name(),
         super::reading(family.base.id().map(|_| family.variant)),
-        names.join(", "),
+        atlas.ranges(),
         atlas
             .run
             .atlas
