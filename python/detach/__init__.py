@@ -236,11 +236,10 @@ class Scene:
 def _axis(flag, axis):
     """`"mu=0:2"`, or `("mu", lo, hi)` with decimal ends."""
     if isinstance(axis, str):
-        name, sep, rng = axis.partition("=")
-        lo, sep2, hi = rng.partition(":")
-        if not (sep and sep2 and name.strip()):
-            raise ValueError(f"{flag}: expected NAME=LO:HI, got {axis!r}")
-        return (name.strip(), lo.strip(), hi.strip())
+        try:
+            return _detach.param_axis(axis)
+        except ValueError as e:
+            raise ValueError(f"{flag}: {e}") from None
     try:
         name, lo, hi = axis
     except (TypeError, ValueError):

@@ -360,7 +360,7 @@ impl ParamAtlas {
     /// Per box, one status code per set (0 non-empty, 1 empty, 2
     /// undecided), then its class's index in `classes()`.
     fn statuses<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
-        let classes = self.class_list();
+        let classes = detach::figures::params::classes_present(&self.run.run.atlas);
         let mut bytes = Vec::new();
         for l in self.leaves() {
             bytes.extend(l.sets.iter().map(|s| status_index(s) as u8));
@@ -374,7 +374,7 @@ impl ParamAtlas {
     /// `(text, "#rrggbb")`, undecided last.
     fn classes(&self) -> Vec<(String, String)> {
         let sets = &self.run.run.atlas.sets;
-        self.class_list()
+        detach::figures::params::classes_present(&self.run.run.atlas)
             .into_iter()
             .map(|c| {
                 let rgb = detach::figures::params::class_colour(c);
@@ -430,19 +430,6 @@ impl ParamAtlas {
         let atlas = &self.run.run.atlas;
         atlas.leaves.iter().filter(|l| !l.bounds.is_empty())
     }
-
-    /// The classes present, sorted as the plane's legend (undecided last).
-    fn class_list(&self) -> Vec<Option<u32>> {
-        let mut out: Vec<Option<u32>> = Vec::new();
-        for l in self.leaves() {
-            let c = detach::figures::params::class(&l.sets);
-            if !out.contains(&c) {
-                out.push(c);
-            }
-        }
-        out.sort_by_key(|c| c.map_or(u32::MAX, |b| b));
-        out
-    }
 }
 
 /// Checks a proof file: `(verdict, claim, why)` with verdict `VALID`,
@@ -475,6 +462,13 @@ fn palette() -> Vec<(String, String, String)> {
         .collect()
 }
 
+/// `NAME=LO:HI` as `detach params --x` reads it: `(name, lo, hi)`.
+#[pyfunction]
+fn param_axis(text: &str) -> PyResult<(String, String, String)> {
+    let a = ParamRequest::axis(text).map_err(value_error)?;
+    Ok((a.name, a.lo, a.hi))
+}
+
 /// The shipped scene names: the paper's, then the scene files.
 #[pyfunction]
 fn scene_names() -> Vec<String> {
@@ -497,6 +491,7 @@ fn _detach(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(verify, m)?)?;
     m.add_function(wrap_pyfunction!(palette, m)?)?;
     m.add_function(wrap_pyfunction!(scene_names, m)?)?;
+    m.add_function(wrap_pyfunction!(param_axis, m)?)?;
     m.add("VERSION", detach::LONG_VERSION)?;
     Ok(())
 }

@@ -39,6 +39,20 @@ pub fn class(sets: &[SetStatus]) -> Option<u32> {
     Some(bits)
 }
 
+/// The classes of the atlas's boxes, each once, in the legend's order
+/// (by the bits of the non-empty sets, undecided last).
+pub fn classes_present(atlas: &ParamAtlas) -> Vec<Option<u32>> {
+    let mut classes: Vec<Option<u32>> = Vec::new();
+    for leaf in atlas.leaves.iter().filter(|l| !l.bounds.is_empty()) {
+        let c = class(&leaf.sets);
+        if !classes.contains(&c) {
+            classes.push(c);
+        }
+    }
+    classes.sort_by_key(|c| c.map_or(u32::MAX, |b| b));
+    classes
+}
+
 /// A class's colour in the plane.
 pub fn class_colour(c: Option<u32>) -> RGBColor {
     match c {
@@ -95,14 +109,7 @@ fn render(root: &Area, family: &Family, atlas: &ParamAtlas) -> Result<(), Figure
     root.draw_text(&title, &bold.color(&INK), (16, 10))
         .map_err(draw_err)?;
     // The legend: one swatch per class present.
-    let mut classes: Vec<Option<u32>> = Vec::new();
-    for leaf in atlas.leaves.iter().filter(|l| !l.bounds.is_empty()) {
-        let c = class(&leaf.sets);
-        if !classes.contains(&c) {
-            classes.push(c);
-        }
-    }
-    classes.sort_by_key(|c| c.map_or(u32::MAX, |b| b));
+    let classes = classes_present(atlas);
     let colour = class_colour;
     let small = ("sans-serif", 17).into_font();
     for (k, c) in classes.iter().enumerate() {
