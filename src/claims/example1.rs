@@ -17,12 +17,12 @@ use super::figures::{
     axis, grid, marks, params_text, series, Curves, FigureOf, FigureSpec, Region, Series, Shape,
     THETA_RAD,
 };
-use super::files::{formula, trig};
+use super::files::formula;
 use super::witness::{find_difference, find_leaf, labels_on, window};
 use super::{dec, enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::pave::{Label, PhaseBox};
-use crate::scene::{Angle, SceneId, Variant};
+use crate::scene::{Angle, ExactTheta, SceneId, Variant};
 use inari::{DecInterval, Interval};
 use serde_json::json;
 
@@ -157,7 +157,14 @@ pub fn newton<T: Scalar>(p: &P1<T>, s: T, c: T, w: T, friction_sign: i32) -> (T,
 
 /// The text at `key` of Example 1's file in reading `v`.
 fn file<T: Scalar>(v: Variant, key: &str, p: &P1<T>, s: T, c: T, w: T) -> T {
-    formula(SceneId::ViscousDisc, v, key, &p.values(), trig(s, c), w)
+    formula(
+        SceneId::ViscousDisc,
+        v,
+        key,
+        &p.values(),
+        ExactTheta::trig(s, c),
+        w,
+    )
 }
 
 /// `h(θ)` of (1.3) as printed (`viscous-disc-printed.toml`).

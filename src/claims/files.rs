@@ -53,12 +53,3 @@ pub fn formula<T: Scalar>(
     file.exact(key, &at)
         .unwrap_or_else(|e| panic!("scenes/{}.toml: {e}", file.name))
 }
-
-/// θ as its sine and cosine alone.
-pub fn trig<T>(s: T, c: T) -> ExactTheta<T> {
-    ExactTheta {
-        sin: s,
-        cos: c,
-        logs: None,
-    }
-}

@@ -23,10 +23,9 @@ use super::figures::{
     axis, grid, marks, momenta, series, signed, Curves, FigureOf, FigureSpec, Series, Shape,
     THETA_DOT_UNITS, THETA_RAD,
 };
-use super::files::{formula, trig};
 use super::smooth::{
-    dt_dtheta, free_lambda_ddot, p2_text, p2_texts, spin_rates, t_rot_printed, tau_printed,
-    u_printed, P2,
+    dt_dtheta, free_lambda_ddot, p2_formula, p2_text, p2_texts, spin_rates, t_rot_printed,
+    tau_printed, u_printed, P2,
 };
 use super::witness::{find_difference, window};
 use super::{dec, enc, shown_at, Check, Outcome, Strength, Verdict};
@@ -35,19 +34,14 @@ use crate::pave::PhaseBox;
 use crate::roots::equations::scene_function;
 use crate::roots::isolate::{isolate, point, RealFn};
 use crate::roots::{solve_3_3, Budget, EquationId};
-use crate::scene::{Angle, ExactTheta, Scene, SceneId, Variant};
+use crate::scene::{Angle, ExactTheta, Scene, SceneId};
 use inari::{DecInterval, Interval};
 use serde_json::json;
 
 /// The printed §3 file's text at `key` (`ice-disc-printed.toml`), with
 /// `given` values past the parameters (c₀, or v_x and τ' taken as given).
 fn printed<T: Scalar>(key: &str, p: &P2<T>, theta: ExactTheta<T>, w: T, given: &[(&str, T)]) -> T {
-    let values: Vec<_> = p
-        .values()
-        .into_iter()
-        .chain(given.iter().copied())
-        .collect();
-    formula(SceneId::IceDisc, Variant::Printed, key, &values, theta, w)
+    p2_formula(SceneId::IceDisc, key, p, theta, w, given)
 }
 
 /// v_x of (3.1) as printed, with the two logarithms `ln tg(θ/2)`, `ln sin θ`
@@ -72,7 +66,13 @@ pub fn logs<T: Scalar>(an: &Angle<T>) -> (T, T) {
 /// θ̇ = 0, negated.
 pub fn rhs_3_5<T: Scalar>(p: &P2<T>, s: T, c: T, vx: T) -> T {
     let zero = T::int(0);
-    -printed("regions.omega0", p, trig(s, c), zero, &[("vx", vx)])
+    -printed(
+        "regions.omega0",
+        p,
+        ExactTheta::trig(s, c),
+        zero,
+        &[("vx", vx)],
+    )
 }
 
 /// θ̈ of (3.3) as printed at the given v_x (`sign` −1: a mutant, `A ττ'`
@@ -82,9 +82,15 @@ pub fn thdd_3_3<T: Scalar>(p: &P2<T>, s: T, c: T, vx: T, sign: i32) -> T {
     let zero = T::int(0);
     if sign < 0 {
         let t1 = tau_printed(p, s, c).1;
-        printed(key, p, trig(s, c), zero, &[("vx", vx), ("tau1", -t1)])
+        printed(
+            key,
+            p,
+            ExactTheta::trig(s, c),
+            zero,
+            &[("vx", vx), ("tau1", -t1)],
+        )
     } else {
-        printed(key, p, trig(s, c), zero, &[("vx", vx)])
+        printed(key, p, ExactTheta::trig(s, c), zero, &[("vx", vx)])
     }
 }
 

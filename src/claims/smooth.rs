@@ -15,7 +15,7 @@ use super::figures::{
     axis, grid, marks, momenta, params_text, series, Curves, FigureOf, FigureSpec, Series, Shape,
     THETA_RAD,
 };
-use super::files::{formula, trig};
+use super::files::formula;
 use super::{enc, shown_at, Check, Outcome, Strength, Verdict};
 use crate::number::scalar::{Dual, Scalar};
 use crate::pave::PhaseBox;
@@ -23,7 +23,7 @@ use crate::roots::critical::{band_cell, g as g_crit};
 use crate::roots::equations::kappa_alpha;
 use crate::roots::isolate::{point, RealFn};
 use crate::roots::{prove_kappa0, solve_2_10, solve_2_9, Budget, EquationRoots};
-use crate::scene::{Scene, SceneId, Variant};
+use crate::scene::{ExactTheta, Scene, SceneId, Variant};
 use inari::Interval;
 use serde_json::json;
 
@@ -148,19 +148,26 @@ fn printed<T: Scalar>(key: &str, p: &P2<T>, s: T, c: T, given: &[(&'static str, 
 
 /// [`printed`] at θ̇ = `w`.
 fn printed_at<T: Scalar>(key: &str, p: &P2<T>, s: T, c: T, w: T, given: &[(&'static str, T)]) -> T {
+    let theta = ExactTheta::trig(s, c);
+    p2_formula(SceneId::SmoothDisc, key, p, theta, w, given)
+}
+
+/// The text at `key` of the printed file of §2 or §3 (`id`), with the
+/// parameters `p` and `given` values past them.
+pub fn p2_formula<T: Scalar>(
+    id: SceneId,
+    key: &str,
+    p: &P2<T>,
+    theta: ExactTheta<T>,
+    w: T,
+    given: &[(&str, T)],
+) -> T {
     let values: Vec<_> = p
         .values()
         .into_iter()
         .chain(given.iter().copied())
         .collect();
-    formula(
-        SceneId::SmoothDisc,
-        Variant::Printed,
-        key,
-        &values,
-        trig(s, c),
-        w,
-    )
+    formula(id, Variant::Printed, key, &values, theta, w)
 }
 
 /// τ, τ' of (2.7) as printed.

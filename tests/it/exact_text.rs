@@ -106,11 +106,7 @@ fn file_texts_evaluate_exactly_inside_their_compiled_enclosures() {
                     let exact = f.exact(
                         &key,
                         &ExactPoint {
-                            theta: ExactTheta {
-                                sin: s,
-                                cos: c,
-                                logs: None,
-                            },
+                            theta: ExactTheta::trig(s, c),
                             theta_dot: wn,
                             values: &pq,
                         },
@@ -170,11 +166,7 @@ fn a_given_definition_replaces_its_text() {
         f.exact(
             "dynamics.theta_ddot",
             &ExactPoint {
-                theta: ExactTheta {
-                    sin: s,
-                    cos: c,
-                    logs: None,
-                },
+                theta: ExactTheta::trig(s, c),
                 theta_dot: Q::int(0),
                 values,
             },
@@ -219,11 +211,7 @@ fn what_has_no_exact_value_is_an_error_naming_the_text() {
         let f = FileScene::parse(&base(text), &[]).expect("a valid file");
         let values = [("k", Q::int(2))];
         let at = ExactPoint {
-            theta: ExactTheta {
-                sin: Q::ratio(3, 5),
-                cos: Q::ratio(4, 5),
-                logs: None,
-            },
+            theta: ExactTheta::trig(Q::ratio(3, 5), Q::ratio(4, 5)),
             theta_dot: Q::int(1),
             values: &values,
         };
@@ -234,11 +222,7 @@ fn what_has_no_exact_value_is_an_error_naming_the_text() {
     // A parameter left without a value, and a key the file lacks.
     let f = FileScene::parse(&base("k*sin(theta)"), &[]).unwrap();
     let at = ExactPoint {
-        theta: ExactTheta {
-            sin: Q::ratio(3, 5),
-            cos: Q::ratio(4, 5),
-            logs: None,
-        },
+        theta: ExactTheta::trig(Q::ratio(3, 5), Q::ratio(4, 5)),
         theta_dot: Q::int(1),
         values: &[],
     };

@@ -54,6 +54,17 @@ pub struct ExactTheta<T> {
     pub logs: Option<(T, T)>,
 }
 
+impl<T> ExactTheta<T> {
+    /// θ as its sine and cosine alone.
+    pub fn trig(sin: T, cos: T) -> ExactTheta<T> {
+        ExactTheta {
+            sin,
+            cos,
+            logs: None,
+        }
+    }
+}
+
 /// An operand on the stack: θ and the forms of it that the logarithms take
 /// stay symbolic until arithmetic needs a value.
 #[derive(Clone, Copy)]
