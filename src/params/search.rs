@@ -200,9 +200,15 @@ pub fn search<F: LevelFlow>(
         open = next;
         level += 1;
     }
-    let mut run = assemble(family, cells, all, &top, bases.len(), complete);
-    run.interrupted = interrupted;
-    Ok(run)
+    Ok(assemble(
+        family,
+        cells,
+        all,
+        &top,
+        bases.len(),
+        complete,
+        interrupted,
+    ))
 }
 
 fn is_undecided(s: &SetStatus) -> bool {
@@ -257,6 +263,7 @@ fn assemble(
     top: &[usize],
     base_boxes: usize,
     complete: bool,
+    interrupted: bool,
 ) -> AtlasRun {
     let mut tree = Vec::new();
     let mut leaves = Vec::new();
@@ -316,7 +323,7 @@ fn assemble(
         base,
         base_boxes,
         complete,
-        interrupted: false,
+        interrupted,
     }
 }
 
