@@ -3,15 +3,17 @@
 //! A level's open boxes are processed independently (in parallel), then the
 //! tree grows by one level in a fixed order, so the tree is the same whatever
 //! the thread count. One level is three steps: the θ-slabs its boxes share
-//! ([`share_slabs`]), whether the budget takes the level's refinements
-//! ([`schedule`]), and the level written into the tree ([`Tree::grow`]). What a method adds —
+//! ([`share_slabs`], or the slabs at their θ-ends, [`share_ends`]), whether
+//! the budget takes the level's refinements ([`schedule`]), and the level
+//! written into the tree ([`Tree::grow`]). What a method adds —
 //! how it steers, which subtree it gives an undecided box — is behind
 //! [`Refine`].
 
 use super::bisection::Bisection;
-use super::labels::Scope;
+use super::labels::{point, Scope};
 use super::level::{
-    par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan, Work, PAR_MIN,
+    extend, make_room, par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan,
+    Work, PAR_MIN,
 };
 use super::tree::Tree;
 use super::{
@@ -28,7 +30,8 @@ use std::sync::Arc;
 pub(super) trait Refine<S: ConstraintSet>: Sync {
     /// The engine computes each θ-slab once per level for all the boxes
     /// that need it. Otherwise a fresh box computes its own slab with the
-    /// end data the monotone test needs.
+    /// end data the monotone test needs (the slabs at its θ-ends computed
+    /// once per level, [`share_ends`]).
     const SHARED_SLABS: bool = true;
 
     fn scope(&self) -> &Scope<'_, S>;
@@ -176,6 +179,7 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
     // level's results and plan, and the next level's frontier (the buffer
     // of the level before).
     let (mut done, mut plan, mut next) = (Vec::new(), Vec::new(), Vec::new());
+    let mut unevaluated = Vec::new();
 
     while !frontier.is_empty() {
         let stop_here = !progress(level, frontier.len(), tree.leaves()).go_on();
@@ -185,11 +189,24 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         } else {
             0
         };
-        stats.slab_evaluations += shared as u64;
-
-        refill(&mut done, frontier.len(), PAR_MIN_HEAVY, |k| {
-            visit(method, &frontier[k])
+        refill(&mut unevaluated, frontier.len(), PAR_MIN_HEAVY, |k| {
+            let o = &frontier[k];
+            o.fresh && method.split_unevaluated(&o.bx)
         });
+        // Visited in runs, each with the slabs at its boxes' θ-ends: what
+        // is held at once stays bounded however wide the level.
+        make_room(&mut done, frontier.len());
+        let mut ends_held = 0;
+        for from in (0..frontier.len()).step_by(VISIT_RUN) {
+            let run = from..frontier.len().min(from + VISIT_RUN);
+            let ends = share_ends(set, &frontier[run.clone()], &unevaluated[run.clone()]);
+            stats.slab_evaluations += ends.len() as u64;
+            ends_held = ends_held.max(ends.bytes());
+            extend(&mut done, run, PAR_MIN_HEAVY, |k| {
+                visit(method, &frontier[k], unevaluated[k], &ends)
+            });
+        }
+        stats.slab_evaluations += shared as u64;
         let work = |k: usize| {
             let d = &done[k];
             let heap = match &d.outcome {
@@ -226,7 +243,9 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         // Everything held at this point: the tree and its bookkeeping, both
         // frontiers, this level's results and plan, and the slabs computed
         // for it.
-        let slabs_held = (shared + own_slabs as usize) * (size_of::<S::Slab>() + 16);
+        let slabs_held = (shared + own_slabs as usize) * (size_of::<S::Slab>() + 16)
+            + ends_held
+            + unevaluated.capacity();
         let held = |tree: &Tree, opens: usize, done: usize, plan: usize| {
             tree.bytes()
                 + opens * size_of::<Open<S::Slab>>()
@@ -355,14 +374,74 @@ fn share_slabs<S: ConstraintSet>(set: &S, frontier: &mut [Open<S::Slab>]) -> usi
     missing.len()
 }
 
+/// The slabs at the θ-ends of a level's boxes that compute their own slab
+/// with its end data (a method without shared slabs, a box not bisected
+/// unevaluated): each θ once, so two neighbouring slabs of a level share
+/// the one where they meet.
+struct EndSlabs<Sl> {
+    /// The θs (their bits, sorted), and the slab at each.
+    at: Vec<u64>,
+    slabs: Vec<Sl>,
+}
+
+impl<Sl> EndSlabs<Sl> {
+    fn get(&self, theta: f64) -> Option<&Sl> {
+        let k = self.at.binary_search(&theta.to_bits()).ok()?;
+        Some(&self.slabs[k])
+    }
+
+    fn len(&self) -> usize {
+        self.at.len()
+    }
+
+    fn bytes(&self) -> usize {
+        self.at.capacity() * size_of::<u64>() + self.slabs.capacity() * size_of::<Sl>()
+    }
+}
+
+fn share_ends<S: ConstraintSet>(
+    set: &S,
+    frontier: &[Open<S::Slab>],
+    unevaluated: &[bool],
+) -> EndSlabs<S::Slab> {
+    let own_slab = |k: usize| frontier[k].slab.is_none() && !unevaluated[k];
+    let ends = |k: usize| frontier[k].bx.theta.map(f64::to_bits);
+    let mut at: Vec<u64> = if serial(frontier.len(), PAR_MIN) {
+        (0..frontier.len())
+            .filter(|&k| own_slab(k))
+            .flat_map(ends)
+            .collect()
+    } else {
+        (0..frontier.len())
+            .into_par_iter()
+            .filter(|&k| own_slab(k))
+            .flat_map_iter(ends)
+            .collect()
+    };
+    if serial(at.len(), PAR_MIN) {
+        at.sort_unstable();
+    } else {
+        at.par_sort_unstable();
+    }
+    at.dedup();
+    let slabs = par_map(&at, PAR_MIN_HEAVY, |&t| set.slab(point(f64::from_bits(t))));
+    EndSlabs { at, slabs }
+}
+
 /// Processes one open box: natural labels, then, while a relevant
 /// constraint is undecided, the method's subtree or a bisection.
-fn visit<S: ConstraintSet, R: Refine<S>>(method: &R, o: &Open<S::Slab>) -> Done<S::Slab> {
+/// `unevaluated`: the method bisects it before any interval work.
+fn visit<S: ConstraintSet, R: Refine<S>>(
+    method: &R,
+    o: &Open<S::Slab>,
+    unevaluated: bool,
+    ends: &EndSlabs<S::Slab>,
+) -> Done<S::Slab> {
     let scope = method.scope();
     let mut work = Work::default();
     // A fresh slab the method calls too coarse is split in θ without
     // interval work (undecided as far as computed).
-    if o.fresh && method.split_unevaluated(&o.bx) {
+    if unevaluated {
         return Done {
             labels: Labels::filled(Label::Undecided, scope.n),
             outcome: Outcome::Split(0),
@@ -373,8 +452,10 @@ fn visit<S: ConstraintSet, R: Refine<S>>(method: &R, o: &Open<S::Slab>) -> Done<
     let (slab, ends, own) = match o.slab.as_ref() {
         Some(slab) => (slab.clone(), None, None),
         None => {
-            work.slabs += 3;
-            let (slab, ends) = scope.set.slab_and_ends(o.bx.theta_interval());
+            // Its ends' slabs were computed for the level.
+            let known = o.bx.theta.map(|t| ends.get(t));
+            work.slabs += 1 + known.iter().filter(|k| k.is_none()).count() as u64;
+            let (slab, ends) = scope.set.slab_and_ends_at(o.bx.theta_interval(), known);
             let slab = Arc::new(slab);
             (slab.clone(), ends, Some(slab))
         }
@@ -460,6 +541,10 @@ fn slab_key(b: &PhaseBox) -> (u64, u64) {
 /// here): from 512 items a level has enough work to pay for it. (At 64, a
 /// coarse paving's whole process was up to a quarter slower than serial.)
 const PAR_MIN_HEAVY: usize = 512;
+
+/// Boxes visited with one set of shared end slabs ([`share_ends`]): at most
+/// a few MB of them held at once.
+const VISIT_RUN: usize = 1 << 15;
 
 fn par_map<T: Sync, U: Send>(xs: &[T], min: usize, f: impl Fn(&T) -> U + Sync + Send) -> Vec<U> {
     if serial(xs.len(), min) {

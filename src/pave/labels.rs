@@ -129,16 +129,26 @@ pub const THETA_DOT_SLACK_ULPS: u32 = 8;
 
 /// `lo ≤ hi` widened by [`THETA_DOT_SLACK_ULPS`] at each end, not across 0.
 fn widened(lo: f64, hi: f64) -> [f64; 2] {
-    let (mut a, mut z) = (lo, hi);
-    for _ in 0..THETA_DOT_SLACK_ULPS {
-        if a != 0.0 {
-            a = a.next_down();
-        }
-        if z != 0.0 {
-            z = z.next_up();
-        }
+    [
+        -ulps_away(-lo, THETA_DOT_SLACK_ULPS),
+        ulps_away(hi, THETA_DOT_SLACK_ULPS),
+    ]
+}
+
+/// `x` moved `n` ulps up (`next_up` `n` times), except that it stops at 0
+/// (a 0 stays): on the bits of a finite double, a step up is +1 for a
+/// positive one and −1 for a negative one, and the finite doubles of one
+/// sign are consecutive integers, ending at ±∞.
+fn ulps_away(x: f64, n: u32) -> f64 {
+    if x == 0.0 || x.is_nan() || x == f64::INFINITY {
+        return x;
     }
-    [a, z]
+    let bits = x.abs().to_bits();
+    if x > 0.0 {
+        f64::from_bits((bits + u64::from(n)).min(f64::INFINITY.to_bits()))
+    } else {
+        -f64::from_bits(bits.saturating_sub(u64::from(n)))
+    }
 }
 
 /// `b` with its θ̇-range widened ([`widened`]): the box labels are proved on.
@@ -298,5 +308,48 @@ pub fn convex_label(e: &SlabEnds, b: &PhaseBox) -> Label {
         want
     } else {
         Label::Undecided
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{ulps_away, widened, THETA_DOT_SLACK_ULPS};
+
+    /// The definition: `next_up` one ulp at a time, stopping at 0.
+    fn stepped(x: f64, n: u32) -> f64 {
+        (0..n).fold(x, |y, _| if y == 0.0 { y } else { y.next_up() })
+    }
+
+    #[test]
+    fn ulps_away_is_stepping_one_ulp_at_a_time() {
+        let tiny = f64::from_bits(3);
+        let xs = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            tiny,
+            -tiny,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            f64::MAX,
+            -f64::MAX,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            2.0f64.next_down(),
+            -(2.0f64.next_down()),
+            -7.25e-300,
+            3.5e17,
+        ];
+        for x in xs {
+            for n in [0, 1, 3, THETA_DOT_SLACK_ULPS] {
+                let (a, b) = (ulps_away(x, n), stepped(x, n));
+                assert_eq!(a.to_bits(), b.to_bits(), "{x:e} by {n}");
+            }
+        }
+        assert!(ulps_away(f64::NAN, 8).is_nan());
+        // Both ends: the lower one down, not across 0.
+        assert_eq!(widened(tiny, 1.0), [0.0, stepped(1.0, 8)]);
+        assert_eq!(widened(-1.0, -tiny), [-stepped(1.0, 8), -0.0]);
     }
 }

@@ -121,6 +121,12 @@ pub(super) fn refill<T: Send>(
     min: usize,
     f: impl Fn(usize) -> T + Sync + Send,
 ) {
+    make_room(v, n);
+    extend(v, 0..n, min, f);
+}
+
+/// `v` emptied, with room for `n` items (see [`refill`]).
+pub(super) fn make_room<T>(v: &mut Vec<T>, n: usize) {
     v.clear();
     if v.capacity() < n {
         // At least double: a buffer that grows level by level is replaced
@@ -129,10 +135,19 @@ pub(super) fn refill<T: Send>(
         *v = Vec::new();
         *v = Vec::with_capacity(cap);
     }
-    if serial(n, min) {
-        v.extend((0..n).map(f));
+}
+
+/// `f(k)` for `k` in `ks` appended to `v`, in parallel from `min` items.
+pub(super) fn extend<T: Send>(
+    v: &mut Vec<T>,
+    ks: std::ops::Range<usize>,
+    min: usize,
+    f: impl Fn(usize) -> T + Sync + Send,
+) {
+    if serial(ks.len(), min) {
+        v.extend(ks.map(f));
     } else {
-        v.par_extend((0..n).into_par_iter().map(f));
+        v.par_extend(ks.into_par_iter().map(f));
     }
 }
 

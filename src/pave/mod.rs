@@ -316,6 +316,16 @@ pub trait ConstraintSet: Sync {
     fn slab_and_ends(&self, theta: Interval) -> (Self::Slab, Option<PerConstraint<SlabEnds>>) {
         (self.slab(theta), self.slab_ends(theta))
     }
+    /// [`ConstraintSet::slab_and_ends`], given the slab at θ's lower and
+    /// upper end ([`ConstraintSet::slab`] of each end point) where already
+    /// computed: the same values, without recomputing those.
+    fn slab_and_ends_at(
+        &self,
+        theta: Interval,
+        _known: [Option<&Self::Slab>; 2],
+    ) -> (Self::Slab, Option<PerConstraint<SlabEnds>>) {
+        self.slab_and_ends(theta)
+    }
     /// Every constraint's coefficients `[c₂, c₁, c₀]` at a point θ in plain
     /// f64: steering only (where to split), never a label.
     fn steer_at(&self, _theta: f64) -> Option<PerConstraint<[f64; 3]>> {
@@ -443,16 +453,28 @@ impl ConstraintSet for SceneConstraints<'_> {
     /// The dual slab's values are the slab itself (the same operations on
     /// the same enclosures), so the natural slab comes free.
     fn slab_and_ends(&self, theta: Interval) -> (Self::Slab, Option<PerConstraint<SlabEnds>>) {
+        self.slab_and_ends_at(theta, [None, None])
+    }
+    fn slab_and_ends_at(
+        &self,
+        theta: Interval,
+        known: [Option<&Self::Slab>; 2],
+    ) -> (Self::Slab, Option<PerConstraint<SlabEnds>>) {
         let d =
             crate::scene::slab::dual_constraints_on(self.scene, self.variant, with_slack(theta));
         let slab = d.map(|x| x.value);
-        let end = |x: f64| Interval::try_from((x, x)).ok().map(|p| self.slab(p));
-        let ends = end(theta.inf()).zip(end(theta.sup())).and_then(|(lo, hi)| {
-            PerConstraint::new(&[
-                SlabEnds::new(d.omega, [lo.omega, hi.omega]),
-                SlabEnds::new(d.omega0, [lo.omega0, hi.omega0]),
-            ])
-        });
+        let end = |k: usize, x: f64| match known[k] {
+            Some(s) => Some(*s),
+            None => Interval::try_from((x, x)).ok().map(|p| self.slab(p)),
+        };
+        let ends = end(0, theta.inf())
+            .zip(end(1, theta.sup()))
+            .and_then(|(lo, hi)| {
+                PerConstraint::new(&[
+                    SlabEnds::new(d.omega, [lo.omega, hi.omega]),
+                    SlabEnds::new(d.omega0, [lo.omega0, hi.omega0]),
+                ])
+            });
         (slab, ends)
     }
     fn centred_coefficients(&self, theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {
