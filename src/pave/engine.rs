@@ -340,24 +340,10 @@ impl BudgetStop {
 /// a slab), each computed once per level; boxes split in θ̇ share their
 /// parent's slab. Returns how many were computed.
 fn share_slabs<S: ConstraintSet>(set: &S, frontier: &mut [Open<S::Slab>]) -> usize {
-    let needs_slab = |k: usize| -> Option<(u64, u64)> {
+    let missing = distinct(frontier.len(), |k| {
         let o = &frontier[k];
         o.slab.is_none().then(|| slab_key(&o.bx))
-    };
-    let mut missing: Vec<(u64, u64)> = if serial(frontier.len(), PAR_MIN) {
-        (0..frontier.len()).filter_map(needs_slab).collect()
-    } else {
-        (0..frontier.len())
-            .into_par_iter()
-            .filter_map(needs_slab)
-            .collect()
-    };
-    if serial(missing.len(), PAR_MIN) {
-        missing.sort_unstable();
-    } else {
-        missing.par_sort_unstable();
-    }
-    missing.dedup();
+    });
     let fresh: Vec<Arc<S::Slab>> = par_map(&missing, PAR_MIN_HEAVY, |&(lo, hi)| {
         let th = Interval::try_from((f64::from_bits(lo), f64::from_bits(hi)))
             .expect("ordered endpoints");
@@ -404,26 +390,14 @@ fn share_ends<S: ConstraintSet>(
     frontier: &[Open<S::Slab>],
     unevaluated: &[bool],
 ) -> EndSlabs<S::Slab> {
-    let own_slab = |k: usize| frontier[k].slab.is_none() && !unevaluated[k];
-    let ends = |k: usize| frontier[k].bx.theta.map(f64::to_bits);
-    let mut at: Vec<u64> = if serial(frontier.len(), PAR_MIN) {
-        (0..frontier.len())
-            .filter(|&k| own_slab(k))
-            .flat_map(ends)
-            .collect()
-    } else {
-        (0..frontier.len())
-            .into_par_iter()
-            .filter(|&k| own_slab(k))
-            .flat_map_iter(ends)
-            .collect()
-    };
-    if serial(at.len(), PAR_MIN) {
-        at.sort_unstable();
-    } else {
-        at.par_sort_unstable();
-    }
-    at.dedup();
+    let at = distinct(frontier.len(), |k| {
+        let o = &frontier[k];
+        let own_slab = o.slab.is_none() && !unevaluated[k];
+        own_slab
+            .then(|| o.bx.theta.map(f64::to_bits))
+            .into_iter()
+            .flatten()
+    });
     let slabs = par_map(&at, PAR_MIN_HEAVY, |&t| set.slab(point(f64::from_bits(t))));
     EndSlabs { at, slabs }
 }
@@ -530,6 +504,28 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
     left.undecided |= undecided;
     left.ulp_limit |= ulp_limit;
     None
+}
+
+/// The keys `keys(k)` gives for `k` in `0..n`, sorted and each once: what
+/// a level computes once for all its boxes. In parallel from [`PAR_MIN`].
+fn distinct<K, I>(n: usize, keys: impl Fn(usize) -> I + Sync + Send) -> Vec<K>
+where
+    K: Ord + Send,
+    I: IntoIterator<Item = K>,
+    I::IntoIter: Send,
+{
+    let mut out: Vec<K> = if serial(n, PAR_MIN) {
+        (0..n).flat_map(keys).collect()
+    } else {
+        (0..n).into_par_iter().flat_map_iter(keys).collect()
+    };
+    if serial(out.len(), PAR_MIN) {
+        out.sort_unstable();
+    } else {
+        out.par_sort_unstable();
+    }
+    out.dedup();
+    out
 }
 
 fn slab_key(b: &PhaseBox) -> (u64, u64) {
