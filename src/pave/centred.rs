@@ -9,7 +9,6 @@ use super::engine::Refine;
 use super::labels::{centred_label, Labels, Scope};
 use super::level::{Local, Open, Work};
 use super::{ConstraintSet, Label, PerConstraint, SlabEnds};
-use std::sync::Arc;
 
 /// Natural labels, certified where a centred form decides.
 pub(super) struct Centred<'a, S: ConstraintSet> {
@@ -30,7 +29,7 @@ impl<S: ConstraintSet> Refine<S> for Centred<'_, S> {
     fn subtree(
         &self,
         o: &Open<S::Slab>,
-        slab: &Arc<S::Slab>,
+        slab: &S::Slab,
         _ends: Option<PerConstraint<SlabEnds>>,
         labels: &Labels,
         work: &mut Work,

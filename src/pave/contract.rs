@@ -14,7 +14,6 @@ use super::{ConstraintSet, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
 use crate::number::scalar::is_defined;
 use crate::scene::Quadratic;
 use inari::{DecInterval, Interval};
-use std::sync::Arc;
 
 /// A free end's guard piece is this fraction of the part (inverse).
 const GUARD: f64 = 32.0;
@@ -45,7 +44,7 @@ impl<S: ConstraintSet> Refine<S> for Contract<'_, S> {
     fn subtree(
         &self,
         o: &Open<S::Slab>,
-        slab: &Arc<S::Slab>,
+        slab: &S::Slab,
         ends: Option<PerConstraint<SlabEnds>>,
         _labels: &Labels,
         work: &mut Work,

@@ -56,7 +56,7 @@ pub(super) trait Refine<S: ConstraintSet>: Sync {
     fn subtree(
         &self,
         o: &Open<S::Slab>,
-        slab: &Arc<S::Slab>,
+        slab: &S::Slab,
         ends: Option<PerConstraint<SlabEnds>>,
         labels: &Labels,
         work: &mut Work,
@@ -180,6 +180,10 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
     // of the level before).
     let (mut done, mut plan, mut next) = (Vec::new(), Vec::new(), Vec::new());
     let mut unevaluated = Vec::new();
+    let mut ends = EndSlabs {
+        at: Vec::new(),
+        slabs: Vec::new(),
+    };
 
     while !frontier.is_empty() {
         let stop_here = !progress(level, frontier.len(), tree.leaves()).go_on();
@@ -199,7 +203,12 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         let mut ends_held = 0;
         for from in (0..frontier.len()).step_by(VISIT_RUN) {
             let run = from..frontier.len().min(from + VISIT_RUN);
-            let ends = share_ends(set, &frontier[run.clone()], &unevaluated[run.clone()]);
+            share_ends(
+                set,
+                &frontier[run.clone()],
+                &unevaluated[run.clone()],
+                &mut ends,
+            );
             stats.slab_evaluations += ends.len() as u64;
             ends_held = ends_held.max(ends.bytes());
             extend(&mut done, run, PAR_MIN_HEAVY, |k| {
@@ -340,7 +349,8 @@ impl BudgetStop {
 /// a slab), each computed once per level; boxes split in θ̇ share their
 /// parent's slab. Returns how many were computed.
 fn share_slabs<S: ConstraintSet>(set: &S, frontier: &mut [Open<S::Slab>]) -> usize {
-    let missing = distinct(frontier.len(), |k| {
+    let mut missing = Vec::new();
+    distinct(&mut missing, frontier.len(), |k| {
         let o = &frontier[k];
         o.slab.is_none().then(|| slab_key(&o.bx))
     });
@@ -385,12 +395,15 @@ impl<Sl> EndSlabs<Sl> {
     }
 }
 
+/// `ends` refilled for `frontier` (its buffers reused: their pages are
+/// touched once).
 fn share_ends<S: ConstraintSet>(
     set: &S,
     frontier: &[Open<S::Slab>],
     unevaluated: &[bool],
-) -> EndSlabs<S::Slab> {
-    let at = distinct(frontier.len(), |k| {
+    ends: &mut EndSlabs<S::Slab>,
+) {
+    distinct(&mut ends.at, frontier.len(), |k| {
         let o = &frontier[k];
         let own_slab = o.slab.is_none() && !unevaluated[k];
         own_slab
@@ -398,8 +411,10 @@ fn share_ends<S: ConstraintSet>(
             .into_iter()
             .flatten()
     });
-    let slabs = par_map(&at, PAR_MIN_HEAVY, |&t| set.slab(point(f64::from_bits(t))));
-    EndSlabs { at, slabs }
+    let at = &ends.at;
+    refill(&mut ends.slabs, at.len(), PAR_MIN_HEAVY, |k| {
+        set.slab(point(f64::from_bits(at[k])))
+    });
 }
 
 /// Processes one open box: natural labels, then, while a relevant
@@ -423,21 +438,21 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
             slab: None,
         };
     }
-    let (slab, ends, own) = match o.slab.as_ref() {
-        Some(slab) => (slab.clone(), None, None),
+    let mut own = None;
+    let (slab, ends) = match o.slab.as_deref() {
+        Some(slab) => (slab, None),
         None => {
             // Its ends' slabs were computed for the level.
             let known = o.bx.theta.map(|t| ends.get(t));
             work.slabs += 1 + known.iter().filter(|k| k.is_none()).count() as u64;
             let (slab, ends) = scope.set.slab_and_ends_at(o.bx.theta_interval(), known);
-            let slab = Arc::new(slab);
-            (slab.clone(), ends, Some(slab))
+            (&*own.insert(slab), ends)
         }
     };
-    let labels = scope.natural(&slab, &o.bx, &mut work);
+    let labels = scope.natural(slab, &o.bx, &mut work);
     let outcome = if !scope.undecided(&labels) {
         Outcome::Leaf
-    } else if let Some(t) = method.subtree(o, &slab, ends, &labels, &mut work) {
+    } else if let Some(t) = method.subtree(o, slab, ends, &labels, &mut work) {
         Outcome::Tree(t)
     } else {
         match method.choose_axis(&o.bx) {
@@ -445,11 +460,13 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
             None => Outcome::Leaf,
         }
     };
+    // Kept (and allocated) only for children that share it.
+    let slab = own.filter(|_| outcome.shares_slab()).map(Arc::new);
     Done {
         labels,
         outcome,
         work,
-        slab: own,
+        slab,
     }
 }
 
@@ -506,26 +523,27 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
     None
 }
 
-/// The keys `keys(k)` gives for `k` in `0..n`, sorted and each once: what
-/// a level computes once for all its boxes. In parallel from [`PAR_MIN`].
-fn distinct<K, I>(n: usize, keys: impl Fn(usize) -> I + Sync + Send) -> Vec<K>
+/// `out` refilled with the keys `keys(k)` gives for `k` in `0..n`, sorted
+/// and each once: what a level computes once for all its boxes. In
+/// parallel from [`PAR_MIN`].
+fn distinct<K, I>(out: &mut Vec<K>, n: usize, keys: impl Fn(usize) -> I + Sync + Send)
 where
     K: Ord + Send,
     I: IntoIterator<Item = K>,
     I::IntoIter: Send,
 {
-    let mut out: Vec<K> = if serial(n, PAR_MIN) {
-        (0..n).flat_map(keys).collect()
+    out.clear();
+    if serial(n, PAR_MIN) {
+        out.extend((0..n).flat_map(keys));
     } else {
-        (0..n).into_par_iter().flat_map_iter(keys).collect()
-    };
+        out.par_extend((0..n).into_par_iter().flat_map_iter(keys));
+    }
     if serial(out.len(), PAR_MIN) {
         out.sort_unstable();
     } else {
         out.par_sort_unstable();
     }
     out.dedup();
-    out
 }
 
 fn slab_key(b: &PhaseBox) -> (u64, u64) {

@@ -26,6 +26,17 @@ pub(super) enum Outcome {
     Tree(Vec<Local>),
 }
 
+impl Outcome {
+    /// Some child stays open: below θ̇-splits only, it shares the box's slab.
+    pub fn shares_slab(&self) -> bool {
+        match self {
+            Outcome::Leaf | Outcome::Split(0) => false,
+            Outcome::Split(_) => true,
+            Outcome::Tree(t) => t.iter().any(|l| matches!(l, Local::Open)),
+        }
+    }
+}
+
 /// A box to process at the current level.
 pub(super) struct Open<Sl> {
     pub bx: PhaseBox,
@@ -156,5 +167,30 @@ pub(super) fn par_each_mut<T: Send>(xs: &mut [T], f: impl Fn(&mut T) + Sync + Se
         xs.iter_mut().for_each(f)
     } else {
         xs.par_iter_mut().for_each(f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pave::Label;
+
+    /// A box's slab is kept exactly when a child stays open below it: the
+    /// θ̇-halves of a split or the open parts of a subtree share it; a
+    /// θ-split's halves have slabs of their own.
+    #[test]
+    fn a_slab_is_kept_only_for_children_that_share_it() {
+        let leaf = Local::Leaf(Labels::filled(Label::ProvedIn, 1));
+        let cases = [
+            (Outcome::Leaf, false),
+            (Outcome::Split(0), false),
+            (Outcome::Split(1), true),
+            (Outcome::Tree(vec![Local::At(1, 0.5), leaf, leaf]), false),
+            (Outcome::Tree(vec![Local::At(1, 0.5), leaf, Local::Open]), true),
+            (Outcome::Tree(vec![Local::Mid(1), Local::Open, Local::Open]), true),
+        ];
+        for (k, (outcome, kept)) in cases.iter().enumerate() {
+            assert_eq!(outcome.shares_slab(), *kept, "case {k}");
+        }
     }
 }

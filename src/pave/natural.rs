@@ -7,7 +7,6 @@ use super::engine::Refine;
 use super::labels::{Labels, Scope};
 use super::level::{Local, Open, Work};
 use super::{ConstraintSet, PerConstraint, SlabEnds};
-use std::sync::Arc;
 
 /// Natural interval extension and bisection.
 pub(super) struct Natural<'a, S: ConstraintSet> {
@@ -25,7 +24,7 @@ impl<S: ConstraintSet> Refine<S> for Natural<'_, S> {
     fn subtree(
         &self,
         _o: &Open<S::Slab>,
-        _slab: &Arc<S::Slab>,
+        _slab: &S::Slab,
         _ends: Option<PerConstraint<SlabEnds>>,
         _labels: &Labels,
         _work: &mut Work,

@@ -18,7 +18,6 @@ use super::engine::Refine;
 use super::labels::{Labels, Scope};
 use super::level::{Local, Open, Work};
 use super::{ConstraintSet, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
-use std::sync::Arc;
 
 /// Adaptive θ-slabs, each contracted in θ̇.
 pub(super) struct Slices<'a, S: ConstraintSet> {
@@ -138,7 +137,7 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
     fn subtree(
         &self,
         o: &Open<S::Slab>,
-        slab: &Arc<S::Slab>,
+        slab: &S::Slab,
         ends: Option<PerConstraint<SlabEnds>>,
         _labels: &Labels,
         work: &mut Work,
