@@ -186,8 +186,14 @@ mod tests {
             (Outcome::Split(0), false),
             (Outcome::Split(1), true),
             (Outcome::Tree(vec![Local::At(1, 0.5), leaf, leaf]), false),
-            (Outcome::Tree(vec![Local::At(1, 0.5), leaf, Local::Open]), true),
-            (Outcome::Tree(vec![Local::Mid(1), Local::Open, Local::Open]), true),
+            (
+                Outcome::Tree(vec![Local::At(1, 0.5), leaf, Local::Open]),
+                true,
+            ),
+            (
+                Outcome::Tree(vec![Local::Mid(1), Local::Open, Local::Open]),
+                true,
+            ),
         ];
         for (k, (outcome, kept)) in cases.iter().enumerate() {
             assert_eq!(outcome.shares_slab(), *kept, "case {k}");
