@@ -8,7 +8,7 @@
 use super::bisection::Bisection;
 use super::certify::{certify, CERTIFY_LEAVES, CERTIFY_LEAVES_MONOTONE};
 use super::engine::Refine;
-use super::labels::{with_w, Labels, Scope};
+use super::labels::{with_w, Labels, Scope, Tentative};
 use super::level::{Local, Open, Work};
 use super::{ConstraintSet, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
 use crate::number::scalar::is_defined;
@@ -161,6 +161,7 @@ pub(super) fn contract<S: ConstraintSet>(
         lo: at,
         hi: at,
         tentative: [None; MAX_CONSTRAINTS],
+        failed: false,
         tree: None,
     };
     if on_end[0] {
@@ -183,6 +184,7 @@ pub(super) fn contract<S: ConstraintSet>(
                 lo,
                 hi,
                 tentative: t,
+                failed: false,
                 tree: None,
             }),
         }
@@ -192,7 +194,7 @@ pub(super) fn contract<S: ConstraintSet>(
         segs.push(gap(w1));
     }
     let k = qs.len();
-    let decided = |s: &Seg| s.tentative[..k].iter().all(|t| t.is_some());
+    let decided = |s: &Seg| !s.failed && s.tentative[..k].iter().all(|t| t.is_some());
     // Neighbouring decided parts with different labels meet at a boundary
     // the steering cannot resolve (one constant in θ, as θ̇ = 1/2): an
     // empty undecided part between them leaves both ends free, so both
@@ -242,7 +244,7 @@ pub(super) fn contract<S: ConstraintSet>(
                 continue;
             }
             let bx = with_w(b, na, nz);
-            let labels = scope.label(slab, ends, &bx, work, true);
+            let labels = scope.label_expecting(slab, ends, &bx, work, true, &t);
             if scope.decided_mask(&labels) & scope.relevant == scope.relevant {
                 done = Some((na, nz, Part::Leaf(labels)));
                 break;
@@ -333,7 +335,7 @@ pub(super) fn contract<S: ConstraintSet>(
                 segs[j].hi = nz;
                 segs[j].tree = Some(t);
             }
-            None => segs[j].tentative[0] = None,
+            None => segs[j].failed = true,
         }
     }
     // Drop empty parts (a gap no neighbour shrank off), then merge
@@ -343,6 +345,12 @@ pub(super) fn contract<S: ConstraintSet>(
         let both = last.tree.is_none() && s.tree.is_none();
         if both {
             last.hi = s.hi;
+            last.failed |= s.failed;
+            for (l, t) in last.tentative.iter_mut().zip(s.tentative) {
+                if *l != t {
+                    *l = None;
+                }
+            }
         }
         both
     });
@@ -364,8 +372,15 @@ pub(super) fn contract<S: ConstraintSet>(
                 let bx = with_w(b, s.lo, s.hi);
                 if refinable(&bx) {
                     out.push(Local::Open);
-                } else {
+                } else if s.failed {
                     out.push(Local::Leaf(scope.label(slab, ends, &bx, work, false)));
+                } else {
+                    // A constraint whose boundary the steering puts across
+                    // the part is not tested: its zero is inside.
+                    let t = s.tentative;
+                    out.push(Local::Leaf(
+                        scope.label_expecting(slab, ends, &bx, work, false, &t),
+                    ));
                 }
             }
         }
@@ -376,7 +391,9 @@ pub(super) fn contract<S: ConstraintSet>(
 struct Seg {
     lo: f64,
     hi: f64,
-    tentative: [Option<bool>; MAX_CONSTRAINTS],
+    tentative: Tentative,
+    /// Tentatively decided but not verified: labelled in full.
+    failed: bool,
     tree: Option<Part>,
 }
 
