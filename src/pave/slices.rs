@@ -18,6 +18,21 @@ use super::engine::Refine;
 use super::labels::{Labels, Scope};
 use super::level::{Local, Open, Work};
 use super::{ConstraintSet, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
+use std::cell::Cell;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Steering coefficients at one θ.
+type SteerAt = Option<PerConstraint<[f64; 3]>>;
+
+/// Numbers each paving's steering apart, for [`LAST_STEER`].
+static STEERINGS: AtomicU64 = AtomicU64::new(0);
+
+thread_local! {
+    /// The steering coefficients this thread computed last: (paving, θ's
+    /// bits, value). A box's lower θ-end is mostly the upper end of the box
+    /// before it in the level, computed just before.
+    static LAST_STEER: Cell<(u64, u64, SteerAt)> = const { Cell::new((u64::MAX, 0, None)) };
+}
 
 /// Adaptive θ-slabs, each contracted in θ̇.
 pub(super) struct Slices<'a, S: ConstraintSet> {
@@ -29,6 +44,8 @@ pub(super) struct Slices<'a, S: ConstraintSet> {
     pub slab_area: f64,
     /// The height floor of θ̇-bisection in a column (ε of the domain's).
     pub min_height: f64,
+    /// This paving's number in [`LAST_STEER`].
+    steering: u64,
 }
 
 impl<'a, S: ConstraintSet> Slices<'a, S> {
@@ -40,7 +57,21 @@ impl<'a, S: ConstraintSet> Slices<'a, S> {
                 * (root.theta[1] - root.theta[0])
                 * (root.theta_dot[1] - root.theta_dot[0]),
             min_height: eps * (root.theta_dot[1] - root.theta_dot[0]),
+            steering: STEERINGS.fetch_add(1, Ordering::Relaxed),
         }
+    }
+
+    /// [`ConstraintSet::steer_at`], reusing this thread's last value at
+    /// the same θ.
+    fn steer_at(&self, t: f64) -> SteerAt {
+        let key = (self.steering, t.to_bits());
+        let (id, bits, last) = LAST_STEER.get();
+        if (id, bits) == key {
+            return last;
+        }
+        let now = self.scope.set.steer_at(t);
+        LAST_STEER.set((key.0, key.1, now));
+        now
     }
 
     /// A box that θ-refinement has left (its slab at the width floor) and
@@ -79,7 +110,7 @@ impl<'a, S: ConstraintSet> Slices<'a, S> {
         let mut per_end = [[0.0f64; 2 * MAX_CONSTRAINTS]; 3];
         let mut count = [0usize; 3];
         for (k, t) in [t0, 0.5 * t0 + 0.5 * t1, t1].into_iter().enumerate() {
-            let Some(qs) = self.scope.set.steer_at(t) else {
+            let Some(qs) = self.steer_at(t) else {
                 return full;
             };
             for i in self.scope.relevant_own() {
@@ -171,5 +202,50 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
         } else {
             vec![Local::Mid(1), Local::Open, Local::Open]
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pave::SceneConstraints;
+    use crate::scene::{Scene, SceneId, Variant};
+
+    fn slices<'a>(set: &'a SceneConstraints<'a>) -> Slices<'a, SceneConstraints<'a>> {
+        let scope = Scope {
+            set,
+            n: 2,
+            same_as: vec![None, None],
+            relevant: 0b11,
+        };
+        let root = PhaseBox {
+            theta: [-3.0, 3.0],
+            theta_dot: [-10.0, 10.0],
+        };
+        Slices::new(scope, root, 1e-3)
+    }
+
+    /// Two pavings steering on one thread at the same θ each get their own
+    /// scene's coefficients, reused or not.
+    #[test]
+    fn the_reused_steering_is_the_pavings_own() {
+        let (viscous, smooth) = (
+            Scene::default_of(SceneId::ViscousDisc),
+            Scene::default_of(SceneId::SmoothDisc),
+        );
+        let sets = [&viscous, &smooth].map(|scene| SceneConstraints {
+            scene,
+            variant: Variant::Derived,
+        });
+        let [a, b] = [slices(&sets[0]), slices(&sets[1])];
+        let coefficients = |s: SteerAt| s.map(|q| q.to_vec());
+        for t in [0.3, 0.3, 1.1, 0.3] {
+            for s in [&a, &b, &b, &a] {
+                let direct = coefficients(s.scope.set.steer_at(t));
+                assert!(direct.is_some());
+                assert_eq!(coefficients(s.steer_at(t)), direct, "θ = {t}");
+            }
+        }
+        assert_ne!(coefficients(a.steer_at(0.3)), coefficients(b.steer_at(0.3)));
     }
 }
