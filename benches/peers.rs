@@ -141,6 +141,30 @@ fn load() -> String {
         .join(" ")
 }
 
+/// The time now in UTC, to the minute (`2026-11-28T03:30Z`).
+fn utc_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let (days, rem) = ((secs / 86_400) as i64, secs % 86_400);
+    // Days since 1970-01-01 to a civil date (the proleptic Gregorian
+    // calendar, eras of 400 years).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02}T{:02}:{:02}Z",
+        rem / 3600,
+        rem % 3600 / 60
+    )
+}
+
 /// Median wall time of `f` over `n` runs.
 fn median_time(n: usize, mut f: impl FnMut()) -> f64 {
     let mut t: Vec<f64> = (0..n)
@@ -184,13 +208,31 @@ fn main() {
 
     // Matched points: the peer's paving call / ours, per U.
     let mut md = String::new();
+    // A ratio holds only for two runs on the machine in the same state:
+    // when Codac's times were taken is part of the table.
+    let codac_run = match (
+        peers_doc["date"].as_str(),
+        peers_doc["machine"]["loadavg_before"].as_array(),
+    ) {
+        (Some(date), Some(load)) => {
+            let load: Vec<String> = load
+                .iter()
+                .filter_map(|x| x.as_f64())
+                .map(|x| format!("{x:.2}"))
+                .collect();
+            format!(" (run at {date}, load average before: {})", load.join(" "))
+        }
+        _ => String::new(),
+    };
     let _ = writeln!(
         md,
         "# detach against Codac, in-process\n\nMade by `cargo bench --bench peers` \
-         (see `benches/peers.rs`); Codac's times by `benches/peers/codac_peer.py`.\n\
+         (see `benches/peers.rs`), run at {}; Codac's times by \
+         `benches/peers/codac_peer.py`{codac_run}.\n\
          Each cell: Codac `pave(SepInverse)` paving-call time / detach paving-call \
          time on one thread, at the same undecided area U (log–log interpolation \
          between measured points). Load average before: {load_before}; after: {}.\n",
+        utc_now(),
         load()
     );
     let mut ratios = Vec::new();
