@@ -2,9 +2,13 @@
 //!
 //! ```text
 //! pip install codac==2.1.2
-//! python3 benches/peers/codac_peer.py > benches/peers/codac.json
 //! cargo bench --bench peers [-- --method slices --method natural --out DIR]
 //! ```
+//!
+//! Codac's side is re-run first (`benches/peers/codac_peer.py`, into
+//! `benches/peers/codac.json`): a ratio holds only for two runs on the
+//! machine in the same state. Without Python and Codac, or with
+//! `--stored-peers`, the stored file is read; the table says when it ran.
 //!
 //! Two problems, the same work for both tools: Ω of (2.8) of the smooth disc
 //! (g=9.81, a=1, A=0.25, p_φ=1, p_ψ=0.6) on θ ∈ [0.05, π−0.05], and the
@@ -30,7 +34,8 @@ use detach::pave::{run_method, Method, MethodRun, PaveOptions};
 use detach::scene::{Scene, SceneId, Variant};
 use problems::{problems, Problem};
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
 use std::time::Instant;
 
 /// The undecided areas at which the curves are compared.
@@ -67,6 +72,8 @@ struct Args {
     methods: Vec<Method>,
     out: PathBuf,
     peers: PathBuf,
+    /// Re-run Codac's side into `peers` before measuring.
+    rerun_peers: bool,
 }
 
 fn args() -> Args {
@@ -74,6 +81,7 @@ fn args() -> Args {
         methods: vec![],
         out: PathBuf::from("docs/performance"),
         peers: PathBuf::from("benches/peers/codac.json"),
+        rerun_peers: true,
     };
     let mut it = std::env::args().skip(1);
     while let Some(s) = it.next() {
@@ -86,6 +94,7 @@ fn args() -> Args {
             ),
             "--out" => a.out = it.next().expect("--out DIR").into(),
             "--peers" => a.peers = it.next().expect("--peers FILE").into(),
+            "--stored-peers" => a.rerun_peers = false,
             // `cargo bench` passes `--bench`; filters are not used.
             _ => {}
         }
@@ -94,6 +103,31 @@ fn args() -> Args {
         a.methods = Method::ALL.to_vec();
     }
     a
+}
+
+/// Re-runs Codac's side into `path`; keeps the stored file (and says so)
+/// when Python or Codac is missing or the script fails.
+fn rerun_peers(path: &Path) {
+    let script = "benches/peers/codac_peer.py";
+    eprintln!("running {script} (Codac's side, a few minutes)");
+    let run = Command::new("python3")
+        .arg(script)
+        .stderr(Stdio::inherit())
+        .output();
+    let kept = |why: String| eprintln!("{why}: reading the stored {}", path.display());
+    match run {
+        Ok(o) if o.status.success() => {
+            let fresh = serde_json::from_slice::<serde_json::Value>(&o.stdout)
+                .is_ok_and(|d| d["runs"].is_array());
+            if !fresh {
+                kept(format!("{script} wrote no runs"));
+            } else if let Err(e) = std::fs::write(path, &o.stdout) {
+                kept(format!("cannot write {}: {e}", path.display()));
+            }
+        }
+        Ok(o) => kept(format!("{script} failed ({})", o.status)),
+        Err(e) => kept(format!("python3 did not start ({e})")),
+    }
 }
 
 /// The median run of a point (by time), on the current thread pool.
@@ -187,6 +221,9 @@ fn pool(threads: usize) -> rayon::ThreadPool {
 
 fn main() {
     let a = args();
+    if a.rerun_peers {
+        rerun_peers(&a.peers);
+    }
     let problems = problems();
     let peers_doc: serde_json::Value = std::fs::read_to_string(&a.peers)
         .ok()

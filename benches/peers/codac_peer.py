@@ -1,4 +1,4 @@
-"""Codac on the peer set-up of `detach methods`, for the speed-accuracy chart.
+"""Codac's side of `cargo bench --bench peers`, which runs this script first.
 
 Two regions: Ω of (2.8) (g=9.81, a=1, A=0.25, p_φ=1, p_ψ=0.6) on
 θ ∈ [0.05, π−0.05], θ̇ ∈ [−10, 10]; and the printed Ω₀ (1.11) of Example 1 at
@@ -9,6 +9,8 @@ The undecided area is the area of the boundary boxes (outer − inner).
 
     pip install codac==2.1.2
     python3 benches/peers/codac_peer.py > benches/peers/codac.json
+
+(what the bench does before it measures detach).
 """
 import datetime
 import json
