@@ -409,33 +409,36 @@ impl Plan {
             *s = T::lift_known(k);
         }
         for step in &self.ops {
+            // Each arm stores its own result: a result merged across arms
+            // goes through the stack in parts and is reloaded whole, which
+            // stalls store forwarding on every operation.
             let x = |a: u32| slots[a as usize];
-            let v = match step.op {
-                Op::Neg(a) => -x(a),
-                Op::Add(a, b) => x(a) + x(b),
-                Op::Sub(a, b) => x(a) - x(b),
-                Op::Mul(a, b) => x(a) * x(b),
-                Op::Div(a, b) => x(a) / x(b),
-                Op::Sqr(a) => x(a).sqr(),
-                Op::Pown(a, k) => x(a).pown(k),
-                Op::Sqrt(a) => x(a).sqrt(),
-                Op::Sin(a) => x(a).sin(),
-                Op::Cos(a) => x(a).cos(),
-                Op::Tan(a) => x(a).tan(),
-                Op::Ln(a) => x(a).ln(),
-                Op::Abs(a) => x(a).abs(),
-                Op::Atan(a) => x(a).atan(),
-                Op::Exp(a) => x(a).exp(),
-                Op::Sign(a) => x(a).sign(),
-                Op::Min(a, b) => x(a).min(x(b)),
-                Op::Max(a, b) => x(a).max(x(b)),
+            let to = step.to as usize;
+            match step.op {
+                Op::Neg(a) => slots[to] = -x(a),
+                Op::Add(a, b) => slots[to] = x(a) + x(b),
+                Op::Sub(a, b) => slots[to] = x(a) - x(b),
+                Op::Mul(a, b) => slots[to] = x(a) * x(b),
+                Op::Div(a, b) => slots[to] = x(a) / x(b),
+                Op::Sqr(a) => slots[to] = x(a).sqr(),
+                Op::Pown(a, k) => slots[to] = x(a).pown(k),
+                Op::Sqrt(a) => slots[to] = x(a).sqrt(),
+                Op::Sin(a) => slots[to] = x(a).sin(),
+                Op::Cos(a) => slots[to] = x(a).cos(),
+                Op::Tan(a) => slots[to] = x(a).tan(),
+                Op::Ln(a) => slots[to] = x(a).ln(),
+                Op::Abs(a) => slots[to] = x(a).abs(),
+                Op::Atan(a) => slots[to] = x(a).atan(),
+                Op::Exp(a) => slots[to] = x(a).exp(),
+                Op::Sign(a) => slots[to] = x(a).sign(),
+                Op::Min(a, b) => slots[to] = x(a).min(x(b)),
+                Op::Max(a, b) => slots[to] = x(a).max(x(b)),
                 Op::SinCos { x: a, cos } => {
                     let (s, c) = x(a).sin_cos();
                     slots[cos as usize] = c;
-                    s
+                    slots[to] = s;
                 }
-            };
-            slots[step.to as usize] = v;
+            }
         }
     }
 }
