@@ -3,17 +3,17 @@
 //! A level's open boxes are processed independently (in parallel), then the
 //! tree grows by one level in a fixed order, so the tree is the same whatever
 //! the thread count. One level is three steps: the θ-slabs its boxes share
-//! ([`share_slabs`], or the slabs at their θ-ends, [`share_ends`]), whether
+//! ([`share_slabs`], or the slabs at their θ-ends, [`LastEnd`]), whether
 //! the budget takes the level's refinements ([`schedule`]), and the level
 //! written into the tree ([`Tree::grow`]). What a method adds —
 //! how it steers, which subtree it gives an undecided box — is behind
 //! [`Refine`].
 
 use super::bisection::Bisection;
-use super::labels::{point, Scope};
+use super::labels::Scope;
 use super::level::{
-    extend, make_room, par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan,
-    Work, PAR_MIN,
+    make_room, par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan, Work,
+    PAR_MIN,
 };
 use super::tree::Tree;
 use super::{
@@ -30,8 +30,8 @@ use std::sync::Arc;
 pub(super) trait Refine<S: ConstraintSet>: Sync {
     /// The engine computes each θ-slab once per level for all the boxes
     /// that need it. Otherwise a fresh box computes its own slab with the
-    /// end data the monotone test needs (the slabs at its θ-ends computed
-    /// once per level, [`share_ends`]).
+    /// end data the monotone test needs (the slab at its lower θ-end
+    /// shared with the box before it, [`LastEnd`]).
     const SHARED_SLABS: bool = true;
 
     fn scope(&self) -> &Scope<'_, S>;
@@ -180,10 +180,6 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
     // of the level before).
     let (mut done, mut plan, mut next) = (Vec::new(), Vec::new(), Vec::new());
     let mut unevaluated = Vec::new();
-    let mut ends = EndSlabs {
-        at: Vec::new(),
-        slabs: Vec::new(),
-    };
 
     while !frontier.is_empty() {
         let stop_here = !progress(level, frontier.len(), tree.leaves()).go_on();
@@ -197,23 +193,20 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
             let o = &frontier[k];
             o.fresh && method.split_unevaluated(&o.bx)
         });
-        // Visited in runs, each with the slabs at its boxes' θ-ends: what
-        // is held at once stays bounded however wide the level.
+        // Visited in fixed runs of boxes, each run in order with its own
+        // [`LastEnd`]: the work counted is the same on any thread count.
         make_room(&mut done, frontier.len());
-        let mut ends_held = 0;
-        for from in (0..frontier.len()).step_by(VISIT_RUN) {
-            let run = from..frontier.len().min(from + VISIT_RUN);
-            share_ends(
-                set,
-                &frontier[run.clone()],
-                &unevaluated[run.clone()],
-                &mut ends,
-            );
-            stats.slab_evaluations += ends.len() as u64;
-            ends_held = ends_held.max(ends.bytes());
-            extend(&mut done, run, PAR_MIN_HEAVY, |k| {
-                visit(method, &frontier[k], unevaluated[k], &ends)
-            });
+        let (boxes, skip) = (&frontier[..], &unevaluated[..]);
+        let visit_run = |r: usize| {
+            let mut last = LastEnd::default();
+            let ks = r * VISIT_RUN..boxes.len().min((r + 1) * VISIT_RUN);
+            ks.map(move |k| visit(method, &boxes[k], skip[k], &mut last))
+        };
+        let runs = frontier.len().div_ceil(VISIT_RUN);
+        if serial(frontier.len(), PAR_MIN_HEAVY) {
+            done.extend((0..runs).flat_map(visit_run));
+        } else {
+            done.par_extend((0..runs).into_par_iter().flat_map_iter(visit_run));
         }
         stats.slab_evaluations += shared as u64;
         let work = |k: usize| {
@@ -252,9 +245,8 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         // Everything held at this point: the tree and its bookkeeping, both
         // frontiers, this level's results and plan, and the slabs computed
         // for it.
-        let slabs_held = (shared + own_slabs as usize) * (size_of::<S::Slab>() + 16)
-            + ends_held
-            + unevaluated.capacity();
+        let slabs_held =
+            (shared + own_slabs as usize) * (size_of::<S::Slab>() + 16) + unevaluated.capacity();
         let held = |tree: &Tree, opens: usize, done: usize, plan: usize| {
             tree.bytes()
                 + opens * size_of::<Open<S::Slab>>()
@@ -370,51 +362,54 @@ fn share_slabs<S: ConstraintSet>(set: &S, frontier: &mut [Open<S::Slab>]) -> usi
     missing.len()
 }
 
-/// The slabs at the θ-ends of a level's boxes that compute their own slab
-/// with its end data (a method without shared slabs, a box not bisected
-/// unevaluated): each θ once, so two neighbouring slabs of a level share
-/// the one where they meet.
-struct EndSlabs<Sl> {
-    /// The θs (their bits, sorted), and the slab at each.
-    at: Vec<u64>,
-    slabs: Vec<Sl>,
+/// The slabs at the θ-ends of the box visited last, where the next box of
+/// its level mostly starts: two slots, each written in place, the upper
+/// end's becoming the next box's lower end's.
+struct LastEnd<Sl> {
+    slots: [Option<(u64, Sl)>; 2],
+    /// The slot of the last box's upper end.
+    upper: usize,
 }
 
-impl<Sl> EndSlabs<Sl> {
-    fn get(&self, theta: f64) -> Option<&Sl> {
-        let k = self.at.binary_search(&theta.to_bits()).ok()?;
-        Some(&self.slabs[k])
-    }
-
-    fn len(&self) -> usize {
-        self.at.len()
-    }
-
-    fn bytes(&self) -> usize {
-        self.at.capacity() * size_of::<u64>() + self.slabs.capacity() * size_of::<Sl>()
+impl<Sl> Default for LastEnd<Sl> {
+    fn default() -> Self {
+        LastEnd {
+            slots: [None, None],
+            upper: 0,
+        }
     }
 }
 
-/// `ends` refilled for `frontier` (its buffers reused: their pages are
-/// touched once).
-fn share_ends<S: ConstraintSet>(
-    set: &S,
-    frontier: &[Open<S::Slab>],
-    unevaluated: &[bool],
-    ends: &mut EndSlabs<S::Slab>,
-) {
-    distinct(&mut ends.at, frontier.len(), |k| {
-        let o = &frontier[k];
-        let own_slab = o.slab.is_none() && !unevaluated[k];
-        own_slab
-            .then(|| o.bx.theta.map(f64::to_bits))
-            .into_iter()
-            .flatten()
-    });
-    let at = &ends.at;
-    refill(&mut ends.slabs, at.len(), PAR_MIN_HEAVY, |k| {
-        set.slab(point(f64::from_bits(at[k])))
-    });
+impl<Sl> LastEnd<Sl> {
+    /// The slabs at `t0` and `t1` (`end` computes one not kept), and the
+    /// number computed.
+    fn ends(
+        &mut self,
+        t0: f64,
+        t1: f64,
+        end: impl Fn(f64) -> Option<Sl>,
+    ) -> ([Option<&Sl>; 2], u64) {
+        let (lo, hi) = (self.upper, 1 - self.upper);
+        let kept = matches!(&self.slots[lo], Some((b, _)) if *b == t0.to_bits());
+        let mut computed = 0;
+        if !kept {
+            self.slots[lo] = end(t0).map(|s| (t0.to_bits(), s));
+            computed += u64::from(self.slots[lo].is_some());
+        }
+        self.slots[hi] = end(t1).map(|s| (t1.to_bits(), s));
+        computed += u64::from(self.slots[hi].is_some());
+        self.upper = hi;
+        fn slab<Sl>(s: &Option<(u64, Sl)>) -> Option<&Sl> {
+            s.as_ref().map(|(_, s)| s)
+        }
+        let [a, b] = &self.slots;
+        let pair = if lo == 0 {
+            [slab(a), slab(b)]
+        } else {
+            [slab(b), slab(a)]
+        };
+        (pair, computed)
+    }
 }
 
 /// Processes one open box: natural labels, then, while a relevant
@@ -424,7 +419,7 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
     method: &R,
     o: &Open<S::Slab>,
     unevaluated: bool,
-    ends: &EndSlabs<S::Slab>,
+    last: &mut LastEnd<S::Slab>,
 ) -> Done<S::Slab> {
     let scope = method.scope();
     let mut work = Work::default();
@@ -442,9 +437,11 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
     let (slab, ends) = match o.slab.as_deref() {
         Some(slab) => (slab, None),
         None => {
-            // Its ends' slabs were computed for the level.
-            let known = o.bx.theta.map(|t| ends.get(t));
-            work.slabs += 1 + known.iter().filter(|k| k.is_none()).count() as u64;
+            // The slabs at its θ-ends: the lower one mostly kept from the
+            // box before, the upper one kept for the box after.
+            let [t0, t1] = o.bx.theta;
+            let (known, computed) = last.ends(t0, t1, |t| scope.set.end_slab(t));
+            work.slabs += 1 + computed;
             let (slab, ends) = scope.set.slab_and_ends_at(o.bx.theta_interval(), known);
             (&*own.insert(slab), ends)
         }
@@ -556,9 +553,8 @@ fn slab_key(b: &PhaseBox) -> (u64, u64) {
 /// coarse paving's whole process was up to a quarter slower than serial.)
 const PAR_MIN_HEAVY: usize = 512;
 
-/// Boxes visited with one set of shared end slabs ([`share_ends`]): at most
-/// a few MB of them held at once.
-const VISIT_RUN: usize = 1 << 15;
+/// Boxes visited in order by one thread, sharing end slabs ([`LastEnd`]).
+const VISIT_RUN: usize = 256;
 
 fn par_map<T: Sync, U: Send>(xs: &[T], min: usize, f: impl Fn(&T) -> U + Sync + Send) -> Vec<U> {
     if serial(xs.len(), min) {

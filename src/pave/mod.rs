@@ -316,9 +316,15 @@ pub trait ConstraintSet: Sync {
     fn slab_and_ends(&self, theta: Interval) -> (Self::Slab, Option<PerConstraint<SlabEnds>>) {
         (self.slab(theta), self.slab_ends(theta))
     }
+    /// The slab at the point θ ([`ConstraintSet::slab`] of `[θ, θ]`) for
+    /// [`ConstraintSet::slab_and_ends_at`], if that uses it (`None`: it
+    /// does not, and the engine computes none).
+    fn end_slab(&self, _theta: f64) -> Option<Self::Slab> {
+        None
+    }
     /// [`ConstraintSet::slab_and_ends`], given the slab at θ's lower and
-    /// upper end ([`ConstraintSet::slab`] of each end point) where already
-    /// computed: the same values, without recomputing those.
+    /// upper end ([`ConstraintSet::end_slab`]) where already computed: the
+    /// same values, without recomputing those.
     fn slab_and_ends_at(
         &self,
         theta: Interval,
@@ -449,6 +455,9 @@ impl ConstraintSet for SceneConstraints<'_> {
     }
     fn slab_ends(&self, theta: Interval) -> Option<PerConstraint<SlabEnds>> {
         self.slab_and_ends(theta).1
+    }
+    fn end_slab(&self, theta: f64) -> Option<Self::Slab> {
+        Some(self.slab(labels::point(theta)))
     }
     /// The dual slab's values are the slab itself (the same operations on
     /// the same enclosures), so the natural slab comes free.

@@ -295,6 +295,10 @@ fn results_do_not_depend_on_the_thread_count() {
                 one.stats.box_evaluations, two.stats.box_evaluations,
                 "{id} {m}"
             );
+            assert_eq!(
+                one.stats.slab_evaluations, two.stats.slab_evaluations,
+                "{id} {m}"
+            );
         }
     }
 }
@@ -399,9 +403,10 @@ fn slices_guard_pieces_avoid_re_slabbing_omega0() {
 }
 
 /// `slices` computes each θ-slab with its end data: the slab and the two
-/// slabs at its θ-ends. Where two slabs of one level meet, the end there is
-/// computed once (`share_ends`): about two slab evaluations per final slab,
-/// not three (3 per slab when each computes its own ends).
+/// slabs at its θ-ends. Where a slab begins at the end of the one visited
+/// before it, the slab there is computed once (`LastEnd`): about two slab
+/// evaluations per final slab, not three (3 per slab when each computes its
+/// own ends).
 #[test]
 fn slices_neighbours_share_the_slab_where_they_meet() {
     let (_, p) = omega0_by_slices(1.0 / 1024.0);
