@@ -8,7 +8,7 @@
 use super::bisection::Bisection;
 use super::certify::{certify, CERTIFY_LEAVES, CERTIFY_LEAVES_MONOTONE};
 use super::engine::Refine;
-use super::labels::{with_w, Labels, Scope, Tentative};
+use super::labels::{with_w, Labels, Scope, Tentative, UNGUIDED};
 use super::level::{Local, Open, Work};
 use super::{ConstraintSet, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
 use crate::number::scalar::is_defined;
@@ -372,12 +372,11 @@ pub(super) fn contract<S: ConstraintSet>(
                 let bx = with_w(b, s.lo, s.hi);
                 if refinable(&bx) {
                     out.push(Local::Open);
-                } else if s.failed {
-                    out.push(Local::Leaf(scope.label(slab, ends, &bx, work, false)));
                 } else {
                     // A constraint whose boundary the steering puts across
-                    // the part is not tested: its zero is inside.
-                    let t = s.tentative;
+                    // the part is not tested: its zero is inside. A part
+                    // that failed verification is tested in full.
+                    let t = if s.failed { UNGUIDED } else { s.tentative };
                     out.push(Local::Leaf(
                         scope.label_expecting(slab, ends, &bx, work, false, &t),
                     ));

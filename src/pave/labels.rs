@@ -16,6 +16,9 @@ use inari::{DecInterval, Interval};
 /// `Some(false)` out, `None` its boundary crosses the part.
 pub(super) type Tentative = [Option<bool>; MAX_CONSTRAINTS];
 
+/// No guess: every relevant constraint tested, `in` tried first.
+pub(super) const UNGUIDED: Tentative = [Some(true); MAX_CONSTRAINTS];
+
 /// The constraints a paving labels: how many, which are copies of another,
 /// and which decide whether a box is refined.
 pub(super) struct Scope<'a, S: ConstraintSet> {
@@ -59,8 +62,7 @@ impl<S: ConstraintSet> Scope<'_, S> {
         work: &mut Work,
         convex: bool,
     ) -> Labels {
-        const NO_GUESS: Tentative = [Some(true); MAX_CONSTRAINTS];
-        self.label_expecting(slab, ends, b, work, convex, &NO_GUESS)
+        self.label_expecting(slab, ends, b, work, convex, &UNGUIDED)
     }
 
     /// [`Scope::label`] on a part the steering has classified (`tentative`,
