@@ -471,7 +471,7 @@ fn evaluate_settled<S: ConstraintSet, R: Refine<S>>(
                     fresh: true,
                     settled: true,
                 };
-                if refine_in_place(method, &o, last, work, &mut out, &mut scratch, false) {
+                if refine_in_place(method, &o, last, work, &mut out, &mut scratch) {
                     continue;
                 }
             }
@@ -482,14 +482,11 @@ fn evaluate_settled<S: ConstraintSet, R: Refine<S>>(
     out
 }
 
-/// Evaluates `o` and the parts it leaves open on its slab, appending the
-/// subtree to `out`; `false` (and `out` as it was) where that does not end
-/// it: a part (`nested`) that leaves parts open in turn (a column bisected
-/// in θ̇, which must stay one level per step for the budget and an
-/// interruption to stop it), or a box at the limit of double precision,
-/// which the schedule records per box. The halves of a θ-split stay open
-/// (fresh slabs, divided at the next level). `boxes`: scratch, left as it
-/// was.
+/// Evaluates `o` and, below it, every box it leaves open on its slab,
+/// appending the subtree to `out`; `false` (and `out` as it was) where
+/// one cannot end in place: a box at the limit of double precision, which
+/// the schedule records per box. The halves of a θ-split stay open (fresh
+/// slabs, divided at the next level). `boxes`: scratch, left as it was.
 fn refine_in_place<S: ConstraintSet, R: Refine<S>>(
     method: &R,
     o: &Open<S::Slab>,
@@ -497,7 +494,6 @@ fn refine_in_place<S: ConstraintSet, R: Refine<S>>(
     work: &mut Work,
     out: &mut Vec<Local>,
     boxes: &mut Vec<PhaseBox>,
-    nested: bool,
 ) -> bool {
     if method.at_ulp_limit(&o.bx) {
         return false;
@@ -505,9 +501,6 @@ fn refine_in_place<S: ConstraintSet, R: Refine<S>>(
     let d = evaluate(method, o, last);
     work.evals += d.work.evals;
     work.slabs += d.work.slabs;
-    if nested && d.outcome.shares_slab() {
-        return false;
-    }
     let subtree = match &d.outcome {
         Outcome::Leaf => {
             out.push(Local::Leaf(d.labels));
@@ -544,7 +537,7 @@ fn refine_in_place<S: ConstraintSet, R: Refine<S>>(
                     fresh: false,
                     settled: true,
                 };
-                if !refine_in_place(method, &part, last, work, out, boxes, true) {
+                if !refine_in_place(method, &part, last, work, out, boxes) {
                     out.truncate(from);
                     boxes.truncate(base);
                     return false;
