@@ -513,8 +513,7 @@ fn refine_in_place<S: ConstraintSet, R: Refine<S>>(
         out.extend_from_slice(subtree);
         return true;
     }
-    // Parts left open on this box's slab: below θ̇-splits (below a θ-split
-    // the slab no longer applies, and they stay open).
+    // Parts left open on this box's slab (below θ̇-splits only).
     let (from, base) = (out.len(), boxes.len());
     boxes.push(o.bx);
     for &item in subtree {
@@ -530,7 +529,7 @@ fn refine_in_place<S: ConstraintSet, R: Refine<S>>(
                     .expect("split points lie strictly inside");
                 boxes.extend([hi, lo]);
             }
-            Local::Open if b.theta == o.bx.theta => {
+            Local::Open => {
                 let part = Open {
                     bx: b,
                     slab: d.slab.clone().or_else(|| o.slab.clone()),
