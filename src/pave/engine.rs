@@ -7,9 +7,7 @@
 //! the budget takes the level's refinements ([`schedule`]), and the level
 //! written into the tree ([`Tree::grow`]). What a method adds —
 //! how it steers, which subtree it gives an undecided box — is behind
-//! [`Refine`]. A box a method divides before interval work has the boxes
-//! of that division it settles evaluated at once, in θ order
-//! ([`evaluate_settled`]): a level then holds a whole stretch of slabs.
+//! [`Refine`].
 
 use super::bisection::Bisection;
 use super::labels::Scope;
@@ -19,8 +17,8 @@ use super::level::{
 };
 use super::tree::Tree;
 use super::{
-    BudgetStop, ConstraintSet, Label, LevelFlow, PaveOptions, PaveStats, Paving, PhaseBox,
-    SlabEnds, StopReason,
+    BudgetStop, ConstraintSet, Label, LevelFlow, PaveOptions, PaveStats, Paving, PerConstraint,
+    PhaseBox, SlabEnds, StopReason,
 };
 use inari::Interval;
 use rayon::prelude::*;
@@ -61,7 +59,7 @@ pub(super) trait Refine<S: ConstraintSet>: Sync {
         &self,
         o: &Open<S::Slab>,
         slab: &S::Slab,
-        ends: Option<&[SlabEnds]>,
+        ends: Option<PerConstraint<SlabEnds>>,
         labels: &Labels,
         work: &mut Work,
     ) -> Option<Vec<Local>>;
@@ -411,154 +409,28 @@ impl<Sl> LastEnd<Sl> {
     }
 }
 
-/// Processes one open box. A fresh slab the method calls too coarse is
-/// divided in θ before any interval work (undecided as far as computed),
-/// and the boxes of that division it settles are evaluated at once
-/// ([`evaluate_settled`]); any other box is evaluated ([`evaluate`]).
+/// Processes one open box: natural labels, then, while a relevant
+/// constraint is undecided, the method's subtree or a bisection. A fresh
+/// slab the method calls too coarse is divided in θ before any interval
+/// work (undecided as far as computed).
 fn visit<S: ConstraintSet, R: Refine<S>>(
-    method: &R,
-    o: &Open<S::Slab>,
-    last: &mut LastEnd<S::Slab>,
-) -> Done<S::Slab> {
-    if let Some(t) = (o.fresh && !o.settled)
-        .then(|| method.split_unevaluated(&o.bx))
-        .flatten()
-    {
-        let mut work = Work::default();
-        let t = evaluate_settled(method, o.bx, &t, last, &mut work);
-        return Done {
-            labels: Labels::filled(Label::Undecided, method.scope().n),
-            outcome: Outcome::Tree(t),
-            work,
-            slab: None,
-        };
-    }
-    evaluate(method, o, last)
-}
-
-/// The θ-division `t` of `root` with its settled boxes evaluated, in θ
-/// order (neighbours share their end slabs). Each whose refinement
-/// completes in place ([`refine_in_place`]) is replaced by its subtree; the
-/// others stay settled, evaluated again at the next level.
-fn evaluate_settled<S: ConstraintSet, R: Refine<S>>(
-    method: &R,
-    root: PhaseBox,
-    t: &[Local],
-    last: &mut LastEnd<S::Slab>,
-    work: &mut Work,
-) -> Vec<Local> {
-    let mut out = Vec::with_capacity(4 * t.len());
-    // The boxes of the entries still to come, the next one on top.
-    let mut boxes = vec![root];
-    let mut scratch = Vec::new();
-    for &item in t {
-        let b = boxes.pop().expect("a box for every entry");
-        match item {
-            Local::Mid(ax) => {
-                let (lo, hi) = b.split(ax as usize);
-                boxes.extend([hi, lo]);
-            }
-            Local::At(ax, p) => {
-                let (lo, hi) = b
-                    .split_at(ax as usize, p)
-                    .expect("split points lie strictly inside");
-                boxes.extend([hi, lo]);
-            }
-            Local::Settled => {
-                let o = Open {
-                    bx: b,
-                    slab: None,
-                    fresh: true,
-                    settled: true,
-                };
-                if refine_in_place(method, &o, last, work, &mut out, &mut scratch) {
-                    continue;
-                }
-            }
-            _ => {}
-        }
-        out.push(item);
-    }
-    out
-}
-
-/// Evaluates `o` and, below it, every box it leaves open on its slab,
-/// appending the subtree to `out`; `false` (and `out` as it was) where
-/// one cannot end in place: a box at the limit of double precision, which
-/// the schedule records per box. The halves of a θ-split stay open (fresh
-/// slabs, divided at the next level). `boxes`: scratch, left as it was.
-fn refine_in_place<S: ConstraintSet, R: Refine<S>>(
-    method: &R,
-    o: &Open<S::Slab>,
-    last: &mut LastEnd<S::Slab>,
-    work: &mut Work,
-    out: &mut Vec<Local>,
-    boxes: &mut Vec<PhaseBox>,
-) -> bool {
-    if method.at_ulp_limit(&o.bx) {
-        return false;
-    }
-    let d = evaluate(method, o, last);
-    work.evals += d.work.evals;
-    work.slabs += d.work.slabs;
-    let subtree = match &d.outcome {
-        Outcome::Leaf => {
-            out.push(Local::Leaf(d.labels));
-            return true;
-        }
-        Outcome::Split(ax) => &[Local::Mid(*ax), Local::Open, Local::Open][..],
-        Outcome::Tree(s) => &s[..],
-    };
-    if !d.outcome.shares_slab() {
-        out.extend_from_slice(subtree);
-        return true;
-    }
-    // Parts left open on this box's slab (below θ̇-splits only).
-    let (from, base) = (out.len(), boxes.len());
-    boxes.push(o.bx);
-    for &item in subtree {
-        let b = boxes.pop().expect("a box for every entry");
-        match item {
-            Local::Mid(ax) => {
-                let (lo, hi) = b.split(ax as usize);
-                boxes.extend([hi, lo]);
-            }
-            Local::At(ax, p) => {
-                let (lo, hi) = b
-                    .split_at(ax as usize, p)
-                    .expect("split points lie strictly inside");
-                boxes.extend([hi, lo]);
-            }
-            Local::Open => {
-                let part = Open {
-                    bx: b,
-                    slab: d.slab.clone().or_else(|| o.slab.clone()),
-                    fresh: false,
-                    settled: true,
-                };
-                if !refine_in_place(method, &part, last, work, out, boxes) {
-                    out.truncate(from);
-                    boxes.truncate(base);
-                    return false;
-                }
-                continue;
-            }
-            _ => {}
-        }
-        out.push(item);
-    }
-    true
-}
-
-/// Evaluates one open box: natural labels, then, while a relevant
-/// constraint is undecided, the method's subtree or a bisection.
-fn evaluate<S: ConstraintSet, R: Refine<S>>(
     method: &R,
     o: &Open<S::Slab>,
     last: &mut LastEnd<S::Slab>,
 ) -> Done<S::Slab> {
     let scope = method.scope();
     let mut work = Work::default();
+    if let Some(t) = (o.fresh && !o.settled)
+        .then(|| method.split_unevaluated(&o.bx))
+        .flatten()
+    {
+        return Done {
+            labels: Labels::filled(Label::Undecided, scope.n),
+            outcome: Outcome::Tree(t),
+            work,
+            slab: None,
+        };
+    }
     let mut own = None;
     let (slab, ends) = match o.slab.as_deref() {
         Some(slab) => (slab, None),
@@ -575,7 +447,7 @@ fn evaluate<S: ConstraintSet, R: Refine<S>>(
     let labels = scope.natural(slab, &o.bx, &mut work);
     let outcome = if !scope.undecided(&labels) {
         Outcome::Leaf
-    } else if let Some(t) = method.subtree(o, slab, ends.as_deref(), &labels, &mut work) {
+    } else if let Some(t) = method.subtree(o, slab, ends, &labels, &mut work) {
         Outcome::Tree(t)
     } else {
         match method.choose_axis(&o.bx) {

@@ -17,7 +17,7 @@ use super::contract::{contract_fresh, roots};
 use super::engine::Refine;
 use super::labels::{Labels, Scope};
 use super::level::{Local, Open, Work};
-use super::{ConstraintSet, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
+use super::{ConstraintSet, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
 
 /// Levels of θ-division one fresh box is steered down in one go (at most
 /// 2^depth boxes): each split point's roots are computed once, and a few
@@ -178,7 +178,7 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
         &self,
         o: &Open<S::Slab>,
         slab: &S::Slab,
-        ends: Option<&[SlabEnds]>,
+        ends: Option<PerConstraint<SlabEnds>>,
         _labels: &Labels,
         work: &mut Work,
     ) -> Option<Vec<Local>> {
@@ -200,16 +200,11 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
         // A column the contraction removes nothing from: the part as one
         // leaf if the slab's tests decide it, else its two halves in θ̇
         // (they share the slab).
-        let computed;
-        let ends = match ends {
-            Some(e) => Some(e),
-            None => {
-                work.slabs += 3;
-                computed = self.scope.set.slab_ends(o.bx.theta_interval());
-                computed.as_deref()
-            }
-        };
-        let labels = self.scope.label(slab, ends, &o.bx, work, true);
+        let ends = ends.or_else(|| {
+            work.slabs += 3;
+            self.scope.set.slab_ends(o.bx.theta_interval())
+        });
+        let labels = self.scope.label(slab, ends.as_deref(), &o.bx, work, true);
         let all = self.scope.relevant;
         Some(if self.scope.decided_mask(&labels) & all == all {
             vec![Local::Leaf(labels)]
@@ -222,7 +217,7 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pave::{engine, SceneConstraints};
+    use crate::pave::SceneConstraints;
     use crate::scene::{Scene, SceneId, Variant};
 
     /// The rule one box at a time, every end recomputed: split while the
@@ -343,102 +338,6 @@ mod tests {
                     "{id:?} relevant {relevant:b} ε {eps}"
                 );
             }
-        }
-    }
-
-    /// `slices` with every box of a division left open: divided again, it
-    /// settles and is evaluated at a level of its own, as the level loop
-    /// does without evaluating settled boxes in place.
-    struct LevelByLevel<'a>(Slices<'a, SceneConstraints<'a>>);
-
-    impl<'a> Refine<SceneConstraints<'a>> for LevelByLevel<'a> {
-        const SHARED_SLABS: bool = false;
-        fn scope(&self) -> &Scope<'_, SceneConstraints<'a>> {
-            &self.0.scope
-        }
-        fn grid(&self) -> Option<&Bisection> {
-            None
-        }
-        fn choose_axis(&self, b: &PhaseBox) -> Option<u8> {
-            self.0.choose_axis(b)
-        }
-        fn at_ulp_limit(&self, b: &PhaseBox) -> bool {
-            self.0.at_ulp_limit(b)
-        }
-        fn split_unevaluated(&self, b: &PhaseBox) -> Option<Vec<Local>> {
-            let t = self.0.split_unevaluated(b)?;
-            let open = |l: Local| match l {
-                Local::Settled => Local::Open,
-                l => l,
-            };
-            Some(t.into_iter().map(open).collect())
-        }
-        fn subtree(
-            &self,
-            o: &Open<crate::scene::Constraints<inari::DecInterval>>,
-            slab: &crate::scene::Constraints<inari::DecInterval>,
-            ends: Option<&[SlabEnds]>,
-            labels: &Labels,
-            work: &mut Work,
-        ) -> Option<Vec<Local>> {
-            self.0.subtree(o, slab, ends, labels, work)
-        }
-    }
-
-    /// Settled boxes evaluated in place (with the boxes their slabs leave
-    /// open) pave exactly as when each waits for a level of its own: the
-    /// same tree, leaves, labels and box evaluations, in fewer levels.
-    #[test]
-    fn settled_boxes_evaluated_in_place_pave_as_level_by_level() {
-        let opts = crate::pave::PaveOptions {
-            eps: 2f64.powi(-7),
-            max_boxes: 1 << 22,
-        };
-        for id in SceneId::ALL {
-            let scene = Scene::default_of(id);
-            let set = SceneConstraints {
-                scene: &scene,
-                variant: Variant::Derived,
-            };
-            let b = scene.domain().inner_box();
-            let root = PhaseBox {
-                theta: b[0],
-                theta_dot: b[1],
-            };
-            let scope = || Scope {
-                set: &set,
-                n: 2,
-                same_as: vec![None, None],
-                relevant: 0b11,
-            };
-            let names = vec!["omega".to_string(), "omega0".to_string()];
-            let in_place = engine::pave(
-                &Slices::new(scope(), root, opts.eps),
-                root,
-                opts,
-                names.clone(),
-                |_, _, _| (),
-            );
-            let by_level = engine::pave(
-                &LevelByLevel(Slices::new(scope(), root, opts.eps)),
-                root,
-                opts,
-                names.clone(),
-                |_, _, _| (),
-            );
-            let [in_place, by_level] = [in_place, by_level].map(|p| p.ok().expect("paves"));
-            assert_eq!(in_place.nodes, by_level.nodes, "{id:?}");
-            assert_eq!(in_place.leaves, by_level.leaves, "{id:?}");
-            assert_eq!(
-                in_place.stats.box_evaluations, by_level.stats.box_evaluations,
-                "{id:?}"
-            );
-            assert!(
-                in_place.stats.depth < by_level.stats.depth,
-                "{id:?}: {} levels in place, {} level by level",
-                in_place.stats.depth,
-                by_level.stats.depth
-            );
         }
     }
 }
