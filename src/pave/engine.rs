@@ -47,11 +47,9 @@ pub(super) trait Refine<S: ConstraintSet>: Sync {
     fn at_ulp_limit(&self, b: &PhaseBox) -> bool {
         self.grid().is_some_and(|g| g.at_ulp_limit(b))
     }
-    /// A fresh box divided in θ before any interval work: the θ-subtree,
-    /// whose open boxes are [`Local::Settled`] where the method will not
-    /// divide them further; `None` to evaluate it now.
-    fn split_unevaluated(&self, _b: &PhaseBox) -> Option<Vec<Local>> {
-        None
+    /// A fresh box bisected in θ before any interval work.
+    fn split_unevaluated(&self, _b: &PhaseBox) -> bool {
+        false
     }
     /// A subtree for an undecided box, instead of bisecting it. `ends`: the
     /// slab's end data when computed with the slab.
@@ -169,7 +167,6 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         bx: root,
         slab: None,
         fresh: true,
-        settled: false,
     }];
     let mut stats = PaveStats::default();
     let mut left = Left::default();
@@ -182,6 +179,7 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
     // level's results and plan, and the next level's frontier (the buffer
     // of the level before).
     let (mut done, mut plan, mut next) = (Vec::new(), Vec::new(), Vec::new());
+    let mut unevaluated = Vec::new();
 
     while !frontier.is_empty() {
         let stop_here = !progress(level, frontier.len(), tree.leaves()).go_on();
@@ -191,14 +189,18 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         } else {
             0
         };
+        refill(&mut unevaluated, frontier.len(), PAR_MIN_HEAVY, |k| {
+            let o = &frontier[k];
+            o.fresh && method.split_unevaluated(&o.bx)
+        });
         // Visited in fixed runs of boxes, each run in order with its own
         // [`LastEnd`]: the work counted is the same on any thread count.
         make_room(&mut done, frontier.len());
-        let boxes = &frontier[..];
+        let (boxes, skip) = (&frontier[..], &unevaluated[..]);
         let visit_run = |r: usize| {
             let mut last = LastEnd::default();
             let ks = r * VISIT_RUN..boxes.len().min((r + 1) * VISIT_RUN);
-            ks.map(move |k| visit(method, &boxes[k], &mut last))
+            ks.map(move |k| visit(method, &boxes[k], skip[k], &mut last))
         };
         let runs = frontier.len().div_ceil(VISIT_RUN);
         if serial(frontier.len(), PAR_MIN_HEAVY) {
@@ -243,7 +245,8 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         // Everything held at this point: the tree and its bookkeeping, both
         // frontiers, this level's results and plan, and the slabs computed
         // for it.
-        let slabs_held = (shared + own_slabs as usize) * (size_of::<S::Slab>() + 16);
+        let slabs_held =
+            (shared + own_slabs as usize) * (size_of::<S::Slab>() + 16) + unevaluated.capacity();
         let held = |tree: &Tree, opens: usize, done: usize, plan: usize| {
             tree.bytes()
                 + opens * size_of::<Open<S::Slab>>()
@@ -410,23 +413,22 @@ impl<Sl> LastEnd<Sl> {
 }
 
 /// Processes one open box: natural labels, then, while a relevant
-/// constraint is undecided, the method's subtree or a bisection. A fresh
-/// slab the method calls too coarse is divided in θ before any interval
-/// work (undecided as far as computed).
+/// constraint is undecided, the method's subtree or a bisection.
+/// `unevaluated`: the method bisects it before any interval work.
 fn visit<S: ConstraintSet, R: Refine<S>>(
     method: &R,
     o: &Open<S::Slab>,
+    unevaluated: bool,
     last: &mut LastEnd<S::Slab>,
 ) -> Done<S::Slab> {
     let scope = method.scope();
     let mut work = Work::default();
-    if let Some(t) = (o.fresh && !o.settled)
-        .then(|| method.split_unevaluated(&o.bx))
-        .flatten()
-    {
+    // A fresh slab the method calls too coarse is split in θ without
+    // interval work (undecided as far as computed).
+    if unevaluated {
         return Done {
             labels: Labels::filled(Label::Undecided, scope.n),
-            outcome: Outcome::Tree(t),
+            outcome: Outcome::Split(0),
             work,
             slab: None,
         };

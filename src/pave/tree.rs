@@ -107,7 +107,6 @@ impl Tree {
             },
             slab: None,
             fresh: false,
-            settled: false,
         });
         let boxes = frontier.len();
         refill(&mut self.own, boxes, PAR_MIN, |_| Building::Open(0));
@@ -467,14 +466,13 @@ impl<Sl> Filler<'_, Sl> {
         *pos += 1;
         let (axis, (lo, hi)) = match item {
             Local::Leaf(labels) => return Building::Leaf(labels),
-            Local::Open | Local::Settled => {
+            Local::Open => {
                 let i = self.used[1];
                 self.used[1] += 1;
                 self.opens[i] = Open {
                     bx,
                     fresh: slab.is_none(),
                     slab,
-                    settled: matches!(item, Local::Settled),
                 };
                 return Building::Open(self.open_base + i as u32);
             }
