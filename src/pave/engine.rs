@@ -47,9 +47,12 @@ pub(super) trait Refine<S: ConstraintSet>: Sync {
     fn at_ulp_limit(&self, b: &PhaseBox) -> bool {
         self.grid().is_some_and(|g| g.at_ulp_limit(b))
     }
-    /// A fresh box bisected in θ before any interval work.
-    fn split_unevaluated(&self, _b: &PhaseBox) -> bool {
-        false
+    /// A fresh box divided in θ before any interval work, at most `levels`
+    /// levels down (`levels` ≥ 1): the θ-subtree, whose open boxes are
+    /// [`Local::Settled`] where the method will not divide them further;
+    /// `None` to evaluate it now.
+    fn split_unevaluated(&self, _b: &PhaseBox, _levels: u32) -> Option<Vec<Local>> {
+        None
     }
     /// A subtree for an undecided box, instead of bisecting it. `ends`: the
     /// slab's end data when computed with the slab.
@@ -167,6 +170,7 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         bx: root,
         slab: None,
         fresh: true,
+        settled: false,
     }];
     let mut stats = PaveStats::default();
     let mut left = Left::default();
@@ -179,7 +183,6 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
     // level's results and plan, and the next level's frontier (the buffer
     // of the level before).
     let (mut done, mut plan, mut next) = (Vec::new(), Vec::new(), Vec::new());
-    let mut unevaluated = Vec::new();
 
     while !frontier.is_empty() {
         let stop_here = !progress(level, frontier.len(), tree.leaves()).go_on();
@@ -189,18 +192,15 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         } else {
             0
         };
-        refill(&mut unevaluated, frontier.len(), PAR_MIN_HEAVY, |k| {
-            let o = &frontier[k];
-            o.fresh && method.split_unevaluated(&o.bx)
-        });
         // Visited in fixed runs of boxes, each run in order with its own
         // [`LastEnd`]: the work counted is the same on any thread count.
         make_room(&mut done, frontier.len());
-        let (boxes, skip) = (&frontier[..], &unevaluated[..]);
+        let boxes = &frontier[..];
+        let levels = division_levels(frontier.len(), opts.max_boxes.saturating_sub(tree.leaves()));
         let visit_run = |r: usize| {
             let mut last = LastEnd::default();
             let ks = r * VISIT_RUN..boxes.len().min((r + 1) * VISIT_RUN);
-            ks.map(move |k| visit(method, &boxes[k], skip[k], &mut last))
+            ks.map(move |k| visit(method, &boxes[k], levels, &mut last))
         };
         let runs = frontier.len().div_ceil(VISIT_RUN);
         if serial(frontier.len(), PAR_MIN_HEAVY) {
@@ -245,8 +245,7 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         // Everything held at this point: the tree and its bookkeeping, both
         // frontiers, this level's results and plan, and the slabs computed
         // for it.
-        let slabs_held =
-            (shared + own_slabs as usize) * (size_of::<S::Slab>() + 16) + unevaluated.capacity();
+        let slabs_held = (shared + own_slabs as usize) * (size_of::<S::Slab>() + 16);
         let held = |tree: &Tree, opens: usize, done: usize, plan: usize| {
             tree.bytes()
                 + opens * size_of::<Open<S::Slab>>()
@@ -413,22 +412,24 @@ impl<Sl> LastEnd<Sl> {
 }
 
 /// Processes one open box: natural labels, then, while a relevant
-/// constraint is undecided, the method's subtree or a bisection.
-/// `unevaluated`: the method bisects it before any interval work.
+/// constraint is undecided, the method's subtree or a bisection. A fresh
+/// slab the method calls too coarse is divided in θ before any interval
+/// work (undecided as far as computed), at most `levels` levels down.
 fn visit<S: ConstraintSet, R: Refine<S>>(
     method: &R,
     o: &Open<S::Slab>,
-    unevaluated: bool,
+    levels: u32,
     last: &mut LastEnd<S::Slab>,
 ) -> Done<S::Slab> {
     let scope = method.scope();
     let mut work = Work::default();
-    // A fresh slab the method calls too coarse is split in θ without
-    // interval work (undecided as far as computed).
-    if unevaluated {
+    if let Some(t) = (o.fresh && !o.settled)
+        .then(|| method.split_unevaluated(&o.bx, levels))
+        .flatten()
+    {
         return Done {
             labels: Labels::filled(Label::Undecided, scope.n),
-            outcome: Outcome::Split(0),
+            outcome: Outcome::Tree(t),
             work,
             slab: None,
         };
@@ -552,6 +553,19 @@ fn slab_key(b: &PhaseBox) -> (u64, u64) {
 /// here): from 512 items a level has enough work to pay for it. (At 64, a
 /// coarse paving's whole process was up to a quarter slower than serial.)
 const PAR_MIN_HEAVY: usize = 512;
+
+/// The boxes one level's θ-divisions before interval work may make at
+/// most: the budget and an interruption are heeded between levels, so a
+/// level must stay short and its memory small.
+const DIVISION_BOXES: usize = 1 << 20;
+
+/// How many levels down each of a level's `boxes` fresh boxes may be
+/// divided before interval work (at least one: a single split), so that
+/// the level makes at most [`DIVISION_BOXES`] boxes and no more than the
+/// budget's `room`.
+fn division_levels(boxes: usize, room: usize) -> u32 {
+    (DIVISION_BOXES.min(room) / boxes.max(1)).max(2).ilog2()
+}
 
 /// Boxes visited in order by one thread, sharing end slabs ([`LastEnd`]).
 const VISIT_RUN: usize = 256;

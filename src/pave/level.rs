@@ -17,6 +17,9 @@ pub(super) enum Local {
     Leaf(Labels),
     /// Stays open: refined at the next level.
     Open,
+    /// Stays open, and the method has already decided not to divide it
+    /// before interval work: visited at the next level.
+    Settled,
 }
 
 /// What processing one open box decided.
@@ -32,7 +35,7 @@ impl Outcome {
         match self {
             Outcome::Leaf | Outcome::Split(0) => false,
             Outcome::Split(_) => true,
-            Outcome::Tree(t) => t.iter().any(|l| matches!(l, Local::Open)),
+            Outcome::Tree(t) => t.iter().any(|l| matches!(l, Local::Open | Local::Settled)),
         }
     }
 }
@@ -44,6 +47,8 @@ pub(super) struct Open<Sl> {
     /// The slab was computed for this box's θ-interval at this level: the
     /// contraction has not seen it yet.
     pub fresh: bool,
+    /// Not to be divided before interval work ([`Local::Settled`]).
+    pub settled: bool,
 }
 
 /// One box processed: its natural labels, outcome, work, and the slab it
@@ -88,7 +93,7 @@ impl Plan {
             match l {
                 Local::Mid(_) | Local::At(..) => p.nodes += 2,
                 Local::Leaf(_) => p.leaves += 1,
-                Local::Open => p.opens += 1,
+                Local::Open | Local::Settled => p.opens += 1,
             }
         }
         p

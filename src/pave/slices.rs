@@ -18,21 +18,11 @@ use super::engine::Refine;
 use super::labels::{Labels, Scope};
 use super::level::{Local, Open, Work};
 use super::{ConstraintSet, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
-use std::cell::Cell;
-use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Steering coefficients at one θ.
-type SteerAt = Option<PerConstraint<[f64; 3]>>;
-
-/// Numbers each paving's steering apart, for [`LAST_STEER`].
-static STEERINGS: AtomicU64 = AtomicU64::new(0);
-
-thread_local! {
-    /// The steering coefficients this thread computed last: (paving, θ's
-    /// bits, value). A box's lower θ-end is mostly the upper end of the box
-    /// before it in the level, computed just before.
-    static LAST_STEER: Cell<(u64, u64, SteerAt)> = const { Cell::new((u64::MAX, 0, None)) };
-}
+/// Levels of θ-division one fresh box is steered down in one go at most
+/// (at most 2^levels boxes): each split point's roots are computed once,
+/// and a few levels of open boxes remain for the threads to share.
+const STEER_LEVELS: u32 = 6;
 
 /// Adaptive θ-slabs, each contracted in θ̇.
 pub(super) struct Slices<'a, S: ConstraintSet> {
@@ -44,9 +34,12 @@ pub(super) struct Slices<'a, S: ConstraintSet> {
     pub slab_area: f64,
     /// The height floor of θ̇-bisection in a column (ε of the domain's).
     pub min_height: f64,
-    /// This paving's number in [`LAST_STEER`].
-    steering: u64,
 }
+
+/// The roots of the relevant quadratics at one θ inside a θ̇-window,
+/// sorted, in f64 (steering only); `None` where the set has no
+/// coefficients there.
+type RootsAt = Option<([f64; 2 * MAX_CONSTRAINTS], usize)>;
 
 impl<'a, S: ConstraintSet> Slices<'a, S> {
     pub fn new(scope: Scope<'a, S>, root: PhaseBox, eps: f64) -> Self {
@@ -57,21 +50,7 @@ impl<'a, S: ConstraintSet> Slices<'a, S> {
                 * (root.theta[1] - root.theta[0])
                 * (root.theta_dot[1] - root.theta_dot[0]),
             min_height: eps * (root.theta_dot[1] - root.theta_dot[0]),
-            steering: STEERINGS.fetch_add(1, Ordering::Relaxed),
         }
-    }
-
-    /// [`ConstraintSet::steer_at`], reusing this thread's last value at
-    /// the same θ.
-    fn steer_at(&self, t: f64) -> SteerAt {
-        let key = (self.steering, t.to_bits());
-        let (id, bits, last) = LAST_STEER.get();
-        if (id, bits) == key {
-            return last;
-        }
-        let now = self.scope.set.steer_at(t);
-        LAST_STEER.set((key.0, key.1, now));
-        now
     }
 
     /// A box that θ-refinement has left (its slab at the width floor) and
@@ -99,42 +78,68 @@ impl<'a, S: ConstraintSet> Slices<'a, S> {
         h > self.min_width && h * k > self.slab_area
     }
 
-    /// An estimate (steering only) of the undecided area a fresh slab would
-    /// leave, from the roots of its quadratics in f64 at θ's two ends and
-    /// middle; the full box where their number changes.
-    fn estimated_band(&self, b: &PhaseBox) -> f64 {
-        let [t0, t1] = b.theta;
-        let [w0, w1] = b.theta_dot;
-        let full = (t1 - t0) * (w1 - w0);
-        // At most two roots per constraint, at each of the three points.
-        let mut per_end = [[0.0f64; 2 * MAX_CONSTRAINTS]; 3];
-        let mut count = [0usize; 3];
-        for (k, t) in [t0, 0.5 * t0 + 0.5 * t1, t1].into_iter().enumerate() {
-            let Some(qs) = self.steer_at(t) else {
-                return full;
-            };
-            for i in self.scope.relevant_own() {
-                if let Some(&[c2, c1, c0]) = qs.get(i) {
-                    for r in roots(c2, c1, c0).filter(|r| w0 < *r && *r < w1) {
-                        per_end[k][count[k]] = r;
-                        count[k] += 1;
-                    }
+    /// The relevant quadratics' roots at `t` strictly inside `w`.
+    fn roots_at(&self, t: f64, w: [f64; 2]) -> RootsAt {
+        let qs = self.scope.set.steer_at(t)?;
+        let mut at = [0.0f64; 2 * MAX_CONSTRAINTS];
+        let mut n = 0;
+        for i in self.scope.relevant_own() {
+            if let Some(&[c2, c1, c0]) = qs.get(i) {
+                for r in roots(c2, c1, c0).filter(|r| w[0] < *r && *r < w[1]) {
+                    at[n] = r;
+                    n += 1;
                 }
             }
-            per_end[k][..count[k]].sort_by(f64::total_cmp);
         }
-        let n = count[0];
-        if count.iter().any(|&c| c != n) {
-            return full;
-        }
-        let band: f64 = (0..n)
-            .map(|j| {
-                let r = per_end.iter().map(|e| e[j]);
-                r.clone().fold(f64::NEG_INFINITY, f64::max) - r.fold(f64::INFINITY, f64::min)
-            })
-            .sum();
-        band * (t1 - t0)
+        at[..n].sort_by(f64::total_cmp);
+        Some((at, n))
     }
+
+    /// A fresh slab's θ-division before interval work, depth-first, down
+    /// `depth` more levels: a slab that can still be split and whose
+    /// predicted undecided band ([`estimated_band`]) is above the threshold
+    /// is split at its midpoint; `lo` and `hi` are the roots at its ends.
+    fn divide(&self, b: &PhaseBox, lo: &RootsAt, hi: &RootsAt, depth: u32, out: &mut Vec<Local>) {
+        if self.choose_axis(b).is_none() {
+            out.push(Local::Settled);
+            return;
+        }
+        let (l, h) = b.split(0);
+        let mid = self.roots_at(l.theta[1], b.theta_dot);
+        if estimated_band(b, [lo, &mid, hi]) <= self.slab_area {
+            out.push(Local::Settled);
+            return;
+        }
+        out.push(Local::Mid(0));
+        if depth == 0 {
+            out.extend([Local::Open, Local::Open]);
+            return;
+        }
+        self.divide(&l, lo, &mid, depth - 1, out);
+        self.divide(&h, &mid, hi, depth - 1, out);
+    }
+}
+
+/// An estimate (steering only) of the undecided area of slab `b`, from
+/// the roots of its quadratics at θ's two ends and middle: the spread of
+/// each root times the width; the full box where their number changes.
+fn estimated_band(b: &PhaseBox, at: [&RootsAt; 3]) -> f64 {
+    let [t0, t1] = b.theta;
+    let full = (t1 - t0) * (b.theta_dot[1] - b.theta_dot[0]);
+    let [Some((a, n)), Some((m, nm)), Some((z, nz))] = at else {
+        return full;
+    };
+    if nm != n || nz != n {
+        return full;
+    }
+    let band: f64 = (0..*n)
+        .map(|j| {
+            let r = [a[j], m[j], z[j]];
+            r.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+                - r.iter().copied().fold(f64::INFINITY, f64::min)
+        })
+        .sum();
+    band * (t1 - t0)
 }
 
 impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
@@ -160,9 +165,15 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
     }
 
     /// A fresh slab that can still be split and whose predicted undecided
-    /// band is above the threshold.
-    fn split_unevaluated(&self, b: &PhaseBox) -> bool {
-        self.choose_axis(b).is_some() && self.estimated_band(b) > self.slab_area
+    /// band is above the threshold, divided up to [`STEER_LEVELS`] levels
+    /// down (and the engine's `levels`).
+    fn split_unevaluated(&self, b: &PhaseBox, levels: u32) -> Option<Vec<Local>> {
+        self.choose_axis(b)?;
+        let [lo, hi] = b.theta.map(|t| self.roots_at(t, b.theta_dot));
+        let mut t = Vec::new();
+        let depth = levels.clamp(1, STEER_LEVELS) - 1;
+        self.divide(b, &lo, &hi, depth, &mut t);
+        matches!(t[0], Local::Mid(_)).then_some(t)
     }
 
     fn subtree(
@@ -211,41 +222,137 @@ mod tests {
     use crate::pave::SceneConstraints;
     use crate::scene::{Scene, SceneId, Variant};
 
-    fn slices<'a>(set: &'a SceneConstraints<'a>) -> Slices<'a, SceneConstraints<'a>> {
-        let scope = Scope {
-            set,
-            n: 2,
-            same_as: vec![None, None],
-            relevant: 0b11,
+    /// The rule one box at a time, every end recomputed: split while the
+    /// box can be and the roots' spread over its ends and middle, times
+    /// its width, is above the slab area (the full box where their number
+    /// changes). `Local::Settled` for a box kept.
+    fn reference(s: &Slices<'_, SceneConstraints<'_>>, b: &PhaseBox, out: &mut Vec<Local>) {
+        let w = b.theta_dot;
+        let roots_at = |t: f64| -> Option<Vec<f64>> {
+            let qs = s.scope.set.steer_at(t)?;
+            let mut r: Vec<f64> = s
+                .scope
+                .relevant_own()
+                .flat_map(|i| {
+                    let [c2, c1, c0] = qs.get(i).copied().expect("a constraint");
+                    roots(c2, c1, c0).collect::<Vec<_>>()
+                })
+                .filter(|r| w[0] < *r && *r < w[1])
+                .collect();
+            r.sort_by(f64::total_cmp);
+            Some(r)
         };
-        let root = PhaseBox {
-            theta: [-3.0, 3.0],
-            theta_dot: [-10.0, 10.0],
+        let [t0, t1] = b.theta;
+        let full = (t1 - t0) * (w[1] - w[0]);
+        let ends: Option<Vec<Vec<f64>>> =
+            [t0, b.midpoint(0), t1].map(roots_at).into_iter().collect();
+        let band = match ends {
+            Some(e) if e[1].len() == e[0].len() && e[2].len() == e[0].len() => {
+                let spread = |j: usize| {
+                    let r = [e[0][j], e[1][j], e[2][j]];
+                    r.iter().copied().fold(f64::MIN, f64::max)
+                        - r.iter().copied().fold(f64::MAX, f64::min)
+                };
+                (0..e[0].len()).map(spread).sum::<f64>() * (t1 - t0)
+            }
+            _ => full,
         };
-        Slices::new(scope, root, 1e-3)
+        if s.choose_axis(b).is_some() && band > s.slab_area {
+            out.push(Local::Mid(0));
+            let (l, h) = b.split(0);
+            reference(s, &l, out);
+            reference(s, &h, out);
+        } else {
+            out.push(Local::Settled);
+        }
     }
 
-    /// Two pavings steering on one thread at the same θ each get their own
-    /// scene's coefficients, reused or not.
-    #[test]
-    fn the_reused_steering_is_the_pavings_own() {
-        let (viscous, smooth) = (
-            Scene::default_of(SceneId::ViscousDisc),
-            Scene::default_of(SceneId::SmoothDisc),
-        );
-        let sets = [&viscous, &smooth].map(|scene| SceneConstraints {
-            scene,
-            variant: Variant::Derived,
-        });
-        let [a, b] = [slices(&sets[0]), slices(&sets[1])];
-        let coefficients = |s: SteerAt| s.map(|q| q.to_vec());
-        for t in [0.3, 0.3, 1.1, 0.3] {
-            for s in [&a, &b, &b, &a] {
-                let direct = coefficients(s.scope.set.steer_at(t));
-                assert!(direct.is_some());
-                assert_eq!(coefficients(s.steer_at(t)), direct, "θ = {t}");
+    /// What the engine makes of `split_unevaluated` level by level, each
+    /// allowing `levels`: its subtrees, each open box divided again at the
+    /// next level. Checks that one go makes at most 2^`levels` boxes.
+    fn engine_view(
+        s: &Slices<'_, SceneConstraints<'_>>,
+        b: &PhaseBox,
+        levels: u32,
+        out: &mut Vec<Local>,
+    ) {
+        let Some(t) = s.split_unevaluated(b, levels) else {
+            out.push(Local::Settled);
+            return;
+        };
+        let boxes = t.iter().filter(|l| !matches!(l, Local::Mid(_))).count();
+        assert!(boxes <= 1 << levels, "{boxes} boxes in {levels} levels");
+        fn walk(
+            s: &Slices<'_, SceneConstraints<'_>>,
+            t: &[Local],
+            pos: &mut usize,
+            b: &PhaseBox,
+            levels: u32,
+            out: &mut Vec<Local>,
+        ) {
+            let item = t[*pos];
+            *pos += 1;
+            match item {
+                Local::Mid(0) => {
+                    out.push(item);
+                    let (l, h) = b.split(0);
+                    walk(s, t, pos, &l, levels, out);
+                    walk(s, t, pos, &h, levels, out);
+                }
+                Local::Open => engine_view(s, b, levels, out),
+                Local::Settled => out.push(item),
+                other => panic!("a θ-division holds {other:?}"),
             }
         }
-        assert_ne!(coefficients(a.steer_at(0.3)), coefficients(b.steer_at(0.3)));
+        walk(s, &t, &mut 0, b, levels, out);
+    }
+
+    /// Steering a box several levels at once, each split point's roots
+    /// computed once, divides it exactly as the rule applied one box at a
+    /// time, on every scene's Ω and Ω₀, coarse and fine, whatever depth
+    /// the engine allows.
+    #[test]
+    fn steering_in_one_go_divides_as_box_by_box() {
+        for id in SceneId::ALL {
+            let scene = Scene::default_of(id);
+            let set = SceneConstraints {
+                scene: &scene,
+                variant: Variant::Derived,
+            };
+            // Not the whole period: the roots at −π, 0 and π agree, so the
+            // estimate keeps the whole domain as one slab (for the
+            // contraction to split).
+            let d = scene.domain();
+            let root = PhaseBox {
+                theta: [0.1, 2.9],
+                theta_dot: [d.theta_dot[0].inf(), d.theta_dot[1].sup()],
+            };
+            for (relevant, eps) in [(0b01, 1e-2), (0b10, 1e-2), (0b11, 2e-3)] {
+                let scope = Scope {
+                    set: &set,
+                    n: 2,
+                    same_as: vec![None, None],
+                    relevant,
+                };
+                let s = Slices::new(scope, root, eps);
+                let mut want = Vec::new();
+                reference(&s, &root, &mut want);
+                let splits = want.iter().filter(|l| matches!(l, Local::Mid(_))).count();
+                assert!(
+                    splits > 1 << STEER_LEVELS,
+                    "{id:?}: {splits} splits, deeper than one go"
+                );
+                let key = |t: &[Local]| format!("{t:?}");
+                for levels in [1, 3, STEER_LEVELS, 40] {
+                    let mut got = Vec::new();
+                    engine_view(&s, &root, levels, &mut got);
+                    assert_eq!(
+                        key(&got),
+                        key(&want),
+                        "{id:?} relevant {relevant:b} ε {eps} levels {levels}"
+                    );
+                }
+            }
+        }
     }
 }

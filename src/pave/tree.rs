@@ -107,6 +107,7 @@ impl Tree {
             },
             slab: None,
             fresh: false,
+            settled: false,
         });
         let boxes = frontier.len();
         refill(&mut self.own, boxes, PAR_MIN, |_| Building::Open(0));
@@ -466,13 +467,14 @@ impl<Sl> Filler<'_, Sl> {
         *pos += 1;
         let (axis, (lo, hi)) = match item {
             Local::Leaf(labels) => return Building::Leaf(labels),
-            Local::Open => {
+            Local::Open | Local::Settled => {
                 let i = self.used[1];
                 self.used[1] += 1;
                 self.opens[i] = Open {
                     bx,
                     fresh: slab.is_none(),
                     slab,
+                    settled: matches!(item, Local::Settled),
                 };
                 return Building::Open(self.open_base + i as u32);
             }

@@ -226,3 +226,36 @@ fn ice_disc_at_eps_1e_6_beats_the_default_eps_in_bounded_memory() {
     }
     assert!(peak_kb <= PEAK_KB, "peak {peak_kb} kB");
 }
+
+/// The budget and an interruption are heeded between levels, so no level
+/// may grow without bound: on the rod at ε = 2⁻³⁰ (far too fine to finish),
+/// interrupted once a level passes 2²¹ open boxes, each level holds at
+/// most twice the boxes of the one before or 2²⁰ (`slices` divides a
+/// fresh slab several levels down before interval work only while the
+/// level stays small), and the run stops there with a valid paving.
+#[test]
+fn a_level_stays_bounded_at_a_resolution_never_reached() {
+    let (_, rod, v) = scenes().pop().unwrap();
+    let domain = rod.domain();
+    let opts = PaveOptions {
+        eps: 2f64.powi(-30),
+        max_boxes: 20_000_000,
+    };
+    let mo = MethodOptions::for_cell(Method::Slices, &standard_cells()[0]);
+    let mut levels: Vec<usize> = Vec::new();
+    let p = pave_scene_method(&rod, v, &domain, opts, &mo, |_, open, _| {
+        // Checked as each level starts, before it is visited.
+        if let Some(&before) = levels.last() {
+            assert!(open <= (2 * before).max(1 << 20), "{levels:?} then {open}");
+        }
+        levels.push(open);
+        if open > 1 << 21 {
+            std::ops::ControlFlow::Break(())
+        } else {
+            std::ops::ControlFlow::Continue(())
+        }
+    })
+    .unwrap();
+    assert_eq!(p.stop, detach::pave::StopReason::Interrupted);
+    assert!(*levels.last().unwrap() > 1 << 21, "{levels:?}");
+}
