@@ -12,8 +12,8 @@
 use super::bisection::Bisection;
 use super::labels::Scope;
 use super::level::{
-    make_room, par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan, Work,
-    PAR_MIN,
+    keep, make_room, par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan,
+    Subtrees, Work, PAR_MIN,
 };
 use super::tree::Tree;
 use super::{
@@ -183,6 +183,7 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
     // level's results and plan, and the next level's frontier (the buffer
     // of the level before).
     let (mut done, mut plan, mut next) = (Vec::new(), Vec::new(), Vec::new());
+    let mut subtrees = Subtrees::default();
 
     while !frontier.is_empty() {
         let stop_here = !progress(level, frontier.len(), tree.leaves()).go_on();
@@ -197,33 +198,20 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         make_room(&mut done, frontier.len());
         let boxes = &frontier[..];
         let levels = division_levels(frontier.len(), opts.max_boxes.saturating_sub(tree.leaves()));
-        let visit_run = |r: usize| {
-            let mut last = LastEnd::default();
-            let ks = r * VISIT_RUN..boxes.len().min((r + 1) * VISIT_RUN);
-            ks.map(move |k| visit(method, &boxes[k], levels, &mut last))
-        };
-        let runs = frontier.len().div_ceil(VISIT_RUN);
+        let visit = |(r, buf)| visit_run(method, boxes, levels, r, buf);
+        let runs = subtrees.reset(frontier.len().div_ceil(VISIT_RUN));
         if serial(frontier.len(), PAR_MIN_HEAVY) {
-            done.extend((0..runs).flat_map(visit_run));
+            done.extend(runs.iter_mut().enumerate().flat_map(visit));
         } else {
-            done.par_extend((0..runs).into_par_iter().flat_map_iter(visit_run));
+            done.par_extend(runs.par_iter_mut().enumerate().flat_map_iter(visit));
         }
         stats.slab_evaluations += shared as u64;
         let work = |k: usize| {
             let d = &done[k];
-            let heap = match &d.outcome {
-                Outcome::Tree(t) => t.capacity() * size_of::<Local>(),
-                _ => 0,
-            };
-            [
-                d.work.evals,
-                d.work.slabs,
-                heap as u64,
-                d.slab.is_some() as u64,
-            ]
+            [d.work.evals, d.work.slabs, d.slab.is_some() as u64]
         };
-        let add = |a: [u64; 4], b: [u64; 4]| std::array::from_fn(|i| a[i] + b[i]);
-        let [evals, slabs, heap, own_slabs] = par_fold(done.len(), [0; 4], work, add);
+        let add = |a: [u64; 3], b: [u64; 3]| std::array::from_fn(|i| a[i] + b[i]);
+        let [evals, slabs, own_slabs] = par_fold(done.len(), [0; 3], work, add);
         stats.box_evaluations += evals;
         stats.slab_evaluations += slabs;
 
@@ -235,7 +223,7 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
             schedule(
                 method,
                 &frontier,
-                &done,
+                (&done, &subtrees),
                 &tree,
                 opts.max_boxes,
                 &mut left,
@@ -250,7 +238,7 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
             tree.bytes()
                 + opens * size_of::<Open<S::Slab>>()
                 + done * size_of::<Done<S::Slab>>()
-                + heap as usize
+                + subtrees.bytes()
                 + plan * size_of::<Plan>()
                 + slabs_held
         };
@@ -274,7 +262,7 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
             left.budget = true;
             bite = Some(budget);
         }
-        tree.grow(&mut frontier, &mut done, &plan, &mut next);
+        tree.grow(&mut frontier, &mut done, &subtrees, &plan, &mut next);
         peak = peak.max(held(
             &tree,
             frontier.capacity() + next.capacity(),
@@ -411,6 +399,20 @@ impl<Sl> LastEnd<Sl> {
     }
 }
 
+/// Processes run `r` of a level's `boxes` in order, with its own
+/// [`LastEnd`], its subtrees kept in `buf`.
+fn visit_run<'a, S: ConstraintSet, R: Refine<S>>(
+    method: &'a R,
+    boxes: &'a [Open<S::Slab>],
+    levels: u32,
+    r: usize,
+    buf: &'a mut Vec<Local>,
+) -> impl Iterator<Item = Done<S::Slab>> + 'a {
+    let mut last = LastEnd::default();
+    let ks = r * VISIT_RUN..boxes.len().min((r + 1) * VISIT_RUN);
+    ks.map(move |k| visit(method, &boxes[k], levels, &mut last, (r, &mut *buf)))
+}
+
 /// Processes one open box: natural labels, then, while a relevant
 /// constraint is undecided, the method's subtree or a bisection. A fresh
 /// slab the method calls too coarse is divided in θ before any interval
@@ -420,6 +422,7 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
     o: &Open<S::Slab>,
     levels: u32,
     last: &mut LastEnd<S::Slab>,
+    (run, subtrees): (usize, &mut Vec<Local>),
 ) -> Done<S::Slab> {
     let scope = method.scope();
     let mut work = Work::default();
@@ -429,7 +432,7 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
     {
         return Done {
             labels: Labels::filled(Label::Undecided, scope.n),
-            outcome: Outcome::Tree(t),
+            outcome: Outcome::Tree(keep(run, subtrees, &t)),
             work,
             slab: None,
         };
@@ -448,10 +451,11 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
         }
     };
     let labels = scope.natural(slab, &o.bx, &mut work);
+    let mut tree = None;
     let outcome = if !scope.undecided(&labels) {
         Outcome::Leaf
     } else if let Some(t) = method.subtree(o, slab, ends, &labels, &mut work) {
-        Outcome::Tree(t)
+        Outcome::Tree(keep(run, subtrees, &tree.insert(t)[..]))
     } else {
         match method.choose_axis(&o.bx) {
             Some(ax) => Outcome::Split(ax),
@@ -459,7 +463,8 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
         }
     };
     // Kept (and allocated) only for children that share it.
-    let slab = own.filter(|_| outcome.shares_slab()).map(Arc::new);
+    let shares = outcome.shares_slab(tree.as_deref().unwrap_or_default());
+    let slab = own.filter(|_| shares).map(Arc::new);
     Done {
         labels,
         outcome,
@@ -470,18 +475,21 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
 
 /// Every box of a level that asks is refined when the budget takes them
 /// all: records what is left unrefined and returns `None`. Otherwise
-/// returns the leaves the level asked for (open boxes counted).
+/// returns the leaves the level asked for (open boxes counted). `done`:
+/// what each box of `frontier` decided, its subtree in `subtrees`.
 fn schedule<S: ConstraintSet, R: Refine<S>>(
     method: &R,
     frontier: &[Open<S::Slab>],
-    done: &[Done<S::Slab>],
+    (done, subtrees): (&[Done<S::Slab>], &Subtrees),
     tree: &Tree,
     max_boxes: usize,
     left: &mut Left,
     plan: &mut Vec<Plan>,
 ) -> Option<usize> {
     let scope = method.scope();
-    refill(plan, done.len(), PAR_MIN, |k| Plan::of(&done[k].outcome));
+    refill(plan, done.len(), PAR_MIN, |k| {
+        Plan::of(&done[k].outcome, subtrees)
+    });
     let counts = &plan[..];
     let want = |k: usize| match counts[k] {
         c if c.refine => [c.extra(), c.nodes as usize],
@@ -505,7 +513,7 @@ fn schedule<S: ConstraintSet, R: Refine<S>>(
         if counts[k].refine {
             // A subtree left undecided on a slab that cannot be split
             // further stopped at the limit of double precision.
-            let undecided = matches!(&d.outcome, Outcome::Tree(t) if undecided_leaf(t));
+            let undecided = undecided_leaf(d.outcome.tree(subtrees));
             [undecided, undecided && method.at_ulp_limit(&frontier[k].bx)]
         } else if scope.undecided(&d.labels) {
             [true, method.at_ulp_limit(&frontier[k].bx)]

@@ -26,17 +26,74 @@ pub(super) enum Local {
 pub(super) enum Outcome {
     Leaf,
     Split(u8),
-    Tree(Vec<Local>),
+    /// A subtree, kept in the level's [`Subtrees`].
+    Tree(Span),
 }
 
 impl Outcome {
     /// Some child stays open: below θ̇-splits only, it shares the box's slab.
-    pub fn shares_slab(&self) -> bool {
+    /// `tree`: the subtree, for [`Outcome::Tree`].
+    pub fn shares_slab(&self, tree: &[Local]) -> bool {
         match self {
             Outcome::Leaf | Outcome::Split(0) => false,
             Outcome::Split(_) => true,
-            Outcome::Tree(t) => t.iter().any(|l| matches!(l, Local::Open | Local::Settled)),
+            Outcome::Tree(_) => tree
+                .iter()
+                .any(|l| matches!(l, Local::Open | Local::Settled)),
         }
+    }
+    /// The subtree, for [`Outcome::Tree`] (else empty).
+    pub fn tree<'a>(&self, subtrees: &'a Subtrees) -> &'a [Local] {
+        match *self {
+            Outcome::Tree(s) => subtrees.get(s),
+            _ => &[],
+        }
+    }
+}
+
+/// Where a box's subtree lies in its level's [`Subtrees`].
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Span {
+    run: u32,
+    start: u32,
+    len: u32,
+}
+
+/// A level's subtrees: boxes are visited in runs, and each run writes its
+/// boxes' subtrees one after another into one buffer, kept from level to
+/// level (a buffer per box was a heap allocation each, alive until the
+/// tree took it, which grew and shrank the heap level by level).
+#[derive(Default)]
+pub(super) struct Subtrees(Vec<Vec<Local>>);
+
+impl Subtrees {
+    pub fn get(&self, s: Span) -> &[Local] {
+        &self.0[s.run as usize][s.start as usize..][..s.len as usize]
+    }
+    /// Emptied, with one buffer for each of `runs` runs.
+    pub fn reset(&mut self, runs: usize) -> &mut [Vec<Local>] {
+        if self.0.len() < runs {
+            self.0.resize_with(runs, Vec::new);
+        }
+        let bufs = &mut self.0[..runs];
+        bufs.iter_mut().for_each(Vec::clear);
+        bufs
+    }
+    /// The bytes its buffers hold.
+    pub fn bytes(&self) -> usize {
+        let locals: usize = self.0.iter().map(Vec::capacity).sum();
+        locals * size_of::<Local>() + self.0.capacity() * size_of::<Vec<Local>>()
+    }
+}
+
+/// `tree` appended to run `run`'s buffer `buf`: its place.
+pub(super) fn keep(run: usize, buf: &mut Vec<Local>, tree: &[Local]) -> Span {
+    let start = buf.len();
+    buf.extend_from_slice(tree);
+    Span {
+        run: run as u32,
+        start: start as u32,
+        len: tree.len() as u32,
     }
 }
 
@@ -99,7 +156,7 @@ impl Plan {
         p
     }
     /// What a box's outcome asks for.
-    pub fn of(outcome: &Outcome) -> Plan {
+    pub fn of(outcome: &Outcome, subtrees: &Subtrees) -> Plan {
         match outcome {
             Outcome::Leaf => Plan::LEAF,
             Outcome::Split(_) => Plan {
@@ -108,7 +165,7 @@ impl Plan {
                 opens: 2,
                 refine: true,
             },
-            Outcome::Tree(t) => Plan::of_tree(t),
+            Outcome::Tree(s) => Plan::of_tree(subtrees.get(*s)),
         }
     }
     /// Leaves (counting open boxes) it adds beyond the box itself.
@@ -186,22 +243,33 @@ mod tests {
     #[test]
     fn a_slab_is_kept_only_for_children_that_share_it() {
         let leaf = Local::Leaf(Labels::filled(Label::ProvedIn, 1));
-        let cases = [
+        let trees = [
+            vec![Local::At(1, 0.5), leaf, leaf],
+            vec![Local::At(1, 0.5), leaf, Local::Open],
+            vec![Local::Mid(1), Local::Open, Local::Open],
+            vec![Local::Mid(0), Local::Settled, leaf],
+        ];
+        // Kept in one run's buffer, one after another, as the engine does.
+        let mut subtrees = Subtrees::default();
+        let buf = &mut subtrees.reset(2)[1];
+        let spans: Vec<Span> = trees.iter().map(|t| keep(1, buf, t)).collect();
+        let mut cases = vec![
             (Outcome::Leaf, false),
             (Outcome::Split(0), false),
             (Outcome::Split(1), true),
-            (Outcome::Tree(vec![Local::At(1, 0.5), leaf, leaf]), false),
-            (
-                Outcome::Tree(vec![Local::At(1, 0.5), leaf, Local::Open]),
-                true,
-            ),
-            (
-                Outcome::Tree(vec![Local::Mid(1), Local::Open, Local::Open]),
-                true,
-            ),
         ];
+        cases.extend(
+            spans
+                .iter()
+                .zip([false, true, true, true])
+                .map(|(s, k)| (Outcome::Tree(*s), k)),
+        );
         for (k, (outcome, kept)) in cases.iter().enumerate() {
-            assert_eq!(outcome.shares_slab(), *kept, "case {k}");
+            let tree = outcome.tree(&subtrees);
+            assert_eq!(outcome.shares_slab(tree), *kept, "case {k}");
+            if k >= 3 {
+                assert_eq!(format!("{tree:?}"), format!("{:?}", trees[k - 3]));
+            }
         }
     }
 }

@@ -7,7 +7,7 @@
 //! splits when the tree is assembled, exactly as the paving computed it.
 
 use super::level::{
-    par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan, PAR_MIN,
+    par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan, Subtrees, PAR_MIN,
 };
 use super::{Leaf, Node, PhaseBox};
 use rayon::prelude::*;
@@ -94,6 +94,7 @@ impl Tree {
         &mut self,
         frontier: &mut [Open<Sl>],
         done: &mut [Done<Sl>],
+        subtrees: &Subtrees,
         plan: &[Plan],
         next: &mut Vec<Open<Sl>>,
     ) {
@@ -114,6 +115,7 @@ impl Tree {
         let shares = Shares {
             boxes: frontier,
             done,
+            subtrees,
             plan,
             offsets: &self.offsets,
             own: &mut self.own,
@@ -350,6 +352,7 @@ fn prefix_sums(plan: &[Plan], offsets: &mut Vec<[usize; 2]>) -> ([usize; 3], Vec
 struct Shares<'a, Sl> {
     boxes: &'a mut [Open<Sl>],
     done: &'a mut [Done<Sl>],
+    subtrees: &'a Subtrees,
     plan: &'a [Plan],
     /// Each box's first node and first open box in the level.
     offsets: &'a [[usize; 2]],
@@ -377,6 +380,7 @@ impl<Sl: Send + Sync> Shares<'_, Sl> {
             Shares {
                 boxes: boxes_a,
                 done: done_a,
+                subtrees: self.subtrees,
                 plan: plan_a,
                 offsets: off_a,
                 own: own_a,
@@ -386,6 +390,7 @@ impl<Sl: Send + Sync> Shares<'_, Sl> {
             Shares {
                 boxes: boxes_b,
                 done: done_b,
+                subtrees: self.subtrees,
                 plan: plan_b,
                 offsets: off_b,
                 own: own_b,
@@ -430,7 +435,7 @@ impl<Sl: Send + Sync> Shares<'_, Sl> {
                         let t = [Local::Mid(ax), Local::Open, Local::Open];
                         f.expand(&t, &mut 0, o.bx, slab, true)
                     }
-                    Outcome::Tree(t) => f.expand(&t, &mut 0, o.bx, slab, true),
+                    Outcome::Tree(t) => f.expand(self.subtrees.get(t), &mut 0, o.bx, slab, true),
                     Outcome::Leaf => unreachable!("a leaf is not refined"),
                 }
             } else {
