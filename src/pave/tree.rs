@@ -146,6 +146,9 @@ impl Tree {
     /// place in the output, so large subtrees are written in parallel; the
     /// result does not depend on the thread count.
     pub fn into_preorder(self, root: PhaseBox) -> (Vec<Node>, Vec<Leaf>, usize) {
+        if rayon::current_num_threads() == 1 {
+            return self.into_preorder_serial(root);
+        }
         let levels = self.levels;
         // Children come after their parent within one box's share of a
         // level, or in the next level: sizes from the last level up, each
@@ -216,6 +219,32 @@ impl Tree {
     }
 }
 
+impl Tree {
+    /// [`Tree::into_preorder`] on one thread: one depth-first pass appends
+    /// the nodes and leaves in order (subtree sizes only place the
+    /// subtrees written in parallel).
+    fn into_preorder_serial(self, root: PhaseBox) -> (Vec<Node>, Vec<Leaf>, usize) {
+        let (mut nodes, mut leaves) = (
+            Vec::with_capacity(self.nodes),
+            Vec::with_capacity(self.leaves),
+        );
+        let walk = Walk {
+            levels: &self.levels,
+            size: &[],
+        };
+        walk.depth_first((0, 0), root, 0, |n| nodes.push(n), |l| leaves.push(l));
+        // Every node and leaf is reachable from the root exactly once.
+        assert_eq!((nodes.len(), leaves.len()), (self.nodes, self.leaves));
+        let levels_bytes: usize = (self.levels.iter())
+            .map(|l| l.capacity() * size_of::<Building>())
+            .sum();
+        let held = levels_bytes
+            + nodes.capacity() * size_of::<Node>()
+            + leaves.capacity() * size_of::<Leaf>();
+        (nodes, leaves, held)
+    }
+}
+
 /// Subtrees of at most this many nodes are written by one thread.
 const SERIAL_SUBTREE: u32 = 1 << 15;
 
@@ -226,6 +255,43 @@ struct Walk<'a> {
 }
 
 impl Walk<'_> {
+    /// The subtree at entry `at` (level, index), of box `bx`, in preorder:
+    /// each node to `node`, each leaf to `leaf`, its leaves numbered from
+    /// `leaf_base`. Needs no subtree sizes.
+    fn depth_first(
+        &self,
+        at: (usize, u32),
+        bx: PhaseBox,
+        leaf_base: u32,
+        mut node: impl FnMut(Node),
+        mut leaf: impl FnMut(Leaf),
+    ) {
+        let mut l = leaf_base;
+        let mut stack = vec![(at, bx)];
+        while let Some(((s, i), bx)) = stack.pop() {
+            node(match self.levels[s][i as usize] {
+                Building::Split { axis, next, a } => {
+                    let (lo, hi) = bx.split(axis as usize);
+                    let c = Self::children(s, next, a);
+                    stack.extend([((c.0, c.1 + 1), hi), (c, lo)]);
+                    Node::Split(axis)
+                }
+                Building::SplitAt { axis, next, a, at } => {
+                    let (lo, hi) = split_at(&bx, axis, at);
+                    let c = Self::children(s, next, a);
+                    stack.extend([((c.0, c.1 + 1), hi), (c, lo)]);
+                    Node::SplitAt(axis, at)
+                }
+                Building::Leaf(labels) => {
+                    leaf(Leaf { bx, labels });
+                    l += 1;
+                    Node::Leaf(l - 1)
+                }
+                Building::Open(_) => unreachable!("every box ends as a leaf or a split"),
+            });
+        }
+    }
+
     /// The children of entry `e` of level `s`: their level and first index.
     fn children(s: usize, next: bool, a: u32) -> (usize, u32) {
         (s + usize::from(next), a)
@@ -244,30 +310,19 @@ impl Walk<'_> {
         let (s, i) = at;
         if self.size[s][i as usize] <= SERIAL_SUBTREE {
             let (mut n, mut l) = (0, 0);
-            let mut stack = vec![(at, bx)];
-            while let Some(((s, i), bx)) = stack.pop() {
-                nodes[n] = match self.levels[s][i as usize] {
-                    Building::Split { axis, next, a } => {
-                        let (lo, hi) = bx.split(axis as usize);
-                        let c = Self::children(s, next, a);
-                        stack.extend([((c.0, c.1 + 1), hi), (c, lo)]);
-                        Node::Split(axis)
-                    }
-                    Building::SplitAt { axis, next, a, at } => {
-                        let (lo, hi) = split_at(&bx, axis, at);
-                        let c = Self::children(s, next, a);
-                        stack.extend([((c.0, c.1 + 1), hi), (c, lo)]);
-                        Node::SplitAt(axis, at)
-                    }
-                    Building::Leaf(labels) => {
-                        leaves[l] = Leaf { bx, labels };
-                        l += 1;
-                        Node::Leaf(leaf_base + l as u32 - 1)
-                    }
-                    Building::Open(_) => unreachable!("every box ends as a leaf or a split"),
-                };
-                n += 1;
-            }
+            self.depth_first(
+                at,
+                bx,
+                leaf_base,
+                |node| {
+                    nodes[n] = node;
+                    n += 1;
+                },
+                |leaf| {
+                    leaves[l] = leaf;
+                    l += 1;
+                },
+            );
             return;
         }
         let (c, (lo, hi)) = match self.levels[s][i as usize] {
