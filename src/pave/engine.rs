@@ -422,7 +422,7 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
     o: &Open<S::Slab>,
     levels: u32,
     last: &mut LastEnd<S::Slab>,
-    (run, subtrees): (usize, &mut Vec<Local>),
+    (run, buf): (usize, &mut Vec<Local>),
 ) -> Done<S::Slab> {
     let scope = method.scope();
     let mut work = Work::default();
@@ -432,7 +432,7 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
     {
         return Done {
             labels: Labels::filled(Label::Undecided, scope.n),
-            outcome: Outcome::Tree(keep(run, subtrees, &t)),
+            outcome: Outcome::Tree(keep(run, buf, &t)),
             work,
             slab: None,
         };
@@ -455,7 +455,7 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
     let outcome = if !scope.undecided(&labels) {
         Outcome::Leaf
     } else if let Some(t) = method.subtree(o, slab, ends, &labels, &mut work) {
-        Outcome::Tree(keep(run, subtrees, &tree.insert(t)[..]))
+        Outcome::Tree(keep(run, buf, &tree.insert(t)[..]))
     } else {
         match method.choose_axis(&o.bx) {
             Some(ax) => Outcome::Split(ax),

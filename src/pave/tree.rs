@@ -201,15 +201,7 @@ impl Tree {
             bx: root,
             labels: Labels::filled(super::Label::Undecided, 1),
         });
-        let levels_bytes: usize = levels
-            .iter()
-            .map(|l| l.capacity() * size_of::<Building>())
-            .sum();
-        let size_bytes: usize = size.iter().map(|s| s.capacity() * size_of::<u32>()).sum();
-        let held = levels_bytes
-            + size_bytes
-            + nodes.capacity() * size_of::<Node>()
-            + leaves.capacity() * size_of::<Leaf>();
+        let held = assembly_bytes(&levels, &size, (&nodes, &leaves));
         let walk = Walk {
             levels: &levels,
             size: &size,
@@ -217,9 +209,7 @@ impl Tree {
         walk.write((0, 0), root, &mut nodes, &mut leaves, 0);
         (nodes, leaves, held)
     }
-}
 
-impl Tree {
     /// [`Tree::into_preorder`] on one thread: one depth-first pass appends
     /// the nodes and leaves in order (subtree sizes only place the
     /// subtrees written in parallel).
@@ -235,14 +225,25 @@ impl Tree {
         walk.depth_first((0, 0), root, 0, |n| nodes.push(n), |l| leaves.push(l));
         // Every node and leaf is reachable from the root exactly once.
         assert_eq!((nodes.len(), leaves.len()), (self.nodes, self.leaves));
-        let levels_bytes: usize = (self.levels.iter())
-            .map(|l| l.capacity() * size_of::<Building>())
-            .sum();
-        let held = levels_bytes
-            + nodes.capacity() * size_of::<Node>()
-            + leaves.capacity() * size_of::<Leaf>();
+        let held = assembly_bytes(&self.levels, &[], (&nodes, &leaves));
         (nodes, leaves, held)
     }
+}
+
+/// The bytes held while the preorder is assembled: the levels, their
+/// subtree sizes (if computed) and the output, each by capacity.
+fn assembly_bytes(
+    levels: &[Vec<Building>],
+    size: &[Vec<u32>],
+    output: (&Vec<Node>, &Vec<Leaf>),
+) -> usize {
+    let levels: usize = levels
+        .iter()
+        .map(|l| l.capacity() * size_of::<Building>())
+        .sum();
+    let size: usize = size.iter().map(|s| s.capacity() * size_of::<u32>()).sum();
+    let (nodes, leaves) = output;
+    levels + size + nodes.capacity() * size_of::<Node>() + leaves.capacity() * size_of::<Leaf>()
 }
 
 /// Subtrees of at most this many nodes are written by one thread.
