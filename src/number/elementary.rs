@@ -324,6 +324,137 @@ impl Scalar for CrDec {
     }
 }
 
+/// An undecorated interval whose elementary functions are the ones of this
+/// module, for evaluating formulas without the cost of decorations. An
+/// operation outside the part of its domain where it is continuous (a
+/// division by an interval holding 0, `sqrt` below 0, `ln` at or below
+/// 0, `tan` near a pole, `sign` at 0, and the slopes of `abs` and `sign`
+/// at 0) gives the empty interval, which every later operation keeps: a
+/// result that is not empty comes from operations each continuous on its
+/// argument, so it is the enclosure [`CrDec`] gives, and its decoration
+/// follows from it ([`Cr::decorated`]); an empty one asks for [`CrDec`].
+#[derive(Clone, Copy, Debug)]
+pub struct Cr(pub Interval);
+
+impl Cr {
+    /// The decoration a decorated evaluation gives a result that is not
+    /// empty (every operation continuous on its argument, the box
+    /// bounded): `com` where bounded, else `dac`. (Also `com` where an
+    /// intermediate overflowed and a later operation, as `atan`, brought
+    /// it back into range, where a decorated evaluation says `dac`: the
+    /// formula is continuous either way.) `None` for an empty result.
+    pub fn decorated(self) -> Option<DecInterval> {
+        (!self.0.is_empty()).then(|| DecInterval::set_dec(self.0, inari::Decoration::Com))
+    }
+
+    /// `f(x)` where `continuous` holds, else empty.
+    fn only_if(x: Interval, continuous: bool, f: impl Fn(Interval) -> Interval) -> Cr {
+        Cr(if continuous { f(x) } else { Interval::EMPTY })
+    }
+}
+
+impl Add for Cr {
+    type Output = Cr;
+    fn add(self, r: Cr) -> Cr {
+        Cr(self.0 + r.0)
+    }
+}
+
+impl Sub for Cr {
+    type Output = Cr;
+    fn sub(self, r: Cr) -> Cr {
+        Cr(self.0 - r.0)
+    }
+}
+
+impl Mul for Cr {
+    type Output = Cr;
+    fn mul(self, r: Cr) -> Cr {
+        Cr(self.0 * r.0)
+    }
+}
+
+impl Div for Cr {
+    type Output = Cr;
+    fn div(self, r: Cr) -> Cr {
+        Cr::only_if(self.0, !r.0.contains(0.0), |x| x / r.0)
+    }
+}
+
+impl Neg for Cr {
+    type Output = Cr;
+    fn neg(self) -> Cr {
+        Cr(-self.0)
+    }
+}
+
+impl Scalar for Cr {
+    fn lift(x: Interval) -> Self {
+        Cr(x)
+    }
+    fn lift_known(k: &Known) -> Self {
+        Cr(k.interval)
+    }
+    fn int(n: i32) -> Self {
+        Cr(<Interval as Scalar>::int(n))
+    }
+    fn sqr(self) -> Self {
+        Cr(self.0.sqr())
+    }
+    fn sqrt(self) -> Self {
+        Cr::only_if(self.0, self.0.inf() >= 0.0, Interval::sqrt)
+    }
+    fn sin(self) -> Self {
+        Cr(sin(self.0))
+    }
+    fn cos(self) -> Self {
+        Cr(cos(self.0))
+    }
+    fn ln(self) -> Self {
+        Cr(ln_checked(self.0).unwrap_or(Interval::EMPTY))
+    }
+    fn tan(self) -> Self {
+        Cr(tan_checked(self.0).unwrap_or(Interval::EMPTY))
+    }
+    // No CORE-MATH kernel is involved: `inari`'s, as for CrDec.
+    fn abs(self) -> Self {
+        Cr(self.0.abs())
+    }
+    fn abs_slope(self) -> Self {
+        let fixed = !self.0.contains(0.0);
+        Cr::only_if(self.0, fixed, <Interval as Scalar>::abs_slope)
+    }
+    fn pown(self, n: u32) -> Self {
+        Cr(<Interval as Scalar>::pown(self.0, n))
+    }
+    fn atan(self) -> Self {
+        Cr(self.0.atan())
+    }
+    fn exp(self) -> Self {
+        Cr(self.0.exp())
+    }
+    fn sign(self) -> Self {
+        Cr::only_if(self.0, !self.0.contains(0.0), Interval::sign)
+    }
+    fn sign_slope(self) -> Self {
+        let fixed = !self.0.contains(0.0);
+        Cr::only_if(self.0, fixed, <Interval as Scalar>::sign_slope)
+    }
+    fn min(self, other: Self) -> Self {
+        Cr(self.0.min(other.0))
+    }
+    fn max(self, other: Self) -> Self {
+        Cr(self.0.max(other.0))
+    }
+    fn sin_cos(self) -> (Self, Self) {
+        if self.0.is_empty() {
+            return (self, self);
+        }
+        let (s, c) = sin_cos(self.0);
+        (Cr(s), Cr(c))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
