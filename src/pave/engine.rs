@@ -12,7 +12,7 @@
 use super::bisection::Bisection;
 use super::labels::Scope;
 use super::level::{
-    keep, make_room, par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan,
+    keep, make_room, par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan, Span,
     Subtrees, Work, PAR_MIN,
 };
 use super::tree::Tree;
@@ -48,11 +48,11 @@ pub(super) trait Refine<S: ConstraintSet>: Sync {
         self.grid().is_some_and(|g| g.at_ulp_limit(b))
     }
     /// A fresh box divided in θ before any interval work, at most `levels`
-    /// levels down (`levels` ≥ 1): the θ-subtree, whose open boxes are
-    /// [`Local::Settled`] where the method will not divide them further;
-    /// `None` to evaluate it now.
-    fn split_unevaluated(&self, _b: &PhaseBox, _levels: u32) -> Option<Vec<Local>> {
-        None
+    /// levels down (`levels` ≥ 1): the θ-subtree appended to `out`, whose
+    /// open boxes are [`Local::Settled`] where the method will not divide
+    /// them further. False, `out` as it was, to evaluate it now.
+    fn split_unevaluated(&self, _b: &PhaseBox, _levels: u32, _out: &mut Vec<Local>) -> bool {
+        false
     }
     /// A subtree for an undecided box, instead of bisecting it. `ends`: the
     /// slab's end data when computed with the slab.
@@ -426,13 +426,11 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
 ) -> Done<S::Slab> {
     let scope = method.scope();
     let mut work = Work::default();
-    if let Some(t) = (o.fresh && !o.settled)
-        .then(|| method.split_unevaluated(&o.bx, levels))
-        .flatten()
-    {
+    let start = buf.len();
+    if o.fresh && !o.settled && method.split_unevaluated(&o.bx, levels, buf) {
         return Done {
             labels: Labels::filled(Label::Undecided, scope.n),
-            outcome: Outcome::Tree(keep(run, buf, &t)),
+            outcome: Outcome::Tree(Span::of(run, start, buf)),
             work,
             slab: None,
         };

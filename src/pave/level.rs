@@ -90,10 +90,17 @@ impl Subtrees {
 pub(super) fn keep(run: usize, buf: &mut Vec<Local>, tree: &[Local]) -> Span {
     let start = buf.len();
     buf.extend_from_slice(tree);
-    Span {
-        run: run as u32,
-        start: start as u32,
-        len: tree.len() as u32,
+    Span::of(run, start, buf)
+}
+
+impl Span {
+    /// The subtree written to run `run`'s buffer `buf` from `start` on.
+    pub fn of(run: usize, start: usize, buf: &[Local]) -> Span {
+        Span {
+            run: run as u32,
+            start: start as u32,
+            len: (buf.len() - start) as u32,
+        }
     }
 }
 

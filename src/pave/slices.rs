@@ -167,13 +167,19 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
     /// A fresh slab that can still be split and whose predicted undecided
     /// band is above the threshold, divided up to [`STEER_LEVELS`] levels
     /// down (and the engine's `levels`).
-    fn split_unevaluated(&self, b: &PhaseBox, levels: u32) -> Option<Vec<Local>> {
-        self.choose_axis(b)?;
+    fn split_unevaluated(&self, b: &PhaseBox, levels: u32, out: &mut Vec<Local>) -> bool {
+        if self.choose_axis(b).is_none() {
+            return false;
+        }
         let [lo, hi] = b.theta.map(|t| self.roots_at(t, b.theta_dot));
-        let mut t = Vec::new();
         let depth = levels.clamp(1, STEER_LEVELS) - 1;
-        self.divide(b, &lo, &hi, depth, &mut t);
-        matches!(t[0], Local::Mid(_)).then_some(t)
+        let start = out.len();
+        self.divide(b, &lo, &hi, depth, out);
+        let divided = matches!(out[start], Local::Mid(_));
+        if !divided {
+            out.truncate(start);
+        }
+        divided
     }
 
     fn subtree(
@@ -276,10 +282,11 @@ mod tests {
         levels: u32,
         out: &mut Vec<Local>,
     ) {
-        let Some(t) = s.split_unevaluated(b, levels) else {
+        let mut t = Vec::new();
+        if !s.split_unevaluated(b, levels, &mut t) {
             out.push(Local::Settled);
             return;
-        };
+        }
         let boxes = t.iter().filter(|l| !matches!(l, Local::Mid(_))).count();
         assert!(boxes <= 1 << levels, "{boxes} boxes in {levels} levels");
         fn walk(
