@@ -14,7 +14,7 @@ use inari::{DecInterval, Interval};
 /// decorated evaluation runs.
 pub fn constraints_on(scene: &Scene, v: Variant, theta: Interval) -> Constraints<DecInterval> {
     let fast = scene.constraints(v, &Angle::new(Cr(theta)));
-    if let Some(c) = decorated(fast, |x| x.decorated()) {
+    if let Some(c) = decorated(fast, Cr::decorated) {
         return c;
     }
     scene
@@ -40,12 +40,20 @@ fn decorated<T: Copy, U: Copy>(
     })
 }
 
-/// [`Scene::factored_constraints`] over a θ-slab, as [`constraints_on`].
+/// [`Scene::factored_constraints`] over a θ-slab, as [`constraints_on`]
+/// (undecorated first).
 pub fn factored_constraints_on(
     scene: &Scene,
     v: Variant,
     theta: Interval,
 ) -> ([[DecInterval; 2]; 2], Constraints<DecInterval>) {
+    let (f, c) = scene.factored_constraints(v, &Angle::new(Cr(theta)));
+    let f = f.map(|q| q.map(Cr::decorated));
+    if let ([[Some(a0), Some(b0)], [Some(a1), Some(b1)]], Some(c)) =
+        (f, decorated(c, Cr::decorated))
+    {
+        return ([[a0, b0], [a1, b1]], c);
+    }
     let (f, c) = scene.factored_constraints(v, &Angle::new(CrDec(DecInterval::new(theta))));
     (f.map(|x| x.map(|y| y.0)), c.map(|x| x.0))
 }
@@ -138,9 +146,9 @@ omega0 = "theta_dot^2 - sign(theta - 1) < 0"
 
     /// The undecorated evaluation first, the decorated one where it asks:
     /// the enclosures and decorations the decorated evaluation alone gives,
-    /// on points and slabs (across θ = 0, 1 and π/2 too), for values and
-    /// θ-derivatives, also where a coefficient is undefined or its
-    /// derivative jumps.
+    /// on points and slabs (across θ = 0, 1 and π/2 too), for values,
+    /// θ-derivatives and factored forms, also where a coefficient is
+    /// undefined or its derivative jumps.
     #[test]
     fn coefficients_are_decorated_as_by_the_decorated_evaluation() {
         let file =
@@ -172,6 +180,20 @@ omega0 = "theta_dot^2 - sign(theta - 1) < 0"
                 let t = DualTheta::variable(CrDec(DecInterval::new(theta)), 0);
                 let want_dual = scene.constraints(*v, &Angle::new(t));
                 let got_dual = dual_constraints_on(scene, *v, theta);
+                let (want_f, want_fc) =
+                    scene.factored_constraints(*v, &Angle::new(CrDec(DecInterval::new(theta))));
+                let (got_f, got_fc) = factored_constraints_on(scene, *v, theta);
+                for (w, g) in want_f.iter().flatten().zip(got_f.iter().flatten()) {
+                    assert!(same(w.0, *g), "{} θ {theta:?}: factor", scene.name());
+                }
+                for (w, g) in [want_fc.omega, want_fc.omega0]
+                    .iter()
+                    .zip([got_fc.omega, got_fc.omega0])
+                {
+                    for (w, g) in [w.c2, w.c1, w.c0].iter().zip([g.c2, g.c1, g.c0]) {
+                        assert!(same(w.0, g), "{} θ {theta:?}: factored", scene.name());
+                    }
+                }
                 let (w, g) = ([want.omega, want.omega0], [got.omega, got.omega0]);
                 let (wd, gd) = (
                     [want_dual.omega, want_dual.omega0],
