@@ -18,6 +18,7 @@ use super::engine::Refine;
 use super::labels::{Labels, Scope};
 use super::level::{Local, Open, Work};
 use super::{ConstraintSet, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
+use crate::number::scalar::is_continuous;
 
 /// Levels of θ-division one fresh box is steered down in one go at most
 /// (at most 2^levels boxes): each split point's roots are computed once,
@@ -68,6 +69,21 @@ impl<'a, S: ConstraintSet> Slices<'a, S> {
                 .set
                 .quadratic(slab, i)
                 .is_some_and(|q| q.c2.interval().is_none_or(|c| c.contains(0.0)))
+        })
+    }
+
+    /// Some relevant quadratic's coefficients are continuous on the slab.
+    /// Otherwise the monotone and convex tests do not apply (they need the
+    /// value continuous, [`super::SlabEnds::smooth`], whose decorations are
+    /// the slab's: the same operations), and a column's parts, as those
+    /// where a coefficient is undefined, are labelled without the slab's
+    /// end data, which each part would compute again.
+    fn some_continuous(&self, slab: &S::Slab) -> bool {
+        self.scope.relevant_own().any(|i| {
+            self.scope
+                .set
+                .quadratic(slab, i)
+                .is_some_and(|q| [q.c2, q.c1, q.c0].into_iter().all(is_continuous))
         })
     }
 
@@ -209,8 +225,10 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
         // leaf if the slab's tests decide it, else its two halves in θ̇
         // (they share the slab).
         let ends = ends.or_else(|| {
-            work.slabs += 3;
-            self.scope.set.slab_ends(o.bx.theta_interval())
+            (self.some_continuous(slab)).then(|| {
+                work.slabs += 3;
+                self.scope.set.slab_ends(o.bx.theta_interval())
+            })?
         });
         let labels = self.scope.label(slab, ends.as_deref(), &o.bx, work, true);
         let all = self.scope.relevant;
