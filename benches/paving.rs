@@ -1,5 +1,6 @@
 //! Paving cost, and the cost of one formula evaluation in f64 versus
-//! intervals (the ratio is what matters).
+//! intervals (the ratio is what matters); `scenes/` paves each paper scene
+//! with each method on one thread and two.
 
 #[path = "peers/problems.rs"]
 mod problems;
@@ -11,6 +12,7 @@ use detach::number::scalar::DualTheta;
 use detach::pave::{
     pave_scene, pave_scene_method, standard_cells, Method, MethodOptions, PaveOptions, Paving,
 };
+use detach::scene::slab::{constraints_on, dual_constraints_on};
 use detach::scene::{Angle, Domain, Scene, SceneId, Variant};
 use inari::{DecInterval, Interval};
 use std::hint::black_box;
@@ -119,23 +121,71 @@ fn one_box() {
 }
 
 /// One evaluation of each paper scene's coefficients (its file compiled to
-/// a tape) in each scalar the pavers use: `f64` (steering), decorated
-/// intervals with the correctly rounded functions (slabs) and their θ-duals
-/// (slab ends, centred forms).
+/// a tape) in each scalar the pavers use: `f64` (steering), and over a slab
+/// and in θ-duals as the pavers evaluate them (undecorated first,
+/// `detach::scene::slab`) and decorated throughout (`CrDec`), for the ratio.
 fn tape() {
     let g = Group::new("tape").samples(9).time(Duration::from_secs(1));
-    // θ-slab and sines outside the timing.
     let th = Interval::try_from((1.1, 1.1 + 1e-3)).unwrap();
     let slab = CrDec(DecInterval::new(th));
-    let dual = DualTheta::variable(slab, 0);
     for id in SceneId::ALL {
         let s = Scene::default_of(id);
         let v = Variant::Derived;
         let name = id.name();
-        let (p, sl, du) = (Angle::new(1.1f64), Angle::new(slab), Angle::new(dual));
+        // The f64 sines outside the timing; every interval case computes
+        // its own (a slab's, or a dual's), as the pavers do.
+        let p = Angle::new(1.1f64);
         g.bench(&format!("f64/{name}"), || s.constraints(v, black_box(&p)));
-        g.bench(&format!("slab/{name}"), || s.constraints(v, black_box(&sl)));
-        g.bench(&format!("dual/{name}"), || s.constraints(v, black_box(&du)));
+        g.bench(&format!("slab/{name}"), || {
+            constraints_on(&s, v, black_box(th))
+        });
+        g.bench(&format!("dual/{name}"), || {
+            dual_constraints_on(&s, v, black_box(th))
+        });
+        g.bench(&format!("decorated-slab/{name}"), || {
+            s.constraints(v, &Angle::new(black_box(slab)))
+        });
+        g.bench(&format!("decorated-dual/{name}"), || {
+            s.constraints(v, &Angle::new(DualTheta::variable(black_box(slab), 0)))
+        });
+    }
+}
+
+/// Each paper scene (derived, defaults, whole domain, ε = 1e-4, all
+/// constraints) paved by each method on one thread and on two: the set-up
+/// of the last comparison with the hand-written scenes
+/// (`docs/performance/scene-files.md`).
+fn scenes() {
+    let g = Group::new("scenes").samples(5);
+    for id in SceneId::ALL {
+        let s = Scene::default_of(id);
+        let d = s.domain();
+        for m in Method::ALL {
+            for threads in [1, 2] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .expect("thread pool");
+                let case = format!("{}/{m}/threads={threads}", id.name());
+                pool.install(|| {
+                    g.bench(&case, || {
+                        let opts = PaveOptions {
+                            eps: 1e-4,
+                            max_boxes: 10_000_000,
+                        };
+                        pave_scene_method(
+                            &s,
+                            Variant::Derived,
+                            &d,
+                            opts,
+                            &MethodOptions::new(m),
+                            |_, _, _| {},
+                        )
+                        .unwrap()
+                    })
+                });
+            }
+        }
     }
 }
 
@@ -144,4 +194,5 @@ fn main() {
     methods();
     one_box();
     tape();
+    scenes();
 }
