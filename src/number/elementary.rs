@@ -231,20 +231,21 @@ pub fn dec_ln(x: DecInterval) -> DecInterval {
 #[derive(Clone, Copy, Debug)]
 pub struct CrDec(pub DecInterval);
 
+/// An operator on the wrapped intervals, for [`CrDec`] and [`Cr`].
 macro_rules! binop {
-    ($tr:ident, $f:ident) => {
-        impl $tr for CrDec {
-            type Output = CrDec;
-            fn $f(self, r: CrDec) -> CrDec {
-                CrDec(self.0.$f(r.0))
+    ($t:ident, $tr:ident, $f:ident) => {
+        impl $tr for $t {
+            type Output = $t;
+            fn $f(self, r: $t) -> $t {
+                $t(self.0.$f(r.0))
             }
         }
     };
 }
-binop!(Add, add);
-binop!(Sub, sub);
-binop!(Mul, mul);
-binop!(Div, div);
+binop!(CrDec, Add, add);
+binop!(CrDec, Sub, sub);
+binop!(CrDec, Mul, mul);
+binop!(CrDec, Div, div);
 
 impl Neg for CrDec {
     type Output = CrDec;
@@ -353,27 +354,11 @@ impl Cr {
     }
 }
 
-impl Add for Cr {
-    type Output = Cr;
-    fn add(self, r: Cr) -> Cr {
-        Cr(self.0 + r.0)
-    }
-}
+binop!(Cr, Add, add);
+binop!(Cr, Sub, sub);
+binop!(Cr, Mul, mul);
 
-impl Sub for Cr {
-    type Output = Cr;
-    fn sub(self, r: Cr) -> Cr {
-        Cr(self.0 - r.0)
-    }
-}
-
-impl Mul for Cr {
-    type Output = Cr;
-    fn mul(self, r: Cr) -> Cr {
-        Cr(self.0 * r.0)
-    }
-}
-
+/// Only where the divisor cannot be 0.
 impl Div for Cr {
     type Output = Cr;
     fn div(self, r: Cr) -> Cr {

@@ -361,7 +361,7 @@ impl SlabEnds {
         let d_theta = dual.map(|d| d.grad[0]);
         let smooth = [value, d_theta, ends[0], ends[1]]
             .iter()
-            .all(|q| [q.c2, q.c1, q.c0].into_iter().all(is_continuous));
+            .all(|q| q.coefficients().into_iter().all(is_continuous));
         let i = |x: DecInterval| x.interval().unwrap_or(Interval::ENTIRE);
         SlabEnds {
             value: value.map(i),
@@ -450,8 +450,7 @@ impl ConstraintSet for SceneConstraints<'_> {
     }
     fn steer_at(&self, theta: f64) -> Option<PerConstraint<[f64; 3]>> {
         let c = self.scene.constraints(self.variant, &Angle::new(theta));
-        let q = |q: Quadratic<f64>| [q.c2, q.c1, q.c0];
-        PerConstraint::new(&[q(c.omega), q(c.omega0)])
+        PerConstraint::new(&[c.omega.coefficients(), c.omega0.coefficients()])
     }
     fn slab_ends(&self, theta: Interval) -> Option<PerConstraint<SlabEnds>> {
         self.slab_and_ends(theta).1

@@ -83,7 +83,7 @@ impl<'a, S: ConstraintSet> Slices<'a, S> {
             self.scope
                 .set
                 .quadratic(slab, i)
-                .is_some_and(|q| [q.c2, q.c1, q.c0].into_iter().all(is_continuous))
+                .is_some_and(|q| q.coefficients().into_iter().all(is_continuous))
         })
     }
 
@@ -225,10 +225,12 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
         // leaf if the slab's tests decide it, else its two halves in θ̇
         // (they share the slab).
         let ends = ends.or_else(|| {
-            (self.some_continuous(slab)).then(|| {
-                work.slabs += 3;
-                self.scope.set.slab_ends(o.bx.theta_interval())
-            })?
+            self.some_continuous(slab)
+                .then(|| {
+                    work.slabs += 3;
+                    self.scope.set.slab_ends(o.bx.theta_interval())
+                })
+                .flatten()
         });
         let labels = self.scope.label(slab, ends.as_deref(), &o.bx, work, true);
         let all = self.scope.relevant;

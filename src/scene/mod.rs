@@ -84,6 +84,10 @@ impl<T> Quadratic<T> {
             c0: f(self.c0),
         }
     }
+    /// `[c2, c1, c0]`.
+    pub fn coefficients(self) -> [T; 3] {
+        [self.c2, self.c1, self.c0]
+    }
 }
 
 impl<T: Scalar> Quadratic<T> {

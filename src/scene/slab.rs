@@ -140,6 +140,12 @@ omega0 = "theta_dot^2 - sign(theta - 1) < 0"
 "#,
     ];
 
+    /// Ω's coefficients, then Ω₀'s.
+    fn coefficients<T: Copy>(c: Constraints<T>) -> [T; 6] {
+        let (o, z) = (c.omega.coefficients(), c.omega0.coefficients());
+        [o[0], o[1], o[2], z[0], z[1], z[2]]
+    }
+
     fn same(a: DecInterval, b: DecInterval) -> bool {
         a.decoration() == b.decoration() && a.interval() == b.interval()
     }
@@ -186,32 +192,19 @@ omega0 = "theta_dot^2 - sign(theta - 1) < 0"
                 for (w, g) in want_f.iter().flatten().zip(got_f.iter().flatten()) {
                     assert!(same(w.0, *g), "{} θ {theta:?}: factor", scene.name());
                 }
-                for (w, g) in [want_fc.omega, want_fc.omega0]
-                    .iter()
-                    .zip([got_fc.omega, got_fc.omega0])
-                {
-                    for (w, g) in [w.c2, w.c1, w.c0].iter().zip([g.c2, g.c1, g.c0]) {
-                        assert!(same(w.0, g), "{} θ {theta:?}: factored", scene.name());
-                    }
+                for (w, g) in coefficients(want_fc).into_iter().zip(coefficients(got_fc)) {
+                    assert!(same(w.0, g), "{} θ {theta:?}: factored", scene.name());
                 }
-                let (w, g) = ([want.omega, want.omega0], [got.omega, got.omega0]);
-                let (wd, gd) = (
-                    [want_dual.omega, want_dual.omega0],
-                    [got_dual.omega, got_dual.omega0],
-                );
-                for q in 0..2 {
-                    let w = [w[q].c2, w[q].c1, w[q].c0];
-                    let g = [g[q].c2, g[q].c1, g[q].c0];
-                    let wd = [wd[q].c2, wd[q].c1, wd[q].c0];
-                    let gd = [gd[q].c2, gd[q].c1, gd[q].c0];
-                    for k in 0..3 {
-                        let at = format!("{} {v:?} θ {theta:?} q{q} c{k}", scene.name());
-                        assert!(same(w[k], g[k]), "{at}: {:?} vs {:?}", w[k], g[k]);
-                        assert!(same(wd[k].value.0, gd[k].value), "{at} (dual value)");
-                        assert!(same(wd[k].grad[0].0, gd[k].grad[0]), "{at} (derivative)");
-                        undefined |= !crate::number::scalar::is_defined(g[k]);
-                        jumps |= !crate::number::scalar::is_continuous(gd[k].grad[0]);
-                    }
+                let (w, g) = (coefficients(want), coefficients(got));
+                let (wd, gd) = (coefficients(want_dual), coefficients(got_dual));
+                for k in 0..6 {
+                    // Ω's c₂, c₁, c₀, then Ω₀'s.
+                    let at = format!("{} {v:?} θ {theta:?} coefficient {k}", scene.name());
+                    assert!(same(w[k], g[k]), "{at}: {:?} vs {:?}", w[k], g[k]);
+                    assert!(same(wd[k].value.0, gd[k].value), "{at} (dual value)");
+                    assert!(same(wd[k].grad[0].0, gd[k].grad[0]), "{at} (derivative)");
+                    undefined |= !crate::number::scalar::is_defined(g[k]);
+                    jumps |= !crate::number::scalar::is_continuous(gd[k].grad[0]);
                 }
             }
         }
