@@ -8,7 +8,7 @@ use super::certify::{certify, CERTIFY_LEAVES};
 use super::engine::Refine;
 use super::labels::{centred_label, Labels, Scope};
 use super::level::{Local, Open, Work};
-use super::{ConstraintSet, Label, PerConstraint, SlabEnds};
+use super::{ConstraintSet, Label, SlabEnds};
 
 /// Natural labels, certified where a centred form decides.
 pub(super) struct Centred<'a, S: ConstraintSet> {
@@ -30,7 +30,7 @@ impl<S: ConstraintSet> Refine<S> for Centred<'_, S> {
         &self,
         o: &Open<S::Slab>,
         slab: &S::Slab,
-        _ends: Option<PerConstraint<SlabEnds>>,
+        _ends: Option<&[SlabEnds]>,
         labels: &Labels,
         work: &mut Work,
     ) -> Option<Vec<Local>> {

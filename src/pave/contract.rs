@@ -10,7 +10,7 @@ use super::certify::{certify, CERTIFY_LEAVES, CERTIFY_LEAVES_MONOTONE};
 use super::engine::Refine;
 use super::labels::{with_w, Labels, Scope, Tentative, UNGUIDED};
 use super::level::{Local, Open, Work};
-use super::{ConstraintSet, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
+use super::{ConstraintSet, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
 use crate::number::scalar::is_defined;
 use crate::scene::Quadratic;
 use inari::{DecInterval, Interval};
@@ -45,7 +45,7 @@ impl<S: ConstraintSet> Refine<S> for Contract<'_, S> {
         &self,
         o: &Open<S::Slab>,
         slab: &S::Slab,
-        ends: Option<PerConstraint<SlabEnds>>,
+        ends: Option<&[SlabEnds]>,
         _labels: &Labels,
         work: &mut Work,
     ) -> Option<Vec<Local>> {
@@ -69,16 +69,21 @@ pub(super) fn contract_fresh<S: ConstraintSet>(
     refinable: impl Fn(&PhaseBox) -> bool,
     o: &Open<S::Slab>,
     slab: &S::Slab,
-    ends: Option<PerConstraint<SlabEnds>>,
+    ends: Option<&[SlabEnds]>,
     work: &mut Work,
 ) -> Option<Vec<Local>> {
     if !o.fresh {
         return None;
     }
-    let ends = ends.or_else(|| {
-        work.slabs += 3;
-        scope.set.slab_ends(o.bx.theta_interval())
-    });
+    let computed;
+    let ends = match ends {
+        Some(e) => Some(e),
+        None => {
+            work.slabs += 3;
+            computed = scope.set.slab_ends(o.bx.theta_interval());
+            computed.as_deref()
+        }
+    };
     contract(scope, refinable, slab, &o.bx, ends, work)
 }
 
@@ -123,10 +128,9 @@ pub(super) fn contract<S: ConstraintSet>(
     refinable: impl Fn(&PhaseBox) -> bool,
     slab: &S::Slab,
     b: &PhaseBox,
-    ends: Option<PerConstraint<SlabEnds>>,
+    ends: Option<&[SlabEnds]>,
     work: &mut Work,
 ) -> Option<Vec<Local>> {
-    let ends = ends.as_deref();
     // Sized up front or on the stack: growing these by pushes, and a
     // heap allocation for each, were several % of a coarse paving's
     // whole process.

@@ -17,8 +17,8 @@ use super::level::{
 };
 use super::tree::Tree;
 use super::{
-    BudgetStop, ConstraintSet, Label, LevelFlow, PaveOptions, PaveStats, Paving, PerConstraint,
-    PhaseBox, SlabEnds, StopReason,
+    BudgetStop, ConstraintSet, Label, LevelFlow, PaveOptions, PaveStats, Paving, PhaseBox,
+    SlabEnds, StopReason,
 };
 use inari::Interval;
 use rayon::prelude::*;
@@ -60,7 +60,7 @@ pub(super) trait Refine<S: ConstraintSet>: Sync {
         &self,
         o: &Open<S::Slab>,
         slab: &S::Slab,
-        ends: Option<PerConstraint<SlabEnds>>,
+        ends: Option<&[SlabEnds]>,
         labels: &Labels,
         work: &mut Work,
     ) -> Option<Vec<Local>>;
@@ -452,7 +452,7 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
     let mut tree = None;
     let outcome = if !scope.undecided(&labels) {
         Outcome::Leaf
-    } else if let Some(t) = method.subtree(o, slab, ends, &labels, &mut work) {
+    } else if let Some(t) = method.subtree(o, slab, ends.as_deref(), &labels, &mut work) {
         Outcome::Tree(keep(run, buf, &tree.insert(t)[..]))
     } else {
         match method.choose_axis(&o.bx) {

@@ -480,4 +480,88 @@ mod tests {
         assert_eq!(widened(tiny, 1.0), [0.0, stepped(1.0, 8)]);
         assert_eq!(widened(-1.0, -tiny), [-stepped(1.0, 8), -0.0]);
     }
+    /// A slab's end data as the pavers compute it (undecorated first, its
+    /// enclosures taken as they are where that is continuous) is the data
+    /// of the decorated evaluation throughout, slab and ends widened by
+    /// the θ-slack: every paper reading, on slabs where every coefficient
+    /// is continuous and on slabs across θ = 0 and π, where the smooth and
+    /// ice discs' coefficients are undefined.
+    #[test]
+    fn slab_end_data_is_that_of_the_decorated_evaluation() {
+        use crate::number::elementary::CrDec;
+        use crate::number::scalar::DualTheta;
+        use crate::pave::{with_slack, SlabEnds};
+        use crate::scene::slab::dual_constraints_continuous;
+        use crate::scene::{Angle, Quadratic};
+        use inari::DecInterval;
+        let same = |a: Interval, b: Interval| a == b || (a.is_empty() && b.is_empty());
+        let same_q = |a: &Quadratic<Interval>, b: &Quadratic<Interval>| {
+            (0..3).all(|k| same(a.coefficients()[k], b.coefficients()[k]))
+        };
+        let (mut fast, mut decorated) = (0, 0);
+        for id in SceneId::ALL {
+            for v in Variant::ALL {
+                let scene = Scene::default_of(id);
+                let set = SceneConstraints {
+                    scene: &scene,
+                    variant: v,
+                };
+                for (lo, hi) in [(0.7, 0.701), (1.5, 1.625), (-0.25, 0.125), (3.0, 3.25)] {
+                    let theta = Interval::try_from((lo, hi)).unwrap();
+                    let wide = with_slack(theta);
+                    match dual_constraints_continuous(&scene, v, wide) {
+                        Some(_) => fast += 1,
+                        None => decorated += 1,
+                    }
+                    let dec = |t: Interval| {
+                        scene
+                            .constraints(v, &Angle::new(CrDec(DecInterval::new(with_slack(t)))))
+                            .map(|x| x.0)
+                    };
+                    let point = |x: f64| dec(Interval::try_from((x, x)).unwrap());
+                    let dual = scene
+                        .constraints(
+                            v,
+                            &Angle::new(DualTheta::variable(CrDec(DecInterval::new(wide)), 0)),
+                        )
+                        .map(|x| DualTheta {
+                            value: x.value.0,
+                            grad: [x.grad[0].0],
+                        });
+                    let (lo_end, hi_end) = (point(lo), point(hi));
+                    let want = [
+                        SlabEnds::new(dual.omega, [lo_end.omega, hi_end.omega]),
+                        SlabEnds::new(dual.omega0, [lo_end.omega0, hi_end.omega0]),
+                    ];
+                    let (slab, got) = set.slab_and_ends(theta);
+                    let want_slab = dual.map(|x| x.value);
+                    let at = format!("{id:?} {v:?} θ {theta:?}");
+                    for (w, g) in [want_slab.omega, want_slab.omega0]
+                        .iter()
+                        .zip([slab.omega, slab.omega0])
+                    {
+                        for (a, b) in w.coefficients().into_iter().zip(g.coefficients()) {
+                            assert_eq!(a.decoration(), b.decoration(), "{at}: slab");
+                            assert!(
+                                same(a.interval().unwrap(), b.interval().unwrap()),
+                                "{at}: slab"
+                            );
+                        }
+                    }
+                    let got = got.expect("two constraints");
+                    for (w, g) in want.iter().zip(got.iter()) {
+                        assert_eq!(w.smooth, g.smooth, "{at}: smooth");
+                        assert!(same_q(&w.value, &g.value), "{at}: value");
+                        assert!(same_q(&w.d_theta, &g.d_theta), "{at}: derivative");
+                        assert!(same_q(&w.ends[0], &g.ends[0]), "{at}: lower end");
+                        assert!(same_q(&w.ends[1], &g.ends[1]), "{at}: upper end");
+                    }
+                }
+            }
+        }
+        assert!(
+            fast > 0 && decorated > 0,
+            "{fast} fast, {decorated} decorated"
+        );
+    }
 }

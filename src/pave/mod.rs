@@ -26,7 +26,8 @@ pub mod stability;
 mod tree;
 pub mod undefined;
 
-use crate::number::scalar::{is_continuous, is_defined};
+use crate::number::elementary::Cr;
+use crate::number::scalar::{is_continuous, is_defined, DualTheta};
 use crate::scene::{Angle, Constraints, Domain, Quadratic, Scene, Variant};
 use inari::{DecInterval, Interval};
 use serde::Serialize;
@@ -359,13 +360,29 @@ impl SlabEnds {
     ) -> SlabEnds {
         let value = dual.map(|d| d.value);
         let d_theta = dual.map(|d| d.grad[0]);
-        let smooth = [value, d_theta, ends[0], ends[1]]
+        let continuous = [value, d_theta]
             .iter()
             .all(|q| q.coefficients().into_iter().all(is_continuous));
         let i = |x: DecInterval| x.interval().unwrap_or(Interval::ENTIRE);
+        SlabEnds::continuous_if(continuous, value.map(i), d_theta.map(i), ends)
+    }
+
+    /// The slab's coefficients `value` and their θ-derivatives `d_theta`,
+    /// `continuous` on it or not, and the coefficients at its ends.
+    pub fn continuous_if(
+        continuous: bool,
+        value: Quadratic<Interval>,
+        d_theta: Quadratic<Interval>,
+        ends: [Quadratic<DecInterval>; 2],
+    ) -> SlabEnds {
+        let smooth = continuous
+            && ends
+                .iter()
+                .all(|q| q.coefficients().into_iter().all(is_continuous));
+        let i = |x: DecInterval| x.interval().unwrap_or(Interval::ENTIRE);
         SlabEnds {
-            value: value.map(i),
-            d_theta: d_theta.map(i),
+            value,
+            d_theta,
             ends: ends.map(|q| q.map(i)),
             smooth,
         }
@@ -468,21 +485,41 @@ impl ConstraintSet for SceneConstraints<'_> {
         theta: Interval,
         known: [Option<&Self::Slab>; 2],
     ) -> (Self::Slab, Option<PerConstraint<SlabEnds>>) {
-        let d =
-            crate::scene::slab::dual_constraints_on(self.scene, self.variant, with_slack(theta));
-        let slab = d.map(|x| x.value);
+        use crate::scene::slab::{dual_constraints_continuous, dual_constraints_on};
         let end = |k: usize, x: f64| match known[k] {
             Some(s) => Some(*s),
             None => Interval::try_from((x, x)).ok().map(|p| self.slab(p)),
         };
-        let ends = end(0, theta.inf())
-            .zip(end(1, theta.sup()))
-            .and_then(|(lo, hi)| {
+        let at_ends = end(0, theta.inf()).zip(end(1, theta.sup()));
+        let theta = with_slack(theta);
+        // Where the undecorated evaluation is continuous (mostly), its
+        // enclosures are taken as they are.
+        if let Some(d) = dual_constraints_continuous(self.scene, self.variant, theta) {
+            let slab = d.map(|x| Cr(x.value).decorated().expect("not empty"));
+            let ends = at_ends.and_then(|(lo, hi)| {
+                let one = |q: Quadratic<DualTheta<Interval>>, lo, hi| {
+                    SlabEnds::continuous_if(
+                        true,
+                        q.map(|x| x.value),
+                        q.map(|x| x.grad[0]),
+                        [lo, hi],
+                    )
+                };
                 PerConstraint::new(&[
-                    SlabEnds::new(d.omega, [lo.omega, hi.omega]),
-                    SlabEnds::new(d.omega0, [lo.omega0, hi.omega0]),
+                    one(d.omega, lo.omega, hi.omega),
+                    one(d.omega0, lo.omega0, hi.omega0),
                 ])
             });
+            return (slab, ends);
+        }
+        let d = dual_constraints_on(self.scene, self.variant, theta);
+        let slab = d.map(|x| x.value);
+        let ends = at_ends.and_then(|(lo, hi)| {
+            PerConstraint::new(&[
+                SlabEnds::new(d.omega, [lo.omega, hi.omega]),
+                SlabEnds::new(d.omega0, [lo.omega0, hi.omega0]),
+            ])
+        });
         (slab, ends)
     }
     fn centred_coefficients(&self, theta: Interval) -> Option<Vec<Quadratic<DecInterval>>> {

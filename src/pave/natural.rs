@@ -6,7 +6,7 @@ use super::bisection::Bisection;
 use super::engine::Refine;
 use super::labels::{Labels, Scope};
 use super::level::{Local, Open, Work};
-use super::{ConstraintSet, PerConstraint, SlabEnds};
+use super::{ConstraintSet, SlabEnds};
 
 /// Natural interval extension and bisection.
 pub(super) struct Natural<'a, S: ConstraintSet> {
@@ -25,7 +25,7 @@ impl<S: ConstraintSet> Refine<S> for Natural<'_, S> {
         &self,
         _o: &Open<S::Slab>,
         _slab: &S::Slab,
-        _ends: Option<PerConstraint<SlabEnds>>,
+        _ends: Option<&[SlabEnds]>,
         _labels: &Labels,
         _work: &mut Work,
     ) -> Option<Vec<Local>> {

@@ -17,7 +17,7 @@ use super::contract::{contract_fresh, roots};
 use super::engine::Refine;
 use super::labels::{Labels, Scope};
 use super::level::{Local, Open, Work};
-use super::{ConstraintSet, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
+use super::{ConstraintSet, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
 use crate::number::scalar::is_continuous;
 
 /// Levels of θ-division one fresh box is steered down in one go at most
@@ -202,7 +202,7 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
         &self,
         o: &Open<S::Slab>,
         slab: &S::Slab,
-        ends: Option<PerConstraint<SlabEnds>>,
+        ends: Option<&[SlabEnds]>,
         _labels: &Labels,
         work: &mut Work,
     ) -> Option<Vec<Local>> {
@@ -224,15 +224,17 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
         // A column the contraction removes nothing from: the part as one
         // leaf if the slab's tests decide it, else its two halves in θ̇
         // (they share the slab).
-        let ends = ends.or_else(|| {
-            self.some_continuous(slab)
-                .then(|| {
-                    work.slabs += 3;
-                    self.scope.set.slab_ends(o.bx.theta_interval())
-                })
-                .flatten()
-        });
-        let labels = self.scope.label(slab, ends.as_deref(), &o.bx, work, true);
+        let computed;
+        let ends = match ends {
+            Some(e) => Some(e),
+            None if self.some_continuous(slab) => {
+                work.slabs += 3;
+                computed = self.scope.set.slab_ends(o.bx.theta_interval());
+                computed.as_deref()
+            }
+            None => None,
+        };
+        let labels = self.scope.label(slab, ends, &o.bx, work, true);
         let all = self.scope.relevant;
         Some(if self.scope.decided_mask(&labels) & all == all {
             vec![Local::Leaf(labels)]

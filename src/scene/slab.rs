@@ -72,6 +72,26 @@ pub fn centred_factors_on(scene: &Scene, v: Variant, theta: Interval) -> [[DecIn
     std::array::from_fn(|q| std::array::from_fn(|k| at_m[q][k].0 + over[q][k].grad[0].0 * offset))
 }
 
+/// The undecorated evaluation of [`dual_constraints_on`] where it is
+/// continuous, which a result that is not empty shows ([`Cr`]): every
+/// value and θ-derivative, the decorated evaluation's enclosure, decorated
+/// as [`Cr::decorated`] says. `None` where some result is empty.
+pub fn dual_constraints_continuous(
+    scene: &Scene,
+    v: Variant,
+    theta: Interval,
+) -> Option<Constraints<DualTheta<Interval>>> {
+    let fast = scene.constraints(v, &Angle::new(DualTheta::variable(Cr(theta), 0)));
+    let plain = |x: DualTheta<Cr>| {
+        let (value, grad) = (x.value.0, x.grad[0].0);
+        (!value.is_empty() && !grad.is_empty()).then_some(DualTheta {
+            value,
+            grad: [grad],
+        })
+    };
+    decorated(fast, plain)
+}
+
 /// [`constraints_on`] over a dual θ: every coefficient with its
 /// θ-derivative over the slab (gradient index 0), undecorated first as
 /// there.
@@ -80,15 +100,12 @@ pub fn dual_constraints_on(
     v: Variant,
     theta: Interval,
 ) -> Constraints<DualTheta<DecInterval>> {
-    let fast = scene.constraints(v, &Angle::new(DualTheta::variable(Cr(theta), 0)));
-    let dec = |x: DualTheta<Cr>| {
-        Some(DualTheta {
-            value: x.value.decorated()?,
-            grad: [x.grad[0].decorated()?],
-        })
-    };
-    if let Some(c) = decorated(fast, dec) {
-        return c;
+    if let Some(c) = dual_constraints_continuous(scene, v, theta) {
+        let dec = |x: Interval| Cr(x).decorated().expect("not empty");
+        return c.map(|x| DualTheta {
+            value: dec(x.value),
+            grad: [dec(x.grad[0])],
+        });
     }
     let t = DualTheta::variable(CrDec(DecInterval::new(theta)), 0);
     scene
