@@ -397,12 +397,23 @@ pub const THETA_SLACK_ULPS: u32 = 8;
 
 /// `theta` widened by [`THETA_SLACK_ULPS`] at each end (a point too).
 pub(crate) fn with_slack(theta: Interval) -> Interval {
-    let (mut lo, mut hi) = (theta.inf(), theta.sup());
-    for _ in 0..THETA_SLACK_ULPS {
-        lo = lo.next_down();
-        hi = hi.next_up();
-    }
+    let lo = -doubles_up(-theta.inf(), THETA_SLACK_ULPS);
+    let hi = doubles_up(theta.sup(), THETA_SLACK_ULPS);
     Interval::try_from((lo, hi)).unwrap_or(theta)
+}
+
+/// `x` moved `n` doubles up, as `n` times [`f64::next_up`]: one integer
+/// step on its bits where that crosses neither 0 nor ∞ (the doubles of
+/// one sign are consecutive integers there), else step by step.
+fn doubles_up(x: f64, n: u32) -> f64 {
+    let (n, bits) = (u64::from(n), x.abs().to_bits());
+    if x > 0.0 && bits + n < f64::INFINITY.to_bits() {
+        f64::from_bits(bits + n)
+    } else if x < 0.0 && bits > n && x.is_finite() {
+        -f64::from_bits(bits - n)
+    } else {
+        (0..n).fold(x, |y, _| y.next_up())
+    }
 }
 
 /// Ω and Ω₀ of a scene file whose regions are not both of degree ≤ 2 in
@@ -822,5 +833,62 @@ pub fn pave_scene_method<F: LevelFlow>(
             mo,
             progress,
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::doubles_up;
+    use proptest::prelude::*;
+
+    fn stepped(x: f64, n: u32) -> f64 {
+        (0..n).fold(x, |y, _| y.next_up())
+    }
+
+    /// Bit for bit (the sign of a zero too) what `next_up` gives step by
+    /// step: around 0, the subnormals, the largest doubles and ∞.
+    #[test]
+    fn doubles_up_is_next_up_repeated_at_the_edges() {
+        let tiny = f64::from_bits(1);
+        let edges = [
+            0.0,
+            -0.0,
+            tiny,
+            -tiny,
+            f64::from_bits(5),
+            -f64::from_bits(5),
+            f64::from_bits(8),
+            -f64::from_bits(8),
+            -f64::from_bits(9),
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            1.0,
+            -1.0,
+            f64::MAX,
+            -f64::MAX,
+            f64::MAX.next_down().next_down(),
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for x in edges {
+            for n in [0, 1, 2, 7, 8, 9, 20] {
+                let (got, want) = (doubles_up(x, n), stepped(x, n));
+                assert_eq!(
+                    got.to_bits(),
+                    want.to_bits(),
+                    "{x:e} up {n}: {got:e} vs {want:e}"
+                );
+            }
+        }
+        assert!(doubles_up(f64::NAN, 8).is_nan());
+    }
+
+    proptest! {
+        #[test]
+        fn doubles_up_is_next_up_repeated(bits in any::<u64>(), n in 0u32..40) {
+            let x = f64::from_bits(bits);
+            prop_assume!(!x.is_nan());
+            prop_assert_eq!(doubles_up(x, n).to_bits(), stepped(x, n).to_bits());
+        }
     }
 }
