@@ -33,6 +33,22 @@ impl<S: ConstraintSet> Refine<S> for Centred<'_, S> {
         _ends: Option<&[SlabEnds]>,
         labels: &Labels,
         work: &mut Work,
+        out: &mut Vec<Local>,
+    ) -> bool {
+        self.certified(o, slab, labels, work)
+            .map(|t| out.extend(t))
+            .is_some()
+    }
+}
+
+impl<S: ConstraintSet> Centred<'_, S> {
+    /// The certified subtree [`Refine::subtree`] appends, if any.
+    fn certified(
+        &self,
+        o: &Open<S::Slab>,
+        slab: &S::Slab,
+        labels: &Labels,
+        work: &mut Work,
     ) -> Option<Vec<Local>> {
         let (scope, b) = (&self.scope, &o.bx);
         let w = b.theta_dot_interval();

@@ -48,7 +48,8 @@ impl<S: ConstraintSet> Refine<S> for Contract<'_, S> {
         ends: Option<&[SlabEnds]>,
         _labels: &Labels,
         work: &mut Work,
-    ) -> Option<Vec<Local>> {
+        out: &mut Vec<Local>,
+    ) -> bool {
         contract_fresh(
             &self.scope,
             |b| self.grid.choose_axis(b).is_some(),
@@ -56,14 +57,17 @@ impl<S: ConstraintSet> Refine<S> for Contract<'_, S> {
             slab,
             ends,
             work,
+            out,
         )
     }
 }
 
-/// The contraction of a box whose slab is new at this level (`None` for
-/// one that shares its parent's, already contracted). `ends`: the slab's
-/// end data if computed with it, else computed here. `refinable`: an
-/// undecided part is refined further (else it is an undecided leaf).
+/// The contraction of a box whose slab is new at this level (none for
+/// one that shares its parent's, already contracted), appended to `out`
+/// as [`contract`] does. `ends`: the slab's end data if computed with it,
+/// else computed here. `refinable`: an undecided part is refined further
+/// (else it is an undecided leaf).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn contract_fresh<S: ConstraintSet>(
     scope: &Scope<'_, S>,
     refinable: impl Fn(&PhaseBox) -> bool,
@@ -71,9 +75,10 @@ pub(super) fn contract_fresh<S: ConstraintSet>(
     slab: &S::Slab,
     ends: Option<&[SlabEnds]>,
     work: &mut Work,
-) -> Option<Vec<Local>> {
+    out: &mut Vec<Local>,
+) -> bool {
     if !o.fresh {
-        return None;
+        return false;
     }
     let computed;
     let ends = match ends {
@@ -84,7 +89,7 @@ pub(super) fn contract_fresh<S: ConstraintSet>(
             computed.as_deref()
         }
     };
-    contract(scope, refinable, slab, &o.bx, ends, work)
+    contract(scope, refinable, slab, &o.bx, ends, work, out)
 }
 
 /// The θ̇-range `[lo, hi]` of `b` cut at `cuts` (sorted, inside), every
@@ -119,8 +124,8 @@ fn verified_pieces<S: ConstraintSet>(
 
 /// Contraction of a box on a new θ-slab: the θ̇-partition into parts
 /// decided for every relevant constraint (verified leaves) and the rest
-/// (open, or undecided leaves at the resolution). `None` when it
-/// removes nothing.
+/// (open, or undecided leaves at the resolution), appended to `out`;
+/// false, `out` as it was, when it removes nothing.
 /// `ends`: the slab's ends and θ-derivatives, for tight bands (the
 /// roots at the two ends) and labels by the checker's monotone test.
 pub(super) fn contract<S: ConstraintSet>(
@@ -130,18 +135,25 @@ pub(super) fn contract<S: ConstraintSet>(
     b: &PhaseBox,
     ends: Option<&[SlabEnds]>,
     work: &mut Work,
-) -> Option<Vec<Local>> {
+    out: &mut Vec<Local>,
+) -> bool {
     // Sized up front or on the stack: growing these by pushes, and a
     // heap allocation for each, were several % of a coarse paving's
     // whole process.
     let mut steers = [Steer::NONE; MAX_CONSTRAINTS];
     let mut k = 0;
     for i in scope.relevant_own() {
-        let q = scope.set.quadratic(slab, i)?;
-        steers[k] = match ends.and_then(|e| e.get(i)) {
-            Some(e) => Steer::from_ends(e)?,
-            None => Steer::new(&q)?,
+        let Some(q) = scope.set.quadratic(slab, i) else {
+            return false;
         };
+        let steer = match ends.and_then(|e| e.get(i)) {
+            Some(e) => Steer::from_ends(e),
+            None => Steer::new(&q),
+        };
+        let Some(steer) = steer else {
+            return false;
+        };
+        steers[k] = steer;
         k += 1;
     }
     let qs = &steers[..k];
@@ -212,7 +224,7 @@ pub(super) fn contract<S: ConstraintSet>(
         j += 1;
     }
     if !segs.iter().any(decided) {
-        return None;
+        return false;
     }
     // Verify each decided part, stepping its ends inward as needed.
     for j in 0..segs.len() {
@@ -360,10 +372,9 @@ pub(super) fn contract<S: ConstraintSet>(
     });
     let merged = segs;
     if merged.len() == 1 && merged[0].tree.is_none() {
-        return None;
+        return false;
     }
 
-    let mut out = Vec::with_capacity(2 * merged.len() + 4);
     let last = merged.len() - 1;
     for (j, s) in merged.into_iter().enumerate() {
         if j < last {
@@ -388,7 +399,7 @@ pub(super) fn contract<S: ConstraintSet>(
             }
         }
     }
-    Some(out)
+    true
 }
 
 struct Seg {

@@ -12,7 +12,7 @@
 use super::bisection::Bisection;
 use super::labels::Scope;
 use super::level::{
-    keep, make_room, par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan, Span,
+    make_room, par_each_mut, refill, serial, Done, Labels, Local, Open, Outcome, Plan, Span,
     Subtrees, Work, PAR_MIN,
 };
 use super::tree::Tree;
@@ -54,8 +54,9 @@ pub(super) trait Refine<S: ConstraintSet>: Sync {
     fn split_unevaluated(&self, _b: &PhaseBox, _levels: u32, _out: &mut Vec<Local>) -> bool {
         false
     }
-    /// A subtree for an undecided box, instead of bisecting it. `ends`: the
-    /// slab's end data when computed with the slab.
+    /// A subtree for an undecided box, instead of bisecting it, appended to
+    /// `out`; false, `out` as it was, for none. `ends`: the slab's end
+    /// data when computed with the slab.
     fn subtree(
         &self,
         o: &Open<S::Slab>,
@@ -63,7 +64,8 @@ pub(super) trait Refine<S: ConstraintSet>: Sync {
         ends: Option<&[SlabEnds]>,
         labels: &Labels,
         work: &mut Work,
-    ) -> Option<Vec<Local>>;
+        out: &mut Vec<Local>,
+    ) -> bool;
 }
 
 /// What is left unrefined, hence why refinement stopped.
@@ -449,11 +451,10 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
         }
     };
     let labels = scope.natural(slab, &o.bx, &mut work);
-    let mut tree = None;
     let outcome = if !scope.undecided(&labels) {
         Outcome::Leaf
-    } else if let Some(t) = method.subtree(o, slab, ends.as_deref(), &labels, &mut work) {
-        Outcome::Tree(keep(run, buf, &tree.insert(t)[..]))
+    } else if method.subtree(o, slab, ends.as_deref(), &labels, &mut work, buf) {
+        Outcome::Tree(Span::of(run, start, buf))
     } else {
         match method.choose_axis(&o.bx) {
             Some(ax) => Outcome::Split(ax),
@@ -461,7 +462,7 @@ fn visit<S: ConstraintSet, R: Refine<S>>(
         }
     };
     // Kept (and allocated) only for children that share it.
-    let shares = outcome.shares_slab(tree.as_deref().unwrap_or_default());
+    let shares = outcome.shares_slab(&buf[start..]);
     let slab = own.filter(|_| shares).map(Arc::new);
     Done {
         labels,

@@ -86,13 +86,6 @@ impl Subtrees {
     }
 }
 
-/// `tree` appended to run `run`'s buffer `buf`: its place.
-pub(super) fn keep(run: usize, buf: &mut Vec<Local>, tree: &[Local]) -> Span {
-    let start = buf.len();
-    buf.extend_from_slice(tree);
-    Span::of(run, start, buf)
-}
-
 impl Span {
     /// The subtree written to run `run`'s buffer `buf` from `start` on.
     pub fn of(run: usize, start: usize, buf: &[Local]) -> Span {
@@ -259,7 +252,14 @@ mod tests {
         // Kept in one run's buffer, one after another, as the engine does.
         let mut subtrees = Subtrees::default();
         let buf = &mut subtrees.reset(2)[1];
-        let spans: Vec<Span> = trees.iter().map(|t| keep(1, buf, t)).collect();
+        let spans: Vec<Span> = trees
+            .iter()
+            .map(|t| {
+                let start = buf.len();
+                buf.extend_from_slice(t);
+                Span::of(1, start, buf)
+            })
+            .collect();
         let mut cases = vec![
             (Outcome::Leaf, false),
             (Outcome::Split(0), false),

@@ -28,7 +28,8 @@ impl<S: ConstraintSet> Refine<S> for Natural<'_, S> {
         _ends: Option<&[SlabEnds]>,
         _labels: &Labels,
         _work: &mut Work,
-    ) -> Option<Vec<Local>> {
-        None
+        _out: &mut Vec<Local>,
+    ) -> bool {
+        false
     }
 }

@@ -205,9 +205,10 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
         ends: Option<&[SlabEnds]>,
         _labels: &Labels,
         work: &mut Work,
-    ) -> Option<Vec<Local>> {
+        out: &mut Vec<Local>,
+    ) -> bool {
         // (A slab still too coarse was split before this.)
-        let t = contract_fresh(
+        let contracted = contract_fresh(
             &self.scope,
             |b| {
                 self.choose_axis(b).is_some()
@@ -217,9 +218,10 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
             slab,
             ends,
             work,
+            out,
         );
-        if t.is_some() || !self.in_column(&o.bx) {
-            return t;
+        if contracted || !self.in_column(&o.bx) {
+            return contracted;
         }
         // A column the contraction removes nothing from: the part as one
         // leaf if the slab's tests decide it, else its two halves in θ̇
@@ -236,11 +238,12 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
         };
         let labels = self.scope.label(slab, ends, &o.bx, work, true);
         let all = self.scope.relevant;
-        Some(if self.scope.decided_mask(&labels) & all == all {
-            vec![Local::Leaf(labels)]
+        if self.scope.decided_mask(&labels) & all == all {
+            out.push(Local::Leaf(labels));
         } else {
-            vec![Local::Mid(1), Local::Open, Local::Open]
-        })
+            out.extend([Local::Mid(1), Local::Open, Local::Open]);
+        }
+        true
     }
 }
 
