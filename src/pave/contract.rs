@@ -446,8 +446,16 @@ impl Steer {
         d_theta: None,
     };
     fn new(q: &Quadratic<DecInterval>) -> Option<Steer> {
-        let b = |x: DecInterval| -> Option<[f64; 2]> {
-            let i = x.interval().filter(|_| is_defined(x))?;
+        let i = |x: DecInterval| x.interval().filter(|_| is_defined(x));
+        Steer::bounded(&Quadratic {
+            c2: i(q.c2)?,
+            c1: i(q.c1)?,
+            c0: i(q.c0)?,
+        })
+    }
+    /// Coefficients bounded (so not empty either).
+    fn bounded(q: &Quadratic<Interval>) -> Option<Steer> {
+        let b = |i: Interval| {
             (i.inf().is_finite() && i.sup().is_finite()).then_some([i.inf(), i.sup()])
         };
         Some(Steer {
@@ -462,12 +470,6 @@ impl Steer {
         if !e.smooth {
             return None;
         }
-        let dec = |x: Interval| DecInterval::new(x);
-        let value = Quadratic {
-            c2: dec(e.value.c2),
-            c1: dec(e.value.c1),
-            c0: dec(e.value.c0),
-        };
         let mid = |x: Interval| -> Option<f64> {
             let m = x.mid();
             m.is_finite().then_some(m)
@@ -476,7 +478,7 @@ impl Steer {
         Some(Steer {
             ends: Some([mids(&e.ends[0])?, mids(&e.ends[1])?]),
             d_theta: Some(mids(&e.d_theta)?),
-            ..Steer::new(&value)?
+            ..Steer::bounded(&e.value)?
         })
     }
     fn at_ends(&self, w: f64) -> Option<[f64; 2]> {
