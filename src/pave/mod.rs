@@ -838,7 +838,8 @@ pub fn pave_scene_method<F: LevelFlow>(
 
 #[cfg(test)]
 mod tests {
-    use super::doubles_up;
+    use super::{doubles_up, with_slack, THETA_SLACK_ULPS};
+    use inari::Interval;
     use proptest::prelude::*;
 
     fn stepped(x: f64, n: u32) -> f64 {
@@ -889,6 +890,27 @@ mod tests {
             let x = f64::from_bits(bits);
             prop_assume!(!x.is_nan());
             prop_assert_eq!(doubles_up(x, n).to_bits(), stepped(x, n).to_bits());
+        }
+
+        /// The slack is `next_down` and `next_up` applied eight times.
+        #[test]
+        fn the_slack_is_eight_doubles_each_way(
+            a in -4.0f64..4.0,
+            w in 0.0f64..1e-3,
+            tiny in any::<bool>(),
+        ) {
+            // Next to 0 as well: slab ends that are subnormal or 0.
+            let lo = if tiny { a * 1e-310 } else { a };
+            let theta = Interval::try_from((lo, lo + w)).unwrap();
+            let (mut l, mut h) = (theta.inf(), theta.sup());
+            for _ in 0..THETA_SLACK_ULPS {
+                (l, h) = (l.next_down(), h.next_up());
+            }
+            let got = with_slack(theta);
+            prop_assert_eq!(
+                (got.inf().to_bits(), got.sup().to_bits()),
+                (l.to_bits(), h.to_bits())
+            );
         }
     }
 }
