@@ -80,15 +80,11 @@ pub(super) fn contract_fresh<S: ConstraintSet>(
     if !o.fresh {
         return false;
     }
-    let computed;
-    let ends = match ends {
-        Some(e) => Some(e),
-        None => {
-            work.slabs += 3;
-            computed = scope.set.slab_ends(o.bx.theta_interval());
-            computed.as_deref()
-        }
-    };
+    let computed = ends
+        .is_none()
+        .then(|| scope.slab_ends(o.bx.theta_interval(), work))
+        .flatten();
+    let ends = ends.or(computed.as_deref());
     contract(scope, refinable, slab, &o.bx, ends, work, out)
 }
 

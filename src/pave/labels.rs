@@ -6,7 +6,7 @@
 
 pub(super) use super::level::Labels;
 use super::level::Work;
-use super::{ConstraintSet, Label, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
+use super::{ConstraintSet, Label, PerConstraint, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
 use crate::number::scalar::{is_defined, Dual};
 use crate::scene::Quadratic;
 use inari::{DecInterval, Interval};
@@ -114,6 +114,13 @@ impl<S: ConstraintSet> Scope<'_, S> {
         labels
     }
 
+    /// The slab's end data over `theta`, computed here (its three
+    /// evaluations counted).
+    pub fn slab_ends(&self, theta: Interval, work: &mut Work) -> Option<PerConstraint<SlabEnds>> {
+        work.slabs += 3;
+        self.set.slab_ends(theta)
+    }
+
     fn copy_aliases(&self, labels: &mut Labels) {
         for (i, s) in self.same_as.iter().enumerate() {
             if let Some(j) = *s {
@@ -174,7 +181,7 @@ fn widened(lo: f64, hi: f64) -> [f64; 2] {
 /// (a 0 stays): on the bits of a finite double, a step up is +1 for a
 /// positive one and −1 for a negative one, and the finite doubles of one
 /// sign are consecutive integers, ending at ±∞.
-fn ulps_away(x: f64, n: u32) -> f64 {
+pub(super) fn ulps_away(x: f64, n: u32) -> f64 {
     if x == 0.0 || x.is_nan() || x == f64::INFINITY {
         return x;
     }

@@ -360,9 +360,7 @@ impl SlabEnds {
     ) -> SlabEnds {
         let value = dual.map(|d| d.value);
         let d_theta = dual.map(|d| d.grad[0]);
-        let continuous = [value, d_theta]
-            .iter()
-            .all(|q| q.coefficients().into_iter().all(is_continuous));
+        let continuous = value.is_continuous() && d_theta.is_continuous();
         let i = |x: DecInterval| x.interval().unwrap_or(Interval::ENTIRE);
         SlabEnds::continuous_if(continuous, value.map(i), d_theta.map(i), ends)
     }
@@ -375,10 +373,7 @@ impl SlabEnds {
         d_theta: Quadratic<Interval>,
         ends: [Quadratic<DecInterval>; 2],
     ) -> SlabEnds {
-        let smooth = continuous
-            && ends
-                .iter()
-                .all(|q| q.coefficients().into_iter().all(is_continuous));
+        let smooth = continuous && ends.iter().all(Quadratic::is_continuous);
         let i = |x: DecInterval| x.interval().unwrap_or(Interval::ENTIRE);
         SlabEnds {
             value,
@@ -402,17 +397,14 @@ pub(crate) fn with_slack(theta: Interval) -> Interval {
     Interval::try_from((lo, hi)).unwrap_or(theta)
 }
 
-/// `x` moved `n` doubles up, as `n` times [`f64::next_up`]: one integer
-/// step on its bits where that crosses neither 0 nor ∞ (the doubles of
-/// one sign are consecutive integers there), else step by step.
+/// `x` moved `n` doubles up, as `n` times [`f64::next_up`]: one step on
+/// its bits ([`labels::ulps_away`]) where that does not reach 0, else
+/// step by step (across 0).
 fn doubles_up(x: f64, n: u32) -> f64 {
-    let (n, bits) = (u64::from(n), x.abs().to_bits());
-    if x > 0.0 && bits + n < f64::INFINITY.to_bits() {
-        f64::from_bits(bits + n)
-    } else if x < 0.0 && bits > n && x.is_finite() {
-        -f64::from_bits(bits - n)
-    } else {
+    if x == 0.0 || (x < 0.0 && x.abs().to_bits() <= u64::from(n)) {
         (0..n).fold(x, |y, _| y.next_up())
+    } else {
+        labels::ulps_away(x, n)
     }
 }
 

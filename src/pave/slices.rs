@@ -18,7 +18,6 @@ use super::engine::Refine;
 use super::labels::{Labels, Scope};
 use super::level::{Local, Open, Work};
 use super::{ConstraintSet, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
-use crate::number::scalar::is_continuous;
 
 /// Levels of θ-division one fresh box is steered down in one go at most
 /// (at most 2^levels boxes): each split point's roots are computed once,
@@ -83,7 +82,7 @@ impl<'a, S: ConstraintSet> Slices<'a, S> {
             self.scope
                 .set
                 .quadratic(slab, i)
-                .is_some_and(|q| q.coefficients().into_iter().all(is_continuous))
+                .is_some_and(|q| q.is_continuous())
         })
     }
 
@@ -226,16 +225,10 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
         // A column the contraction removes nothing from: the part as one
         // leaf if the slab's tests decide it, else its two halves in θ̇
         // (they share the slab).
-        let computed;
-        let ends = match ends {
-            Some(e) => Some(e),
-            None if self.some_continuous(slab) => {
-                work.slabs += 3;
-                computed = self.scope.set.slab_ends(o.bx.theta_interval());
-                computed.as_deref()
-            }
-            None => None,
-        };
+        let computed = (ends.is_none() && self.some_continuous(slab))
+            .then(|| self.scope.slab_ends(o.bx.theta_interval(), work))
+            .flatten();
+        let ends = ends.or(computed.as_deref());
         let labels = self.scope.label(slab, ends, &o.bx, work, true);
         let all = self.scope.relevant;
         if self.scope.decided_mask(&labels) & all == all {

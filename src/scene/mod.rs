@@ -90,6 +90,15 @@ impl<T> Quadratic<T> {
     }
 }
 
+impl Quadratic<DecInterval> {
+    /// Every coefficient continuous (`≥ dac`) and defined.
+    pub fn is_continuous(&self) -> bool {
+        self.coefficients()
+            .into_iter()
+            .all(crate::number::scalar::is_continuous)
+    }
+}
+
 impl<T: Scalar> Quadratic<T> {
     pub fn eval(&self, theta_dot: T) -> T {
         self.c2 * theta_dot.sqr() + self.c1 * theta_dot + self.c0
