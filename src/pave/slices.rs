@@ -1,8 +1,9 @@
 //! `slices`: the contraction with θ-only refinement: an adaptive 1-D
-//! subdivision in θ that equidistributes the undecided area (a slab is
-//! split while the band its quadratics' end-point roots predict is above
-//! ε² of the domain's area), then one contraction per final slab whose cuts
-//! are placed at those roots and verified by the monotone test.
+//! subdivision in θ that equidistributes the undecided area (a slab whose
+//! quadratics' roots predict a band above ε² of the domain's area is cut
+//! into about as many parts as that band needs, [`parts`]), then one
+//! contraction per final slab whose cuts are placed at those roots and
+//! verified by the monotone test.
 //!
 //! A slab at the width floor that the contraction removes nothing from (a
 //! vertical line where a quadratic's θ̇² coefficient is 0, as θ = π/2 for
@@ -113,26 +114,56 @@ impl<'a, S: ConstraintSet> Slices<'a, S> {
     /// A fresh slab's θ-division before interval work, depth-first, down
     /// `depth` more levels: a slab that can still be split and whose
     /// predicted undecided band ([`estimated_band`]) is above the threshold
-    /// is split at its midpoint; `lo` and `hi` are the roots at its ends.
+    /// is split into the [`parts`] it needs, each part predicted to need
+    /// one slab kept as it is; `lo` and `hi` are the roots at its ends.
     fn divide(&self, b: &PhaseBox, lo: &RootsAt, hi: &RootsAt, depth: u32, out: &mut Vec<Local>) {
         if self.choose_axis(b).is_none() {
             out.push(Local::Settled);
             return;
         }
-        let (l, h) = b.split(0);
-        let mid = self.roots_at(l.theta[1], b.theta_dot);
-        if estimated_band(b, [lo, &mid, hi]) <= self.slab_area {
+        let m = b.midpoint(0);
+        let mid = self.roots_at(m, b.theta_dot);
+        let band = estimated_band(b, [lo, &mid, hi]);
+        if band <= self.slab_area {
             out.push(Local::Settled);
             return;
         }
-        out.push(Local::Mid(0));
-        if depth == 0 {
-            out.extend([Local::Open, Local::Open]);
-            return;
+        let [j, k] = parts(band / self.slab_area);
+        let off_centre = (2.0 * j != k)
+            .then(|| b.theta[0] + (b.theta[1] - b.theta[0]) * (j / k))
+            .and_then(|p| Some((p, b.split_at(0, p)?)))
+            .filter(|&(p, _)| p != m);
+        let (at, (l, h)) = match off_centre {
+            Some((p, halves)) => {
+                out.push(Local::At(0, p));
+                (self.roots_at(p, b.theta_dot), halves)
+            }
+            None => {
+                out.push(Local::Mid(0));
+                (mid, b.split(0))
+            }
+        };
+        for (part, [lo, hi], n) in [(l, [lo, &at], j), (h, [&at, hi], k - j)] {
+            if n <= 1.0 {
+                out.push(Local::Settled);
+            } else if depth == 0 {
+                out.push(Local::Open);
+            } else {
+                self.divide(&part, lo, hi, depth - 1, out);
+            }
         }
-        self.divide(&l, lo, &mid, depth - 1, out);
-        self.divide(&h, &mid, hi, depth - 1, out);
     }
+}
+
+/// How a slab whose predicted band is `ratio` (> 1) times the threshold
+/// is divided: into k = ⌈√ratio⌉ slabs of about the threshold's band (the
+/// band grows as the width squared), split after the first j = ⌊k/2⌋ of
+/// k equal parts (the midpoint for even k). `[j, k]`. Where halving alone
+/// would leave some slabs at a quarter of the threshold, these stay near
+/// it, so fewer slabs reach the same undecided area.
+fn parts(ratio: f64) -> [f64; 2] {
+    let k = ratio.sqrt().ceil();
+    [(k / 2.0).floor(), k]
 }
 
 /// An estimate (steering only) of the undecided area of slab `b`, from
@@ -190,7 +221,7 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
         let depth = levels.clamp(1, STEER_LEVELS) - 1;
         let start = out.len();
         self.divide(b, &lo, &hi, depth, out);
-        let divided = matches!(out[start], Local::Mid(_));
+        let divided = matches!(out[start], Local::Mid(_) | Local::At(..));
         if !divided {
             out.truncate(start);
         }
@@ -249,7 +280,9 @@ mod tests {
     /// The rule one box at a time, every end recomputed: split while the
     /// box can be and the roots' spread over its ends and middle, times
     /// its width, is above the slab area (the full box where their number
-    /// changes). `Local::Settled` for a box kept.
+    /// changes), into k = ⌈√(band / slab area)⌉ equal parts' first
+    /// ⌊k/2⌋ and the rest; a side of one part is kept. `Local::Settled` for
+    /// a box kept.
     fn reference(s: &Slices<'_, SceneConstraints<'_>>, b: &PhaseBox, out: &mut Vec<Local>) {
         let w = b.theta_dot;
         let roots_at = |t: f64| -> Option<Vec<f64>> {
@@ -281,13 +314,29 @@ mod tests {
             }
             _ => full,
         };
-        if s.choose_axis(b).is_some() && band > s.slab_area {
-            out.push(Local::Mid(0));
-            let (l, h) = b.split(0);
-            reference(s, &l, out);
-            reference(s, &h, out);
-        } else {
+        if s.choose_axis(b).is_none() || band <= s.slab_area {
             out.push(Local::Settled);
+            return;
+        }
+        let k = (band / s.slab_area).sqrt().ceil() as u64;
+        let j = k / 2;
+        let p = t0 + (t1 - t0) * (j as f64 / k as f64);
+        let (l, h) = match b.split_at(0, p) {
+            Some(halves) if k % 2 == 1 && p != b.midpoint(0) => {
+                out.push(Local::At(0, p));
+                halves
+            }
+            _ => {
+                out.push(Local::Mid(0));
+                b.split(0)
+            }
+        };
+        for (part, n) in [(l, j), (h, k - j)] {
+            if n == 1 {
+                out.push(Local::Settled);
+            } else {
+                reference(s, &part, out);
+            }
         }
     }
 
@@ -305,7 +354,8 @@ mod tests {
             out.push(Local::Settled);
             return;
         }
-        let boxes = t.iter().filter(|l| !matches!(l, Local::Mid(_))).count();
+        let is_split = |l: &Local| matches!(l, Local::Mid(_) | Local::At(..));
+        let boxes = t.iter().filter(|l| !is_split(l)).count();
         assert!(boxes <= 1 << levels, "{boxes} boxes in {levels} levels");
         fn walk(
             s: &Slices<'_, SceneConstraints<'_>>,
@@ -318,9 +368,12 @@ mod tests {
             let item = t[*pos];
             *pos += 1;
             match item {
-                Local::Mid(0) => {
+                Local::Mid(0) | Local::At(0, _) => {
                     out.push(item);
-                    let (l, h) = b.split(0);
+                    let (l, h) = match item {
+                        Local::At(_, p) => b.split_at(0, p).expect("a point inside"),
+                        _ => b.split(0),
+                    };
                     walk(s, t, pos, &l, levels, out);
                     walk(s, t, pos, &h, levels, out);
                 }
@@ -362,10 +415,18 @@ mod tests {
                 let s = Slices::new(scope, root, eps);
                 let mut want = Vec::new();
                 reference(&s, &root, &mut want);
-                let splits = want.iter().filter(|l| matches!(l, Local::Mid(_))).count();
+                let splits = want
+                    .iter()
+                    .filter(|l| matches!(l, Local::Mid(_) | Local::At(..)))
+                    .count();
                 assert!(
                     splits > 1 << STEER_LEVELS,
                     "{id:?}: {splits} splits, deeper than one go"
+                );
+                let off_centre = want.iter().filter(|l| matches!(l, Local::At(..))).count();
+                assert!(
+                    off_centre > 0 && off_centre < splits,
+                    "{id:?}: {off_centre} of {splits} splits off the midpoint"
                 );
                 let key = |t: &[Local]| format!("{t:?}");
                 for levels in [1, 3, STEER_LEVELS, 40] {
