@@ -199,10 +199,12 @@ fn grow_levels<S: ConstraintSet, R: Refine<S>, F: LevelFlow>(
         // [`LastEnd`]: the work counted is the same on any thread count.
         make_room(&mut done, frontier.len());
         let boxes = &frontier[..];
-        let levels = division_levels(frontier.len(), opts.max_boxes.saturating_sub(tree.leaves()));
-        let visit = |(r, buf)| visit_run(method, boxes, levels, r, buf);
-        let runs = subtrees.reset(frontier.len().div_ceil(VISIT_RUN));
-        if serial(frontier.len(), PAR_MIN_HEAVY) {
+        let room = opts.max_boxes.saturating_sub(tree.leaves());
+        let levels = division_levels(level, frontier.len(), room);
+        let run = run_length(level);
+        let visit = |(r, buf)| visit_run(method, (boxes, run), levels, r, buf);
+        let runs = subtrees.reset(frontier.len().div_ceil(run));
+        if serial(frontier.len(), PAR_MIN_HEAVY) && run == VISIT_RUN {
             done.extend(runs.iter_mut().enumerate().flat_map(visit));
         } else {
             done.par_extend(runs.par_iter_mut().enumerate().flat_map_iter(visit));
@@ -401,17 +403,17 @@ impl<Sl> LastEnd<Sl> {
     }
 }
 
-/// Processes run `r` of a level's `boxes` in order, with its own
-/// [`LastEnd`], its subtrees kept in `buf`.
+/// Processes run `r` (of `run` boxes) of a level's `boxes` in order, with
+/// its own [`LastEnd`], its subtrees kept in `buf`.
 fn visit_run<'a, S: ConstraintSet, R: Refine<S>>(
     method: &'a R,
-    boxes: &'a [Open<S::Slab>],
+    (boxes, run): (&'a [Open<S::Slab>], usize),
     levels: u32,
     r: usize,
     buf: &'a mut Vec<Local>,
 ) -> impl Iterator<Item = Done<S::Slab>> + 'a {
     let mut last = LastEnd::default();
-    let ks = r * VISIT_RUN..boxes.len().min((r + 1) * VISIT_RUN);
+    let ks = r * run..boxes.len().min((r + 1) * run);
     ks.map(move |k| visit(method, &boxes[k], levels, &mut last, (r, &mut *buf)))
 }
 
@@ -566,12 +568,34 @@ const PAR_MIN_HEAVY: usize = 512;
 /// level must stay short and its memory small.
 const DIVISION_BOXES: usize = 1 << 20;
 
-/// How many levels down each of a level's `boxes` fresh boxes may be
-/// divided before interval work (at least one: a single split), so that
-/// the level makes at most [`DIVISION_BOXES`] boxes and no more than the
-/// budget's `room`.
-fn division_levels(boxes: usize, room: usize) -> u32 {
-    (DIVISION_BOXES.min(room) / boxes.max(1)).max(2).ilog2()
+/// Levels the root is divided at most before interval work: the boxes it
+/// leaves open are the next level's, one run each, shared by the threads,
+/// and each is divided as deep as [`DIVISION_BOXES`] allows, so that most
+/// final slabs of a paving are visited in one level, in order, and share
+/// the slabs where they meet.
+const ROOT_LEVELS: u32 = 6;
+
+/// How many levels down each of level `level`'s `boxes` fresh boxes may
+/// be divided before interval work (at least one: a single split), so
+/// that the level makes at most [`DIVISION_BOXES`] boxes and no more than
+/// the budget's `room`; the root at most [`ROOT_LEVELS`].
+fn division_levels(level: u32, boxes: usize, room: usize) -> u32 {
+    let levels = (DIVISION_BOXES.min(room) / boxes.max(1)).max(2).ilog2();
+    if level == 0 {
+        levels.min(ROOT_LEVELS)
+    } else {
+        levels
+    }
+}
+
+/// Boxes per run on level `level`: one on the root's open boxes (each a
+/// division of its own), else [`VISIT_RUN`].
+fn run_length(level: u32) -> usize {
+    if level == 1 {
+        1
+    } else {
+        VISIT_RUN
+    }
 }
 
 /// Boxes visited in order by one thread, sharing end slabs ([`LastEnd`]).

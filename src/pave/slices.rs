@@ -20,11 +20,6 @@ use super::labels::{Labels, Scope};
 use super::level::{Local, Open, Work};
 use super::{ConstraintSet, PhaseBox, SlabEnds, MAX_CONSTRAINTS};
 
-/// Levels of θ-division one fresh box is steered down in one go at most
-/// (at most 2^levels boxes): each split point's roots are computed once,
-/// and a few levels of open boxes remain for the threads to share.
-const STEER_LEVELS: u32 = 6;
-
 /// Adaptive θ-slabs, each contracted in θ̇.
 pub(super) struct Slices<'a, S: ConstraintSet> {
     pub scope: Scope<'a, S>,
@@ -211,14 +206,14 @@ impl<S: ConstraintSet> Refine<S> for Slices<'_, S> {
     }
 
     /// A fresh slab that can still be split and whose predicted undecided
-    /// band is above the threshold, divided up to [`STEER_LEVELS`] levels
-    /// down (and the engine's `levels`).
+    /// band is above the threshold, divided up to the engine's `levels`
+    /// down, each split point's roots computed once.
     fn split_unevaluated(&self, b: &PhaseBox, levels: u32, out: &mut Vec<Local>) -> bool {
         if self.choose_axis(b).is_none() {
             return false;
         }
         let [lo, hi] = b.theta.map(|t| self.roots_at(t, b.theta_dot));
-        let depth = levels.clamp(1, STEER_LEVELS) - 1;
+        let depth = levels.max(1) - 1;
         let start = out.len();
         self.divide(b, &lo, &hi, depth, out);
         let divided = matches!(out[start], Local::Mid(_) | Local::At(..));
@@ -420,7 +415,7 @@ mod tests {
                     .filter(|l| matches!(l, Local::Mid(_) | Local::At(..)))
                     .count();
                 assert!(
-                    splits > 1 << STEER_LEVELS,
+                    splits > 1 << 6,
                     "{id:?}: {splits} splits, deeper than one go"
                 );
                 let off_centre = want.iter().filter(|l| matches!(l, Local::At(..))).count();
@@ -429,7 +424,7 @@ mod tests {
                     "{id:?}: {off_centre} of {splits} splits off the midpoint"
                 );
                 let key = |t: &[Local]| format!("{t:?}");
-                for levels in [1, 3, STEER_LEVELS, 40] {
+                for levels in [1, 3, 6, 40] {
                     let mut got = Vec::new();
                     engine_view(&s, &root, levels, &mut got);
                     assert_eq!(

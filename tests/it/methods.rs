@@ -401,10 +401,13 @@ fn slices_guard_pieces_avoid_re_slabbing_omega0() {
 /// slabs at its θ-ends. Where a slab begins at the end of the one visited
 /// before it, the slab there is computed once (`LastEnd`): about two slab
 /// evaluations per final slab, not three (3 per slab when each computes its
-/// own ends).
+/// own ends). Neighbours share it only when visited in the same level: with
+/// the root's division cut every six levels, final slabs fell in several
+/// levels and this paving took 2.10 per slab (6 437 for 3 062 slabs); the
+/// root's open boxes are now divided to the end in one level, 2.02.
 #[test]
 fn slices_neighbours_share_the_slab_where_they_meet() {
-    let (_, p) = omega0_by_slices(1.0 / 1024.0);
+    let (_, p) = omega0_by_slices(1.0 / 4096.0);
     let mut slabs: Vec<[u64; 2]> = p
         .leaves
         .iter()
@@ -413,7 +416,10 @@ fn slices_neighbours_share_the_slab_where_they_meet() {
     slabs.sort_unstable();
     slabs.dedup();
     let per_slab = p.stats.slab_evaluations as f64 / slabs.len() as f64;
-    assert!(per_slab < 2.3, "{per_slab} slab evaluations per final slab");
+    assert!(
+        per_slab < 2.05,
+        "{per_slab} slab evaluations per final slab"
+    );
 }
 
 /// `slices` sizes its θ-slabs so that each leaves about the threshold
