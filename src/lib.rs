@@ -81,6 +81,7 @@ pub use detach_check as check;
 pub mod claims;
 pub mod figures;
 pub mod files;
+pub mod motion;
 pub mod number;
 pub mod params;
 pub mod pave;
