@@ -736,6 +736,11 @@ impl FileScene {
         eval_exact(key, text, &at.theta, &mut name)
     }
 
+    /// θ̈'s Taylor recurrences ([`TaylorTape`]), if the file has `[dynamics]`.
+    pub fn dynamics_taylor(&self) -> Option<super::expr::TaylorTape> {
+        self.dynamics.as_ref()?.taylor()
+    }
+
     /// θ̈ from `[dynamics]`; NaN without it.
     pub fn acceleration<T: crate::number::scalar::Scalar>(&self, theta: T, theta_dot: T) -> T {
         let mut out = [T::int(0) / T::int(0)];

@@ -22,12 +22,14 @@ mod factor;
 mod graph;
 mod parse;
 mod tape;
+mod taylor;
 #[cfg(test)]
 mod tests;
 
 pub use exact::{decimal, eval_exact, ExactTheta};
 pub use factor::FactorOf;
 pub use tape::{ConstantIssue, Program};
+pub use taylor::{Coefficient, NotAnalytic, OdeSeries, TaylorTape};
 
 use crate::number::scalar::is_defined;
 use graph::Node;

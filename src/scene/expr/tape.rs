@@ -56,11 +56,11 @@ fn fuse_sin_cos(tape: &[Node], needed: &[bool]) -> Vec<Fused> {
 }
 
 /// Slots of θ, θ̇, `sin θ` and `cos θ`; the constants follow.
-const THETA_SLOT: u32 = 0;
-const THETA_DOT_SLOT: u32 = 1;
-const SIN_SLOT: u32 = 2;
-const COS_SLOT: u32 = 3;
-const FIRST_CONST: u32 = 4;
+pub(super) const THETA_SLOT: u32 = 0;
+pub(super) const THETA_DOT_SLOT: u32 = 1;
+pub(super) const SIN_SLOT: u32 = 2;
+pub(super) const COS_SLOT: u32 = 3;
+pub(super) const FIRST_CONST: u32 = 4;
 
 /// How a [`Program`] is evaluated: slots `[θ, θ̇, sin θ, cos θ, constants…,
 /// results…]`, the constants copied in as the plan lifted them, `sin θ` and
@@ -76,7 +76,7 @@ pub(super) struct Plan {
     pub(super) consts: Vec<Known>,
     pub(super) ops: Vec<Step>,
     /// Whether `sin θ` and `cos θ` are read.
-    trig: [bool; 2],
+    pub(super) trig: [bool; 2],
     /// Per tape entry: its slot (`u32::MAX` when no output needs it); in a
     /// plan that reuses slots, only where the entry was computed.
     pub(super) slot: Vec<u32>,
@@ -90,7 +90,7 @@ pub(super) struct Plan {
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Step {
     pub(super) op: Op,
-    to: u32,
+    pub(super) to: u32,
 }
 
 /// An operation on slots; one variant per function, so that evaluating
@@ -241,6 +241,21 @@ impl Plan {
     /// outputs need and reuses slots; otherwise every entry gets its own
     /// slot and keeps its value to the end.
     pub(super) fn new(tape: &[Node], consts: &[Interval], outputs: &[u32], fold: bool) -> Plan {
+        let mut plan = Plan::unshared(tape, consts, outputs, fold);
+        if fold {
+            plan.reuse_slots();
+        }
+        plan
+    }
+
+    /// [`Plan::new`] with every result in its own slot, kept to the end
+    /// (Taylor-mode evaluation reads every entry's whole series).
+    pub(super) fn unshared(
+        tape: &[Node],
+        consts: &[Interval],
+        outputs: &[u32],
+        fold: bool,
+    ) -> Plan {
         let mut known: Vec<Option<(Interval, f64)>> = Vec::with_capacity(tape.len());
         for &node in tape {
             known.push(match node {
@@ -316,18 +331,14 @@ impl Plan {
                 }
             }
         }
-        let mut plan = Plan {
+        Plan {
             consts: plan_consts,
             ops,
             trig,
             outputs: outputs.iter().map(|&o| slot[o as usize]).collect(),
             slot,
             len: next as usize,
-        };
-        if fold {
-            plan.reuse_slots();
         }
-        plan
     }
 
     /// Gives each result a slot freed by a result no later operation reads
