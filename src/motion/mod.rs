@@ -5,3 +5,146 @@
 //!
 //! The stage after [`crate::scene`]: it evaluates the scene's compiled
 //! θ̈ over intervals, duals and Taylor series, and knows nothing of pavings.
+
+pub mod event;
+pub mod flow;
+pub mod lohner;
+#[cfg(test)]
+mod tests;
+
+use crate::number::param::{enclose_decimal, enclose_window_end, ParamError};
+use crate::scene::file::FileScene;
+pub use event::Event;
+use event::{RegionBoundary, Watched, WindowSide};
+pub use flow::{FlowError, FlowSettings, Stop, Tube, TubeStep};
+use inari::Interval;
+
+/// What ends a run besides its end time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Until {
+    /// Ω's expression vanishes (`U=0`: Λ̈ at zero reaction).
+    Omega,
+    /// Ω₀'s expression vanishes (`N=0`: the contact reaction changes sign).
+    Omega0,
+    /// The state leaves the scene's domain.
+    Domain,
+}
+
+impl Until {
+    /// The default: leaving the start cell (either region's boundary) or
+    /// the domain.
+    pub const CELL_OR_DOMAIN: [Until; 3] = [Until::Omega, Until::Omega0, Until::Domain];
+
+    /// `U=0`/`omega`, `N=0`/`omega0`, `domain`, `cell` (both regions),
+    /// `none`, comma-separated.
+    pub fn parse_list(text: &str) -> Result<Vec<Until>, MotionError> {
+        let mut out = Vec::new();
+        for item in text.split(',').map(str::trim) {
+            let add: &[Until] = match item {
+                "U=0" | "omega" => &[Until::Omega],
+                "N=0" | "omega0" => &[Until::Omega0],
+                "domain" => &[Until::Domain],
+                "cell" => &[Until::Omega, Until::Omega0],
+                "none" => &[],
+                other => return Err(MotionError::Until(other.to_string())),
+            };
+            for u in add {
+                if !out.contains(u) {
+                    out.push(*u);
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// A certified trajectory request: a start box, an end time, what stops it.
+#[derive(Clone, Debug)]
+pub struct FlowRequest {
+    /// θ and θ̇ at t = 0 (a point is a box of width 0 or the enclosure of
+    /// its decimal text).
+    pub start: [Interval; 2],
+    pub t_end: Interval,
+    pub until: Vec<Until>,
+    pub settings: FlowSettings,
+}
+
+impl FlowRequest {
+    /// From text: `theta`, `theta_dot` each `X` or `LO:HI` (decimal text,
+    /// or `pi`, `pi/N`), `t_end` decimal text.
+    pub fn parse(theta: &str, theta_dot: &str, t_end: &str) -> Result<FlowRequest, MotionError> {
+        let side = |name: &str, text: &str| -> Result<Interval, MotionError> {
+            let (lo, hi) = text.split_once(':').unwrap_or((text, text));
+            let lo = enclose_window_end(name, lo)?;
+            let hi = enclose_window_end(name, hi)?;
+            if lo.inf() > hi.sup() {
+                return Err(MotionError::Range(name.to_string(), text.to_string()));
+            }
+            Ok(lo.convex_hull(hi))
+        };
+        let t = enclose_decimal("t", t_end)?;
+        if t.inf() <= 0.0 {
+            return Err(MotionError::Flow(FlowError::EndTime));
+        }
+        Ok(FlowRequest {
+            start: [side("theta", theta)?, side("theta_dot", theta_dot)?],
+            t_end: t,
+            until: Until::CELL_OR_DOMAIN.to_vec(),
+            settings: FlowSettings::default(),
+        })
+    }
+}
+
+#[derive(Debug, PartialEq, thiserror::Error)]
+pub enum MotionError {
+    #[error("scene `{0}` has no [dynamics]: there is no equation of motion to integrate")]
+    NoDynamics(String),
+    #[error("unknown event `{0}` (known: U=0, N=0, omega, omega0, cell, domain, none)")]
+    Until(String),
+    #[error("{0} `{1}` is not LO:HI with LO <= HI")]
+    Range(String, String),
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    #[error(transparent)]
+    Flow(#[from] FlowError),
+}
+
+/// The certified trajectory of `file`'s `[dynamics]` for `request`.
+pub fn flow(file: &FileScene, request: &FlowRequest) -> Result<Tube, MotionError> {
+    let tape = file
+        .dynamics_taylor()
+        .ok_or_else(|| MotionError::NoDynamics(file.name.clone()))?;
+    let regions: Vec<RegionBoundary> = [Until::Omega, Until::Omega0]
+        .iter()
+        .enumerate()
+        .filter(|(i, u)| request.until.contains(u) && !(*i == 1 && file.omega0_is_omega()))
+        .map(|(region, _)| RegionBoundary { file, region })
+        .collect();
+    let d = file.domain;
+    let sides: Vec<WindowSide> = if request.until.contains(&Until::Domain) {
+        (0..2)
+            .flat_map(|axis| {
+                let ends = [d.theta, d.theta_dot][axis];
+                [(ends[0], false), (ends[1], true)].map(|(at, upper)| WindowSide {
+                    axis,
+                    at,
+                    upper,
+                })
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let watched: Vec<&dyn Watched> = regions
+        .iter()
+        .map(|r| r as &dyn Watched)
+        .chain(sides.iter().map(|s| s as &dyn Watched))
+        .collect();
+    Ok(flow::integrate(
+        &tape,
+        &request.settings,
+        request.start,
+        request.t_end,
+        &watched,
+    )?)
+}
