@@ -49,6 +49,8 @@ enum Command {
     Params(cli::params::ParamsArgs),
     /// Join the JSON parts of a `detach params --shard` run.
     Merge(cli::params::MergeArgs),
+    /// A certified trajectory of a scene's [dynamics], to T or its first event.
+    Flow(cli::flow::FlowArgs),
 }
 
 /// The command line; `detach` alone runs `detach atlas`.
@@ -77,6 +79,7 @@ fn run(command: Command) -> CliResult {
         Command::CheckPaper(a) => cli::paper::run_check_paper(&a),
         Command::Params(a) => cli::params::run_params(&a),
         Command::Merge(a) => cli::params::run_merge(&a),
+        Command::Flow(a) => cli::flow::run_flow(&a),
     }
 }
 

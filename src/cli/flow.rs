@@ -1,0 +1,147 @@
+//! `detach flow`: a certified trajectory of a scene's `[dynamics]`.
+
+use super::{parse_overrides, CliError, CliResult, SceneSource};
+use detach::motion::{flow, FlowRequest, Stop, Tube, Until};
+use detach::params::report::exact_decimal;
+use detach::scene::Variant;
+use inari::Interval;
+use serde_json::{json, Value};
+
+/// Integrate θ̈ of a scene's `[dynamics]` in validated arithmetic from a
+/// state (or a box of states) over [0, T], stopping at the first event.
+#[derive(clap::Args, Debug)]
+pub struct FlowArgs {
+    #[command(flatten)]
+    pub source: SceneSource,
+    /// Scene parameter override, repeatable (decimal text, enclosed).
+    #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
+    pub params: Vec<String>,
+    /// The initial state `THETA,THETA_DOT` (decimal text, `pi/N`).
+    #[arg(
+        long,
+        value_name = "THETA,THETA_DOT",
+        allow_hyphen_values = true,
+        conflicts_with = "from_box"
+    )]
+    pub from: Option<String>,
+    /// A box of initial states `TLO:THI,WLO:WHI`.
+    #[arg(
+        long = "from-box",
+        value_name = "TLO:THI,WLO:WHI",
+        allow_hyphen_values = true
+    )]
+    pub from_box: Option<String>,
+    /// The end time (decimal text, > 0).
+    #[arg(long, value_name = "T")]
+    pub t: String,
+    /// What ends the run before T, comma-separated: `U=0` (Ω's boundary),
+    /// `N=0` (Ω₀'s: the reaction vanishes), `cell` (both), `domain`, `none`.
+    #[arg(long, default_value = "cell,domain")]
+    pub until: String,
+    /// Order of the Taylor method.
+    #[arg(long, default_value_t = 20)]
+    pub order: usize,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run_flow(args: &FlowArgs) -> CliResult {
+    let overrides = parse_overrides(&args.params)?;
+    let problem = args.source.problem(&overrides, Variant::Derived)?;
+    let file = problem.scene.reading(Variant::Derived);
+    let state = match (&args.from, &args.from_box) {
+        (Some(s), None) | (None, Some(s)) => s,
+        _ => {
+            return Err(CliError::usage(
+                "give --from THETA,THETA_DOT or --from-box TLO:THI,WLO:WHI",
+            ))
+        }
+    };
+    let Some((theta, theta_dot)) = state.split_once(',') else {
+        return Err(CliError::usage(format!(
+            "the initial state must be THETA,THETA_DOT, got `{state}`"
+        )));
+    };
+    if args.from.is_some() && (theta.contains(':') || theta_dot.contains(':')) {
+        return Err(CliError::usage(
+            "--from takes a point; a box is --from-box TLO:THI,WLO:WHI",
+        ));
+    }
+    if !(2..=60).contains(&args.order) {
+        return Err(CliError::usage(format!(
+            "--order must be in 2..=60, got {}",
+            args.order
+        )));
+    }
+    let mut request = FlowRequest::parse(theta, theta_dot, &args.t).map_err(CliError::usage)?;
+    request.until = Until::parse_list(&args.until).map_err(CliError::usage)?;
+    request.settings.order = args.order;
+    let tube = flow(file, &request).map_err(CliError::usage)?;
+    if args.json {
+        let out = json!({
+            "detach": detach::provenance(),
+            "arguments": {
+                "scene": args.source.scene, "scene_file": args.source.scene_file,
+                "params": args.params, "from": args.from, "from_box": args.from_box,
+                "t": args.t, "until": args.until, "order": args.order,
+            },
+            "parameters": problem.params.texts().into_iter()
+                .map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<String, Value>>(),
+            "events": tube.events.iter().map(|e| json!({
+                "kind": e.kind, "time": pair(e.time), "theta": pair(e.theta),
+                "theta_dot": pair(e.theta_dot), "slope": pair(e.slope),
+            })).collect::<Vec<_>>(),
+            "end": {
+                "time": if tube.stop == Stop::End { json!(args.t) } else { pair(tube.end_time) },
+                "theta": pair(tube.end[0]), "theta_dot": pair(tube.end[1]),
+            },
+            "stop": stop_text(&tube),
+            "steps": tube.len(),
+        });
+        outln!(
+            "{}",
+            serde_json::to_string_pretty(&out).map_err(|e| CliError::runtime(e.to_string()))?
+        );
+    } else {
+        print_table(&tube);
+    }
+    super::stdout_status()
+}
+
+/// `["lo", "hi"]`, each end's exact decimal value.
+fn pair(x: Interval) -> Value {
+    json!([exact_decimal(x.inf() + 0.0), exact_decimal(x.sup() + 0.0)])
+}
+
+fn stop_text(tube: &Tube) -> String {
+    match &tube.stop {
+        Stop::End => "end time reached".into(),
+        Stop::Event => "first event".into(),
+        Stop::Undecided(why) => format!("undecided: {why}"),
+        Stop::StepFailed(why) => format!("stopped: {why}"),
+        Stop::Budget => "stopped: step budget reached".into(),
+    }
+}
+
+fn print_table(tube: &Tube) {
+    let enc = |x: Interval| {
+        format!(
+            "[{:.17e}, {:.17e}]  (width {:.1e})",
+            x.inf(),
+            x.sup(),
+            x.wid()
+        )
+    };
+    outln!("{} certified steps; {}", tube.len(), stop_text(tube));
+    for e in &tube.events {
+        outln!("event {}:", e.kind);
+        outln!("  t        {}", enc(e.time));
+        outln!("  θ        {}", enc(e.theta));
+        outln!("  θ̇        {}", enc(e.theta_dot));
+    }
+    outln!("end:");
+    outln!("  t        {}", enc(tube.end_time));
+    outln!("  θ        {}", enc(tube.end[0]));
+    outln!("  θ̇        {}", enc(tube.end[1]));
+}
