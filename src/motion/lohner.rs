@@ -253,7 +253,7 @@ impl<'a> Stepper<'a> {
         let data = StepData {
             h,
             apriori: b,
-            end: set.clone(),
+            end: *set,
             start: *set,
             at_mid,
             jac,

@@ -22,6 +22,7 @@ mod inclusion;
 mod loose_checker;
 mod mechanics;
 mod methods;
+mod motion;
 mod param_proofs;
 mod params;
 mod paving;

@@ -276,7 +276,7 @@ impl TaylorTape {
                 } else {
                     conv(a, a, k, 0, (k - 1) / 2)
                 };
-                let mid = if k % 2 == 0 {
+                let mid = if k.is_multiple_of(2) {
                     a[k / 2].sqr()
                 } else {
                     T::int(0)
@@ -386,7 +386,8 @@ impl TaylorTape {
                     return Err(NotAnalytic("min or max of an empty range"));
                 }
                 let a_below = x.sup() < y.inf();
-                if !a_below && !(y.sup() < x.inf()) {
+                let b_below = y.sup() < x.inf();
+                if !a_below && !b_below {
                     return Err(NotAnalytic("min or max of overlapping ranges"));
                 }
                 let take_a = a_below == matches!(rec, Rec::Min(..));

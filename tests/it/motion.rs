@@ -1,0 +1,241 @@
+//! Certified trajectories of the shipped scenes against an independent
+//! reference: `tests/data/motion-reference.json`, written by
+//! `tests/data/motion_reference.py` (mpmath's Taylor integrator at 50
+//! digits, checked there against a second method), and the CLI's `flow`.
+
+use crate::common::{assert_bad_input, json};
+use detach::motion::{flow, FlowRequest, Stop, Until};
+use detach::scene::{Scene, Variant};
+use rug::ops::Pow;
+use rug::Rational;
+use serde_json::Value;
+
+fn reference() -> Value {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/motion-reference.json"
+    );
+    let text = std::fs::read_to_string(path).expect("tests/data/motion-reference.json");
+    serde_json::from_str(&text).expect("the reference is JSON")
+}
+
+fn params(case: &Value) -> Vec<(String, String)> {
+    case["params"]
+        .as_object()
+        .map(|m| {
+            m.iter()
+                .map(|(k, v)| (k.clone(), v.as_str().unwrap().to_string()))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// `x` contains the decimal text `r` exactly (compared as rationals).
+fn contains_text(x: inari::Interval, r: &str) -> bool {
+    let (mant, exp) = r.split_once(['e', 'E']).unwrap_or((r, "0"));
+    let neg = mant.starts_with('-');
+    let mant = mant.trim_start_matches(['-', '+']);
+    let (int, frac) = mant.split_once('.').unwrap_or((mant, ""));
+    let digits: rug::Integer = format!("{int}{frac}").parse().unwrap();
+    let e: i32 = exp.parse::<i32>().unwrap() - frac.len() as i32;
+    let ten = rug::Integer::from(10);
+    let mut q = Rational::from(digits);
+    if e >= 0 {
+        q *= Rational::from(ten.pow(e as u32));
+    } else {
+        q /= Rational::from(ten.pow((-e) as u32));
+    }
+    if neg {
+        q = -q;
+    }
+    Rational::from_f64(x.inf()).unwrap() <= q && q <= Rational::from_f64(x.sup()).unwrap()
+}
+
+#[test]
+fn tubes_of_the_shipped_scenes_contain_the_reference_trajectories() {
+    let data = reference();
+    let cases = data["trajectories"].as_array().expect("trajectories");
+    assert!(cases.len() >= 8, "every scene, two starts each");
+    for case in cases {
+        let name = case["scene"].as_str().unwrap();
+        let (scene, _) = Scene::by_name(name, &params(case)).unwrap();
+        let file = scene.reading(Variant::Derived);
+        for p in case["points"].as_array().unwrap() {
+            let t = p["t"].as_str().unwrap();
+            let mut request = FlowRequest::parse(
+                case["theta0"].as_str().unwrap(),
+                case["theta_dot0"].as_str().unwrap(),
+                t,
+            )
+            .unwrap();
+            request.until = vec![];
+            let tube = flow(file, &request).unwrap();
+            assert_eq!(
+                tube.stop,
+                Stop::End,
+                "{name} {case} to {t}: {:?}",
+                tube.stop
+            );
+            for (i, key) in ["theta", "theta_dot"].iter().enumerate() {
+                let r = p[key].as_str().unwrap();
+                assert!(
+                    contains_text(tube.end[i], r),
+                    "{name} from {} to t = {t}: {key} {:?} ∌ {r}",
+                    case["theta0"],
+                    tube.end[i]
+                );
+                assert!(
+                    tube.end[i].wid() < 1e-10,
+                    "{name} to {t}: {key} width {:e}",
+                    tube.end[i].wid()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn events_of_the_shipped_scenes_contain_the_reference_crossings() {
+    let data = reference();
+    let events = data["events"].as_array().expect("events");
+    assert!(!events.is_empty());
+    for case in events {
+        let name = case["scene"].as_str().unwrap();
+        let (scene, _) = Scene::by_name(name, &params(case)).unwrap();
+        let file = scene.reading(Variant::Derived);
+        let mut request = FlowRequest::parse(
+            case["theta0"].as_str().unwrap(),
+            case["theta_dot0"].as_str().unwrap(),
+            "3",
+        )
+        .unwrap();
+        let (until, kind) = match case["function"].as_str().unwrap() {
+            "omega" => (Until::Omega, "U=0"),
+            _ => (Until::Omega0, "N=0"),
+        };
+        request.until = vec![until];
+        let tube = flow(file, &request).unwrap();
+        assert_eq!(tube.stop, Stop::Event, "{name}: {:?}", tube.stop);
+        let e = &tube.events[0];
+        assert_eq!(e.kind, kind);
+        assert!(
+            contains_text(e.time, case["time"].as_str().unwrap()),
+            "{name}: {:?} vs {}",
+            e.time,
+            case["time"]
+        );
+        assert!(contains_text(e.theta, case["theta"].as_str().unwrap()));
+        assert!(contains_text(
+            e.theta_dot,
+            case["theta_dot"].as_str().unwrap()
+        ));
+        assert!(
+            e.time.wid() < 1e-11,
+            "{name}: event width {:e}",
+            e.time.wid()
+        );
+    }
+}
+
+#[test]
+fn the_frictionless_rod_keeps_its_energy() {
+    // μ = 0: E = (1/3 + cos²θ)θ̇²/2 + g sin θ (m = l = 1) is conserved; the
+    // scene file has no energy, so E is written here from the mechanics.
+    let (scene, _) = Scene::by_name("painleve-rod", &[("mu".into(), "0".into())]).unwrap();
+    let file = scene.reading(Variant::Derived);
+    let mut request = FlowRequest::parse("1", "0.5", "2").unwrap();
+    request.until = vec![];
+    let tube = flow(file, &request).unwrap();
+    let g = detach::number::param::enclose_decimal("g", "9.81").unwrap();
+    let energy = |th: inari::Interval, w: inari::Interval| {
+        let third = inari::Interval::try_from((1.0, 1.0)).unwrap()
+            / inari::Interval::try_from((3.0, 3.0)).unwrap();
+        (third + th.cos().sqr()) * w.sqr() / inari::Interval::try_from((2.0, 2.0)).unwrap()
+            + g * th.sin()
+    };
+    let e0 = energy(tube.start[0], tube.start[1]);
+    for s in tube.steps() {
+        let e = energy(s.end[0], s.end[1]);
+        assert!(
+            !e.disjoint(e0),
+            "energy {e:?} at t = {} leaves {e0:?}",
+            s.t0
+        );
+        assert!(e.wid() < 1e-11);
+    }
+    // A mutant: the rod at μ = 0.1 does not conserve it (friction works).
+    let (scene, _) = Scene::by_name("painleve-rod", &[("mu".into(), "0.1".into())]).unwrap();
+    let tube = flow(scene.reading(Variant::Derived), &request).unwrap();
+    assert!(energy(tube.end[0], tube.end[1]).disjoint(e0));
+}
+
+#[test]
+fn flow_prints_events_and_the_end_as_json() {
+    let v = json(&[
+        "flow",
+        "--scene",
+        "painleve-rod",
+        "--param",
+        "mu=0.5",
+        "--from",
+        "1,0.5",
+        "--t",
+        "1",
+        "--until",
+        "none",
+        "--json",
+    ]);
+    assert_eq!(v["stop"], "end time reached");
+    assert_eq!(v["end"]["time"], "1");
+    assert!(v["steps"].as_u64().unwrap() > 0);
+    let lo: f64 = v["end"]["theta"][0].as_str().unwrap().parse().unwrap();
+    let hi: f64 = v["end"]["theta"][1].as_str().unwrap().parse().unwrap();
+    assert!(lo <= hi && hi - lo < 1e-10);
+}
+
+#[test]
+fn flow_refuses_bad_input() {
+    assert_bad_input(&["flow", "--scene", "painleve-rod", "--t", "1"], "--from");
+    assert_bad_input(
+        &["flow", "--scene", "painleve-rod", "--from", "1", "--t", "1"],
+        "THETA,THETA_DOT",
+    );
+    assert_bad_input(
+        &[
+            "flow",
+            "--scene",
+            "painleve-rod",
+            "--from",
+            "1,0",
+            "--t",
+            "-1",
+        ],
+        "end time",
+    );
+    assert_bad_input(
+        &[
+            "flow",
+            "--scene",
+            "painleve-rod",
+            "--from",
+            "1,0",
+            "--t",
+            "1",
+            "--until",
+            "x",
+        ],
+        "unknown event",
+    );
+    assert_bad_input(
+        &[
+            "flow",
+            "--scene",
+            "viscous-disc",
+            "--from",
+            "nan,0",
+            "--t",
+            "1",
+        ],
+        "theta",
+    );
+}
