@@ -736,6 +736,16 @@ impl FileScene {
         eval_exact(key, text, &at.theta, &mut name)
     }
 
+    /// θ̈ of `[dynamics]` as compiled, if the file gives it.
+    pub fn dynamics_program(&self) -> Option<&Program> {
+        self.dynamics.as_ref()
+    }
+
+    /// θ̈ as `f/g` when its text is a division at the top level.
+    pub fn dynamics_quotient(&self) -> Option<super::expr::Quotient> {
+        self.dynamics.as_ref()?.quotient()
+    }
+
     /// θ̈ from `[dynamics]`; NaN without it.
     pub fn acceleration<T: crate::number::scalar::Scalar>(&self, theta: T, theta_dot: T) -> T {
         let mut out = [T::int(0) / T::int(0)];

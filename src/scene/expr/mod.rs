@@ -21,12 +21,14 @@ mod exact;
 mod factor;
 mod graph;
 mod parse;
+mod quotient;
 mod tape;
 #[cfg(test)]
 mod tests;
 
 pub use exact::{decimal, eval_exact, ExactTheta};
 pub use factor::FactorOf;
+pub use quotient::Quotient;
 pub use tape::{ConstantIssue, Program};
 
 use crate::number::scalar::is_defined;
