@@ -5,3 +5,5 @@
 //!
 //! The stage after [`crate::scene`]: it evaluates the scene's compiled
 //! θ̈ over intervals, duals and Taylor series, and knows nothing of pavings.
+
+pub mod singular;
