@@ -49,6 +49,8 @@ enum Command {
     Params(cli::params::ParamsArgs),
     /// Join the JSON parts of a `detach params --shard` run.
     Merge(cli::params::MergeArgs),
+    /// Certified equilibria and singular points of `[dynamics]`, typed.
+    Singular(cli::singular::SingularArgs),
 }
 
 /// The command line; `detach` alone runs `detach atlas`.
@@ -77,6 +79,7 @@ fn run(command: Command) -> CliResult {
         Command::CheckPaper(a) => cli::paper::run_check_paper(&a),
         Command::Params(a) => cli::params::run_params(&a),
         Command::Merge(a) => cli::params::run_merge(&a),
+        Command::Singular(a) => cli::singular::run_singular(&a),
     }
 }
 
