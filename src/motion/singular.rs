@@ -416,7 +416,7 @@ fn krawczyk(f: &Program, g: &Program, x: [Interval; 2]) -> Krawczyk {
         for (l, xm) in [x[0] - m[0], x[1] - m[1]].into_iter().enumerate() {
             let yj = y[i][0] * j[0][l] + y[i][1] * j[1][l];
             let e = if i == l { one - yj } else { -yj };
-            s = s + e * xm;
+            s += e * xm;
         }
         k[i] = s;
     }

