@@ -612,6 +612,19 @@ impl ParamAtlasRun {
 }
 
 impl Problem {
+    /// The scene as a family over `axes`, the other parameters at this
+    /// problem's values: the scene `detach singular --x` rebuilds per
+    /// parameter box.
+    pub fn family(&self, axes: Vec<ParamAxis>) -> Result<Family, String> {
+        let overrides = self
+            .params
+            .texts()
+            .into_iter()
+            .map(|(n, t)| (n.to_string(), t))
+            .collect();
+        Family::new(self.source.clone(), self.variant, overrides, axes)
+    }
+
     /// A certified parameter atlas, as `detach params` computes it: the
     /// scene rebuilt with the request's parameters as intervals, and each
     /// set's emptiness decided on boxes of them (the others at this

@@ -51,6 +51,8 @@ enum Command {
     Merge(cli::params::MergeArgs),
     /// A certified trajectory of a scene's [dynamics], to T or its first event.
     Flow(cli::flow::FlowArgs),
+    /// Certified equilibria and singular points of `[dynamics]`, typed.
+    Singular(cli::singular::SingularArgs),
 }
 
 /// The command line; `detach` alone runs `detach atlas`.
@@ -80,6 +82,7 @@ fn run(command: Command) -> CliResult {
         Command::Params(a) => cli::params::run_params(&a),
         Command::Merge(a) => cli::params::run_merge(&a),
         Command::Flow(a) => cli::flow::run_flow(&a),
+        Command::Singular(a) => cli::singular::run_singular(&a),
     }
 }
 

@@ -16,6 +16,7 @@ pub mod paper;
 pub mod params;
 pub mod proofs;
 pub mod roots;
+pub mod singular;
 pub mod stability;
 
 use std::fmt;

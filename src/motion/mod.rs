@@ -9,6 +9,7 @@
 pub mod event;
 pub mod flow;
 pub mod lohner;
+pub mod singular;
 #[cfg(test)]
 mod tests;
 

@@ -736,9 +736,19 @@ impl FileScene {
         eval_exact(key, text, &at.theta, &mut name)
     }
 
-    /// θ̈'s Taylor recurrences ([`TaylorTape`]), if the file has `[dynamics]`.
+    /// θ̈'s Taylor recurrences ([`TaylorTape`](super::expr::TaylorTape)), if the file has `[dynamics]`.
     pub fn dynamics_taylor(&self) -> Option<super::expr::TaylorTape> {
         self.dynamics.as_ref()?.taylor()
+    }
+
+    /// θ̈ of `[dynamics]` as compiled, if the file gives it.
+    pub fn dynamics_program(&self) -> Option<&Program> {
+        self.dynamics.as_ref()
+    }
+
+    /// θ̈ as `f/g` when its text is a division at the top level.
+    pub fn dynamics_quotient(&self) -> Option<super::expr::Quotient> {
+        self.dynamics.as_ref()?.quotient()
     }
 
     /// θ̈ from `[dynamics]`; NaN without it.

@@ -34,6 +34,7 @@ mod roots;
 mod roots_request;
 mod scene_files;
 mod scene_format;
+mod singular;
 mod soundness;
 mod stability;
 mod statements;

@@ -49,7 +49,7 @@ impl Program {
     }
 
     /// The program of one entry alone: the entries it uses, renumbered.
-    fn select(&self, entry: u32) -> Program {
+    pub(super) fn select(&self, entry: u32) -> Program {
         let mut needed = vec![false; self.tape.len()];
         needed[entry as usize] = true;
         for i in (0..self.tape.len()).rev() {

@@ -21,6 +21,7 @@ mod exact;
 mod factor;
 mod graph;
 mod parse;
+mod quotient;
 mod tape;
 mod taylor;
 #[cfg(test)]
@@ -28,6 +29,7 @@ mod tests;
 
 pub use exact::{decimal, eval_exact, ExactTheta};
 pub use factor::FactorOf;
+pub use quotient::Quotient;
 pub use tape::{ConstantIssue, Program};
 pub use taylor::{Coefficient, NotAnalytic, OdeSeries, TaylorTape};
 
