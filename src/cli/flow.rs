@@ -32,7 +32,7 @@ pub struct FlowArgs {
     )]
     pub from_box: Option<String>,
     /// The end time (decimal text, > 0).
-    #[arg(long, value_name = "T")]
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub t: String,
     /// What ends the run before T, comma-separated: `U=0` (Ω's boundary),
     /// `N=0` (Ω₀'s: the reaction vanishes), `cell` (both), `domain`, `none`.
