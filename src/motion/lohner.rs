@@ -2,7 +2,7 @@
 //! with an a-priori enclosure and Lohner's QR treatment of the wrapping
 //! effect.
 //!
-//! A step of size h from a set X = {m + A·r : r ∈ [r]} with hull E:
+//! A step of size h from a set X = {m + A·r : r ∈ R} with hull E:
 //! 1. the a-priori box B: E + [0, h]·f(B) ⊆ B, so every solution from E
 //!    exists on [0, h] and stays in B (Picard–Lindelöf, the operator maps B
 //!    into itself);
@@ -11,9 +11,9 @@
 //!    solution through a state, evaluated over B: F is proved analytic there);
 //! 3. the mean-value form P(x₀; τ) ∈ P(m; τ) + J(τ)·(x₀ − m), with J the
 //!    Jacobian of P over hull(E ∪ {m}) from dual-number Taylor coefficients;
-//! 4. x(h) ∈ m' + (J·A)·[r] + z with m' the midpoint of P(m; h) + remainder
+//! 4. x(h) ∈ m' + (J·A)·R + z with m' the midpoint of P(m; h) + remainder
 //!    and z the rest; the new frame A' is the Q of a QR factorisation of
-//!    mid(J·A) (columns by length), and [r'] = (A'⁻¹J·A)[r] + A'⁻¹z with A'⁻¹
+//!    mid(J·A) (columns by length), and R' = (A'⁻¹J·A)·R + A'⁻¹z with A'⁻¹
 //!    enclosed in intervals.
 //!
 //! Every conclusion is drawn in intervals; `f64` only chooses h and the

@@ -4,7 +4,7 @@
 //! The field is (θ̇, F(θ, θ̇)), F the scene's θ̈.
 //!
 //! * **Equilibria**: θ̇ = 0 and F(θ, 0) = 0. The roots in θ are isolated by
-//!   [`crate::roots::isolate`] (interval Newton, exclusion): each returned
+//!   [`crate::roots::isolate`](mod@crate::roots::isolate) (interval Newton, exclusion): each returned
 //!   root is unique, the rest of the θ-range root-free, or a fragment is
 //!   undecided with its reason. When F is written `f/g` the roots of
 //!   `f(θ, 0)` are isolated instead (no poles where `g` vanishes) and each
