@@ -152,6 +152,9 @@ pub struct Stepper<'a> {
     pub order: usize,
     work: Vec<Interval>,
     work_dual: Vec<Dual<Interval>>,
+    /// The series `0..=order` at the last midpoint asked for: the step
+    /// size and the step both read it, for every step size tried.
+    at_mid: Option<([f64; 2], [Vec<Interval>; 2])>,
 }
 
 impl<'a> Stepper<'a> {
@@ -161,6 +164,7 @@ impl<'a> Stepper<'a> {
             order: order.max(2),
             work: Vec::new(),
             work_dual: Vec::new(),
+            at_mid: None,
         }
     }
 
@@ -168,6 +172,18 @@ impl<'a> Stepper<'a> {
     pub fn series(&mut self, x: Vector, order: usize) -> Result<[Vec<Interval>; 2], NotAnalytic> {
         let s = self.tape.ode_series(x[0], x[1], order, &mut self.work)?;
         Ok([s.theta, s.theta_dot])
+    }
+
+    /// The series `0..=order` at the point `mid`, computed once per point.
+    fn series_at_mid(&mut self, mid: [f64; 2]) -> Result<[Vec<Interval>; 2], NotAnalytic> {
+        if let Some((at, c)) = &self.at_mid {
+            if *at == mid {
+                return Ok(c.clone());
+            }
+        }
+        let c = self.series([point(mid[0]), point(mid[1])], self.order)?;
+        self.at_mid = Some((mid, c.clone()));
+        Ok(c)
     }
 
     /// f(x) = (θ̇, F) over the box `x`, F proved analytic there.
@@ -206,8 +222,7 @@ impl<'a> Stepper<'a> {
     /// A step size for the set at `mid` aiming at a remainder of about
     /// `tolerance`: from the last two Taylor coefficients there.
     pub fn suggest(&mut self, set: &LohnerSet, tolerance: f64) -> Option<f64> {
-        let m = [point(set.mid[0]), point(set.mid[1])];
-        let c = self.series(m, self.order).ok()?;
+        let c = self.series_at_mid(set.mid).ok()?;
         let k = self.order;
         let mag = |d: usize| c[0][d].mag().max(c[1][d].mag());
         let h = [k - 1, k]
@@ -232,7 +247,10 @@ impl<'a> Stepper<'a> {
         let rem = self.series(b, k).map_err(StepFailure::NotAnalytic)?;
         let remainder = [rem[0][k], rem[1][k]];
         let m = [point(set.mid[0]), point(set.mid[1])];
-        let mut at_mid = self.series(m, k - 1).map_err(StepFailure::NotAnalytic)?;
+        // Degrees 0..K−1 of the order-K series are those of order K − 1.
+        let mut at_mid = self
+            .series_at_mid(set.mid)
+            .map_err(StepFailure::NotAnalytic)?;
         // The mean-value form needs the Jacobian on the segment from m to
         // every state of the set: over hull(E ∪ {m}).
         let around = [e[0].convex_hull(m[0]), e[1].convex_hull(m[1])];
