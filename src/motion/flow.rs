@@ -26,7 +26,7 @@ impl Default for FlowSettings {
     fn default() -> Self {
         FlowSettings {
             order: 20,
-            tolerance: 1e-17,
+            tolerance: 1e-16,
             max_steps: 100_000,
             min_step: 1e-9,
             max_step: 0.5,
@@ -160,6 +160,10 @@ pub fn integrate(
     let mut t = 0.0_f64;
     let mut steps: Vec<(f64, StepData)> = Vec::new();
     let mut last_h = settings.max_step;
+    // The midpoint's coefficients underestimate x_K over the a-priori box:
+    // the factor learned on earlier steps shortens the suggested step.
+    let mut scale = 1.0_f64;
+    let order = stepper.order as f64;
     // Step sizes are multiples of a power of two small against the end
     // time, so that every start time is an exact sum.
     let quantum = 2f64.powi(t_end.sup().max(1.0).log2().ceil() as i32 - 44);
@@ -181,14 +185,30 @@ pub fn integrate(
         let suggested = stepper
             .suggest(&set, settings.tolerance)
             .unwrap_or(settings.min_step);
-        let mut h = suggested.min(settings.max_step).min(2.0 * last_h);
+        let mut h = (suggested * scale).min(settings.max_step).min(2.0 * last_h);
         let mut retries_for_event = 0;
+        let mut retries_for_remainder = 0;
         let outcome = loop {
             let (hi, last) = step_size(h, quantum, t, t_end);
             if hi.sup() < settings.min_step && !last {
                 break Err(StepFailure::NoApriori);
             }
-            match stepper.step(&set, hi) {
+            let max_remainder = if last || retries_for_remainder == REMAINDER_RETRIES {
+                f64::INFINITY
+            } else {
+                REMAINDER_SLACK * settings.tolerance
+            };
+            match stepper.step(&set, hi, max_remainder) {
+                Err(StepFailure::RemainderAbove(size)) => {
+                    // x_K over the a-priori box exceeds its value at the
+                    // midpoint, which chose h: shorten the step (the
+                    // remainder scales as h^K) and remember by how much.
+                    let factor =
+                        (0.9 * (settings.tolerance / size).powf(1.0 / order)).clamp(0.1, 0.9);
+                    scale = (scale * factor).max(1e-3);
+                    h = hi.inf() * factor;
+                    retries_for_remainder += 1;
+                }
                 Ok(data) => {
                     let found = crossings(&data, watched, &signs, point(t), &mut stepper);
                     let unresolved = found.iter().any(|c| matches!(c, Crossing::Unresolved));
@@ -217,12 +237,19 @@ pub fn integrate(
                     StepFailure::Unbounded => {
                         format!("no certified step at t = {t}: the enclosures are unbounded")
                     }
+                    StepFailure::RemainderAbove(size) => {
+                        format!("no certified step at t = {t}: the remainder stays at {size:e}")
+                    }
                 };
                 return Ok(finish(steps, set, t, vec![], Stop::StepFailed(why)));
             }
         };
         let t0 = t;
         last_h = data.h.inf();
+        if retries_for_remainder == 0 {
+            // Let the learned factor relax towards the suggestion again.
+            scale = (scale * 1.1).min(1.0);
+        }
         let events = found
             .into_iter()
             .filter_map(|c| match c {
@@ -267,6 +294,11 @@ fn step_size(h: f64, quantum: f64, t: f64, t_end: Interval) -> (Interval, bool) 
         (point(q), false)
     }
 }
+
+/// The remainder may exceed the tolerance this much before a step is
+/// shortened, and a step is shortened for it so many times at most.
+const REMAINDER_SLACK: f64 = 4.0;
+const REMAINDER_RETRIES: usize = 4;
 
 /// The crossings in one step of each watched function.
 fn crossings(

@@ -125,6 +125,15 @@ impl StepData {
         intersect(add(add(p, rem), spread), self.apriori)
     }
 
+    /// An upper bound of the Lagrange remainder h^K·x_K(B) at the step's
+    /// end: the a-priori box, not the midpoint, decides it.
+    pub fn remainder_size(&self) -> f64 {
+        let hk = self.h.powi(self.order as i32);
+        (hk * self.remainder[0])
+            .mag()
+            .max((hk * self.remainder[1]).mag())
+    }
+
     /// J(τ) = Σ_{k<K} τ^k ∂x_k/∂x₀.
     fn jacobian(&self, tau: Interval) -> Matrix {
         let mut j = [[ZERO; 2]; 2];
@@ -136,7 +145,7 @@ impl StepData {
 }
 
 /// Why a step of the size tried could not be certified.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum StepFailure {
     /// No box B with E + [0, h]·f(B) ⊆ B was found.
     NoApriori,
@@ -144,6 +153,8 @@ pub enum StepFailure {
     NotAnalytic(NotAnalytic),
     /// The enclosures are unbounded.
     Unbounded,
+    /// The remainder h^K·x_K(B) is this large, above the bound asked for.
+    RemainderAbove(f64),
 }
 
 /// The Taylor method of order K on one scene's θ̈.
@@ -239,13 +250,24 @@ impl<'a> Stepper<'a> {
         h.is_finite().then_some(0.9 * h).or(Some(f64::INFINITY))
     }
 
-    /// One step of size `h` from `set`.
-    pub fn step(&mut self, set: &LohnerSet, h: Interval) -> Result<StepData, StepFailure> {
+    /// One step of size `h` from `set`, refused when the remainder exceeds
+    /// `max_remainder` (before the costlier Jacobian is computed).
+    pub fn step(
+        &mut self,
+        set: &LohnerSet,
+        h: Interval,
+        max_remainder: f64,
+    ) -> Result<StepData, StepFailure> {
         let k = self.order;
         let e = set.hull;
         let b = self.apriori(e, h)?;
         let rem = self.series(b, k).map_err(StepFailure::NotAnalytic)?;
         let remainder = [rem[0][k], rem[1][k]];
+        let hk = h.powi(k as i32);
+        let size = (hk * remainder[0]).mag().max((hk * remainder[1]).mag());
+        if size > max_remainder {
+            return Err(StepFailure::RemainderAbove(size));
+        }
         let m = [point(set.mid[0]), point(set.mid[1])];
         // Degrees 0..K−1 of the order-K series are those of order K − 1.
         let mut at_mid = self
@@ -258,7 +280,6 @@ impl<'a> Stepper<'a> {
         for c in &mut at_mid {
             c.truncate(k);
         }
-        let hk = h.powi(k as i32);
         let s = add(
             [horner(&at_mid[0], h), horner(&at_mid[1], h)],
             [hk * remainder[0], hk * remainder[1]],
