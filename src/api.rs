@@ -19,6 +19,7 @@
 //! ```
 
 use crate::area::{certified_areas, Provenance};
+use crate::motion::{self, singular};
 use crate::number::param::{parse_assignment, ParamSet};
 use crate::params::report::atlas_json;
 use crate::params::{search, AtlasRun, DecideOptions, Family, SearchOptions, Source};
@@ -29,6 +30,9 @@ use std::path::Path;
 use std::time::Instant;
 
 pub use crate::check::{Report, Verdict};
+pub use crate::motion::reach::{Fate, ReachLeaf, ReachOptions, ReachRun};
+pub use crate::motion::singular::{Report as SingularReport, Scan, ScanOptions};
+pub use crate::motion::{FlowRequest, Tube, Until};
 pub use crate::params::model::{ParamAxis, SetStatus};
 pub use crate::params::Shard;
 pub use crate::pave::{
@@ -611,7 +615,89 @@ impl ParamAtlasRun {
     }
 }
 
+/// The motion: certified trajectories and the equilibria and singular
+/// points of the scene's `[dynamics]`, as `detach flow` and `detach
+/// singular` compute them.
 impl Problem {
+    /// The certified trajectory for `request` (see [`FlowRequest::parse`]).
+    ///
+    /// ```
+    /// use detach::api::{FlowRequest, Problem};
+    ///
+    /// let disc = Problem::load("viscous-disc", &[])?;
+    /// let tube = disc.flow(&FlowRequest::parse("-1.5", "1", "1").map_err(|e| e.to_string())?)?;
+    /// assert!(tube.end[0].wid() < 1e-12);
+    /// # Ok::<(), String>(())
+    /// ```
+    pub fn flow(&self, request: &FlowRequest) -> Result<Tube, String> {
+        motion::flow(self.scene.reading(self.variant), request).map_err(|e| e.to_string())
+    }
+
+    /// The initial states of the domain (or a window of it) whose motion
+    /// reaches the first event of `until` within `t` (decimal text), as a
+    /// certified paving: `detach reach`.
+    pub fn reach(
+        &self,
+        theta: Option<[&str; 2]>,
+        theta_dot: Option<[&str; 2]>,
+        t: &str,
+        until: &[Until],
+        opts: &ReachOptions,
+    ) -> Result<ReachRun, String> {
+        let (domain, _) = self.domain(theta, theta_dot)?;
+        let t_end = crate::number::param::enclose_decimal("t", t).map_err(|e| e.to_string())?;
+        if !(t_end.inf() > 0.0 && t_end.is_common_interval()) {
+            return Err(format!("t must be a number > 0, got `{t}`"));
+        }
+        if until.is_empty() {
+            return Err("no target: give at least one of U=0, N=0, cell, domain".into());
+        }
+        if !(opts.eps.is_finite() && opts.eps > 0.0 && opts.eps < 1.0) {
+            return Err(format!("eps must be a number in (0, 1), got {}", opts.eps));
+        }
+        let motion = motion::Motion::new(self.scene.reading(self.variant), until)
+            .map_err(|e| e.to_string())?;
+        Ok(motion::reach::reach(
+            &motion,
+            domain.inner_box(),
+            t_end,
+            opts,
+            |_, _, _| std::ops::ControlFlow::Continue(()),
+        ))
+    }
+
+    /// The equilibria and singular points in the domain (or a window of
+    /// it), each proved unique in its box, with their type.
+    pub fn singular_points(
+        &self,
+        theta: Option<[&str; 2]>,
+        theta_dot: Option<[&str; 2]>,
+    ) -> Result<SingularReport, String> {
+        let (domain, _) = self.domain(theta, theta_dot)?;
+        let file = self.scene.reading(self.variant);
+        if !file.has_dynamics() {
+            return Err(format!(
+                "scene `{}` has no [dynamics]: there is no θ̈ to find equilibria of",
+                self.scene.name()
+            ));
+        }
+        singular::find(file, &domain, &Default::default())
+    }
+
+    /// Where in `axis` the number or the type of the points changes: the
+    /// certified thresholds of `detach singular --x`.
+    pub fn singular_scan(
+        &self,
+        axis: ParamAxis,
+        theta: Option<[&str; 2]>,
+        theta_dot: Option<[&str; 2]>,
+        opts: &ScanOptions,
+    ) -> Result<Scan, String> {
+        let (domain, _) = self.domain(theta, theta_dot)?;
+        let family = self.family(vec![axis])?;
+        singular::scan(&family, &domain, opts)
+    }
+
     /// The scene as a family over `axes`, the other parameters at this
     /// problem's values: the scene `detach singular --x` rebuilds per
     /// parameter box.

@@ -53,6 +53,8 @@ enum Command {
     Flow(cli::flow::FlowArgs),
     /// Certified equilibria and singular points of `[dynamics]`, typed.
     Singular(cli::singular::SingularArgs),
+    /// Initial states that reach a target within a time: a certified paving.
+    Reach(cli::reach::ReachArgs),
 }
 
 /// The command line; `detach` alone runs `detach atlas`.
@@ -83,6 +85,7 @@ fn run(command: Command) -> CliResult {
         Command::Merge(a) => cli::params::run_merge(&a),
         Command::Flow(a) => cli::flow::run_flow(&a),
         Command::Singular(a) => cli::singular::run_singular(&a),
+        Command::Reach(a) => cli::reach::run_reach(&a),
     }
 }
 

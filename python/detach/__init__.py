@@ -14,6 +14,7 @@ the Rust library the CLI is built from, so results equal the CLI's.
 from __future__ import annotations
 
 import decimal
+import json
 from dataclasses import dataclass
 from typing import Optional
 
@@ -30,6 +31,10 @@ __all__ = [
     "SetArea",
     "Area",
     "Verification",
+    "Trajectory",
+    "Event",
+    "Reach",
+    "FATES",
     "Interrupted",
     "verify",
     "scenes",
@@ -224,6 +229,59 @@ class Scene:
             raise Interrupted(atlas)
         return atlas
 
+    def flow(self, start, t, until="cell,domain", order=20):
+        """A certified trajectory, as `detach flow`: the tube of every
+        solution from `start` over [0, t], up to the first event of `until`
+        (`"U=0"`, `"N=0"`, `"cell"`, `"domain"`, `"none"`, comma-separated).
+
+        `start`: `(theta, theta_dot)`, each decimal text (`"pi/4"`), an int,
+        a `Decimal`, or a pair `(lo, hi)` for a box of initial states. `t`:
+        the end time, decimal text. The GIL is released while it runs."""
+        try:
+            theta, theta_dot = start
+        except (TypeError, ValueError):
+            raise ValueError(f"start must be (theta, theta_dot), got {start!r}") from None
+        native = self._native.flow(
+            _state("theta", theta),
+            _state("theta_dot", theta_dot),
+            decimal_text("t", t),
+            str(until),
+            _order(order),
+        )
+        return Trajectory(native)
+
+    def reach(self, t, until="cell", theta=None, theta_dot=None, eps=1 / 256,
+              max_boxes=100_000):
+        """The initial states whose motion reaches the first event of
+        `until` within time `t`, as `detach reach`: a certified paving of
+        the domain (or the window `theta`, `theta_dot`), each leaf proved to
+        reach (with the time window of its arrival), proved to avoid, or
+        undecided with the reason. The GIL is released while it runs."""
+        if isinstance(max_boxes, bool) or not isinstance(max_boxes, int) or max_boxes < 1:
+            raise ValueError(f"max_boxes must be a positive integer, got {max_boxes!r}")
+        leaves, complete = self._native.reach(
+            decimal_text("t", t), str(until), float(eps), max_boxes,
+            _window("theta", theta), _window("theta_dot", theta_dot),
+        )
+        return Reach(leaves, complete)
+
+    def singular_points(self, theta=None, theta_dot=None, x=None, eps=None):
+        """The equilibria and singular points of the scene's `[dynamics]`,
+        as `detach singular --json`: each proved unique in its box, with its
+        type (`"saddle"`, `"stable node"`, ...). `theta`, `theta_dot`: a
+        window `(lo, hi)`. With `x` (`"mu=1:2"` or `(name, lo, hi)`): the
+        scan over that parameter, whose `"thresholds"` are the certified
+        values where the number or type of the points changes. Numbers are
+        exact decimal text."""
+        window = (_window("theta", theta), _window("theta_dot", theta_dot))
+        if x is None:
+            return json.loads(self._native.singular_points(*window))
+        return json.loads(
+            self._native.singular_scan(
+                _axis("x", x), None if eps is None else float(eps), *window
+            )
+        )
+
     def area(self, digits=10):
         """Certified areas of Ω, Ω₀ and the four cells to `digits` places, as
         `detach area`: `{name: Area}`, each saying how it was obtained."""
@@ -231,6 +289,169 @@ class Scene:
             name: Area(name, label, lower, upper, how)
             for name, label, lower, upper, how in self._native.area(int(digits))
         }
+
+
+def _state(name, value):
+    """One coordinate of a start: a number's text, or `LO:HI` for a pair."""
+    if isinstance(value, (tuple, list)):
+        lo, hi = _window(name, value)
+        return f"{lo}:{hi}"
+    return decimal_text(name, value)
+
+
+def _order(order):
+    if isinstance(order, bool) or not isinstance(order, int):
+        raise ValueError(f"order must be an integer in 2..=60, got {order!r}")
+    return order
+
+
+@dataclass(frozen=True)
+class Event:
+    """The first event of a run: its kind (`"U=0"`, `"N=0"`, `"domain"`)
+    and enclosures `(lo, hi)` of its time, of the state there, and of the
+    watched function's rate of change (of one sign: a transversal crossing).
+    The floats are exact: each is the double whose decimal value detach
+    wrote."""
+
+    kind: str
+    time: tuple
+    theta: tuple
+    theta_dot: tuple
+    slope: tuple
+
+
+def _pair(texts):
+    return (float(texts[0]), float(texts[1]))
+
+
+class Trajectory:
+    """The result of `Scene.flow`: a certified tube, its first events, its
+    end and why it ended."""
+
+    def __init__(self, native):
+        self._native = native
+        self._doc = json.loads(native.json())
+
+    def json(self):
+        """What `detach flow --json` prints (without the run's arguments)."""
+        return self._doc
+
+    @property
+    def events(self):
+        return [
+            Event(e["kind"], _pair(e["time"]), _pair(e["theta"]), _pair(e["theta_dot"]),
+                  _pair(e["slope"]))
+            for e in self._doc["events"]
+        ]
+
+    @property
+    def end_time(self):
+        """The end time asked for (a `Decimal`, exact) when reached, else
+        `(lo, hi)`: the event's window or the last certified step's end."""
+        t = self._doc["end"]["time"]
+        if isinstance(t, str):
+            return decimal.Decimal(t)
+        return _pair(t)
+
+    @property
+    def end(self):
+        """`((θ lo, θ hi), (θ̇ lo, θ̇ hi))` at the end."""
+        e = self._doc["end"]
+        return (_pair(e["theta"]), _pair(e["theta_dot"]))
+
+    @property
+    def stop(self):
+        return self._doc["stop"]
+
+    @property
+    def steps(self):
+        return self._doc["steps"]
+
+    def band(self, pieces=8):
+        """The tube as a numpy structured array, `pieces` rows per step:
+        `t_lo, t_hi, theta_lo, theta_hi, theta_dot_lo, theta_dot_hi`. Every
+        solution is in a row's box at every time of its time interval."""
+        raw = self._native.band(int(pieces))
+        return np.frombuffer(raw, dtype=_BAND_DTYPE)
+
+    def plot(self, ax=None, pieces=8, color="black"):
+        """Draws the band's boxes on the phase plane (θ, θ̇)."""
+        from ._plot import plot_band
+
+        return plot_band(self.band(pieces), ax=ax, color=color)
+
+    def __repr__(self):
+        return f"<detach.Trajectory {self.steps} steps, {self.stop}>"
+
+
+#: A reach leaf's fate, by its code in `Reach.leaves["fate"]`.
+FATES = ("reaches", "avoids", "undecided")
+
+
+class Reach:
+    """The result of `Scene.reach`: leaves (a numpy structured array with
+    `theta_lo, theta_hi, theta_dot_lo, theta_dot_hi, fate, t_lo, t_hi`),
+    the undecided leaves' reasons, and certified area bounds."""
+
+    def __init__(self, leaves, complete):
+        self.leaves = np.array(
+            [row[:7] for row in leaves],
+            dtype=[("theta_lo", "f8"), ("theta_hi", "f8"), ("theta_dot_lo", "f8"),
+                   ("theta_dot_hi", "f8"), ("fate", "u1"), ("t_lo", "f8"), ("t_hi", "f8")],
+        )
+        self.reasons = [row[7] for row in leaves]
+        #: False when the box budget ended the paving (open boxes undecided).
+        self.complete = complete
+
+    def area(self):
+        """`(inner, outer)`: the area of the leaves proved to reach, and of
+        those not proved to avoid (floats summed in exact rationals, then
+        rounded outward)."""
+        from fractions import Fraction
+
+        def total(mask):
+            leaves = self.leaves[mask]
+            return sum(
+                (Fraction(float(a)) - Fraction(float(b))) * (Fraction(float(c)) - Fraction(float(d)))
+                for a, b, c, d in zip(leaves["theta_hi"], leaves["theta_lo"],
+                                      leaves["theta_dot_hi"], leaves["theta_dot_lo"])
+            )
+
+        inner, outer = total(self.leaves["fate"] == 0), total(self.leaves["fate"] != 1)
+        return (_round(inner, down=True), _round(outer, down=False))
+
+    def __len__(self):
+        return len(self.leaves)
+
+    def __repr__(self):
+        counts = [int((self.leaves["fate"] == k).sum()) for k in range(3)]
+        return "<detach.Reach {} reach, {} avoid, {} undecided>".format(*counts)
+
+
+def _round(q, down):
+    """The double next to the rational `q` on the side asked for."""
+    import math
+
+    x = float(q)
+    from fractions import Fraction
+
+    if down and Fraction(x) > q:
+        x = math.nextafter(x, -math.inf)
+    if not down and Fraction(x) < q:
+        x = math.nextafter(x, math.inf)
+    return x
+
+
+_BAND_DTYPE = np.dtype(
+    [
+        ("t_lo", "f8"),
+        ("t_hi", "f8"),
+        ("theta_lo", "f8"),
+        ("theta_hi", "f8"),
+        ("theta_dot_lo", "f8"),
+        ("theta_dot_hi", "f8"),
+    ]
+)
 
 
 def _axis(flag, axis):

@@ -99,3 +99,23 @@ def plot_param_atlas(atlas, ax=None, legend=True):
     if legend and shown:
         ax.legend(handles=shown, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
     return ax
+
+
+def plot_band(band, ax=None, color="black"):
+    """A certified tube's boxes on the phase plane, as filled rectangles."""
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import PolyCollection
+
+    if ax is None:
+        _, ax = plt.subplots()
+    t0, t1 = band["theta_lo"], band["theta_hi"]
+    w0, w1 = band["theta_dot_lo"], band["theta_dot_hi"]
+    quads = np.stack(
+        [np.stack([t0, w0], 1), np.stack([t1, w0], 1), np.stack([t1, w1], 1), np.stack([t0, w1], 1)],
+        1,
+    )
+    ax.add_collection(PolyCollection(quads, facecolors=color, edgecolors=color, linewidths=0.3))
+    ax.autoscale_view()
+    ax.set_xlabel("θ")
+    ax.set_ylabel("θ̇")
+    return ax

@@ -3,8 +3,9 @@
 //! pictures and sympy scenes on top; every number comes from here.
 
 use detach::api::{
-    cell_named, status_index, verify as check_file, How, Label, Method, ParamAtlasRun, ParamAxis,
-    ParamRequest, PaveRequest, Paved, Problem, Variant, Verdict,
+    cell_named, status_index, verify as check_file, Fate, FlowRequest, How, Label, Method,
+    ParamAtlasRun, ParamAxis, ParamRequest, PaveRequest, Paved, Problem, ReachOptions, ScanOptions,
+    Tube, Until, Variant, Verdict,
 };
 use detach::figures::Class;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
@@ -179,6 +180,134 @@ impl Scene {
             Some(e) if !e.is_instance_of::<PyKeyboardInterrupt>(py) => Err(e),
             s => Ok((ParamAtlas { run }, s.is_some())),
         }
+    }
+
+    /// A certified trajectory from `theta`, `theta_dot` (each `X` or
+    /// `LO:HI`, decimal text) over `[0, t]`, stopped by `until` (as `detach
+    /// flow --until`), with the GIL released.
+    fn flow(
+        &self,
+        py: Python<'_>,
+        theta: &str,
+        theta_dot: &str,
+        t: &str,
+        until: &str,
+        order: usize,
+    ) -> PyResult<Trajectory> {
+        if !(2..=60).contains(&order) {
+            return Err(value_error(format!("order must be in 2..=60, got {order}")));
+        }
+        let mut request =
+            FlowRequest::parse(theta, theta_dot, t).map_err(|e| value_error(e.to_string()))?;
+        request.until = Until::parse_list(until).map_err(|e| value_error(e.to_string()))?;
+        request.settings.order = order;
+        let tube = py
+            .detach(|| self.problem.flow(&request))
+            .map_err(value_error)?;
+        Ok(Trajectory {
+            tube,
+            t: t.to_string(),
+        })
+    }
+
+    /// The reach paving (as `detach reach`): `(leaves, complete)`, each
+    /// leaf `(θ lo, θ hi, θ̇ lo, θ̇ hi, fate, t lo, t hi, reason)` with fate
+    /// 0 reaches (in the time window), 1 avoids, 2 undecided.
+    #[allow(clippy::too_many_arguments, clippy::type_complexity)]
+    fn reach(
+        &self,
+        py: Python<'_>,
+        t: &str,
+        until: &str,
+        eps: f64,
+        max_boxes: usize,
+        theta: Option<[String; 2]>,
+        theta_dot: Option<[String; 2]>,
+    ) -> PyResult<(Vec<(f64, f64, f64, f64, u8, f64, f64, String)>, bool)> {
+        let until = Until::parse_list(until).map_err(|e| value_error(e.to_string()))?;
+        if max_boxes == 0 {
+            return Err(value_error("max_boxes must be at least 1".into()));
+        }
+        let opts = ReachOptions {
+            eps,
+            max_boxes,
+            ..ReachOptions::default()
+        };
+        let refs = |w: &Option<[String; 2]>| w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()]);
+        let run = py
+            .detach(|| {
+                self.problem
+                    .reach(refs(&theta), refs(&theta_dot), t, &until, &opts)
+            })
+            .map_err(value_error)?;
+        let leaves = run
+            .leaves
+            .iter()
+            .map(|l| {
+                let (fate, time, why) = match &l.fate {
+                    Fate::Reaches(w) => (0, (w.inf(), w.sup()), String::new()),
+                    Fate::Avoids => (1, (f64::NAN, f64::NAN), String::new()),
+                    Fate::Undecided(why) => (2, (f64::NAN, f64::NAN), why.clone()),
+                };
+                let [t0, t1] = l.theta;
+                let [w0, w1] = l.theta_dot;
+                (t0, t1, w0, w1, fate, time.0, time.1, why)
+            })
+            .collect();
+        Ok((leaves, run.complete))
+    }
+
+    /// The equilibria and singular points (as `detach singular --json`),
+    /// in the domain or a window of it: JSON text.
+    fn singular_points(
+        &self,
+        py: Python<'_>,
+        theta: Option<[String; 2]>,
+        theta_dot: Option<[String; 2]>,
+    ) -> PyResult<String> {
+        let refs = |w: &Option<[String; 2]>| w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()]);
+        let report = py
+            .detach(|| self.problem.singular_points(refs(&theta), refs(&theta_dot)))
+            .map_err(value_error)?;
+        Ok(detach::motion::singular::report_json(&report).to_string())
+    }
+
+    /// Where in `(name, lo, hi)` the number or type of the points changes
+    /// (as `detach singular --x --json`): JSON text.
+    fn singular_scan(
+        &self,
+        py: Python<'_>,
+        axis: (String, String, String),
+        eps: Option<f64>,
+        theta: Option<[String; 2]>,
+        theta_dot: Option<[String; 2]>,
+    ) -> PyResult<String> {
+        let (name, lo, hi) = axis;
+        let mut opts = ScanOptions::default();
+        if let Some(eps) = eps {
+            if !(eps.is_finite() && eps > 0.0 && eps < 1.0) {
+                return Err(value_error(format!(
+                    "eps must be a number in (0, 1), got {eps}"
+                )));
+            }
+            opts.eps = eps;
+        }
+        let refs = |w: &Option<[String; 2]>| w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()]);
+        let axis = ParamAxis { name, lo, hi };
+        let scan = py
+            .detach(|| {
+                self.problem
+                    .singular_scan(axis, refs(&theta), refs(&theta_dot), &opts)
+            })
+            .map_err(value_error)?;
+        // The boxes cover the range: its ends are theirs.
+        let family_root = scan
+            .boxes
+            .iter()
+            .fold([f64::INFINITY, f64::NEG_INFINITY], |r, b| {
+                [r[0].min(b.lo), r[1].max(b.hi)]
+            });
+        Ok(detach::motion::singular::scan_json(&scan, family_root).to_string())
     }
 
     /// Certified areas: `(name, label, lower, upper, how)` per set.
@@ -434,6 +563,47 @@ impl ParamAtlas {
 
 /// Checks a proof file: `(verdict, claim, why)` with verdict `VALID`,
 /// `INVALID` or `UNCHECKED`.
+/// A certified trajectory: its tube and the end time as asked for.
+#[pyclass(module = "detach._detach", frozen)]
+struct Trajectory {
+    tube: Tube,
+    t: String,
+}
+
+#[pymethods]
+impl Trajectory {
+    /// `{"events", "end", "stop", "steps"}` as `detach flow --json`.
+    fn json(&self) -> String {
+        self.tube.json(&self.t).to_string()
+    }
+
+    /// The tube as a thin band: per step `pieces` rows of 6 doubles (t lo,
+    /// t hi, θ lo, θ hi, θ̇ lo, θ̇ hi), native byte order; each row's box
+    /// holds every solution at every time of its time interval.
+    fn band<'py>(&self, py: Python<'py>, pieces: usize) -> PyResult<Bound<'py, PyBytes>> {
+        if !(1..=1000).contains(&pieces) {
+            return Err(value_error(format!(
+                "pieces must be in 1..=1000, got {pieces}"
+            )));
+        }
+        let rows = self.tube.band(pieces);
+        let mut bytes = Vec::with_capacity(rows.len() * 48);
+        for (t, x) in rows {
+            for v in [
+                t.inf(),
+                t.sup(),
+                x[0].inf(),
+                x[0].sup(),
+                x[1].inf(),
+                x[1].sup(),
+            ] {
+                bytes.extend_from_slice(&v.to_ne_bytes());
+            }
+        }
+        Ok(PyBytes::new(py, &bytes))
+    }
+}
+
 #[pyfunction]
 fn verify(py: Python<'_>, path: PathBuf) -> PyResult<(String, String, String)> {
     let report = py.detach(|| check_file(&path)).map_err(value_error)?;
@@ -488,6 +658,7 @@ fn _detach(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_class::<Paving>()?;
     m.add_class::<ParamAtlas>()?;
+    m.add_class::<Trajectory>()?;
     m.add_function(wrap_pyfunction!(verify, m)?)?;
     m.add_function(wrap_pyfunction!(palette, m)?)?;
     m.add_function(wrap_pyfunction!(scene_names, m)?)?;

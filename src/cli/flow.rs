@@ -1,8 +1,7 @@
 //! `detach flow`: a certified trajectory of a scene's `[dynamics]`.
 
 use super::{parse_overrides, CliError, CliResult, SceneSource};
-use detach::motion::{flow, FlowRequest, Stop, Tube, Until};
-use detach::params::report::exact_decimal;
+use detach::motion::{flow, FlowRequest, Tube, Until};
 use detach::scene::Variant;
 use inari::Interval;
 use serde_json::{json, Value};
@@ -79,26 +78,20 @@ pub fn run_flow(args: &FlowArgs) -> CliResult {
     request.settings.order = args.order;
     let tube = flow(file, &request).map_err(CliError::usage)?;
     if args.json {
-        let out = json!({
-            "detach": detach::provenance(),
-            "arguments": {
-                "scene": args.source.scene, "scene_file": args.source.scene_file,
-                "params": args.params, "from": args.from, "from_box": args.from_box,
-                "t": args.t, "until": args.until, "order": args.order,
-            },
-            "parameters": problem.params.texts().into_iter()
-                .map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<String, Value>>(),
-            "events": tube.events.iter().map(|e| json!({
-                "kind": e.kind, "time": pair(e.time), "theta": pair(e.theta),
-                "theta_dot": pair(e.theta_dot), "slope": pair(e.slope),
-            })).collect::<Vec<_>>(),
-            "end": {
-                "time": if tube.stop == Stop::End { json!(args.t) } else { pair(tube.end_time) },
-                "theta": pair(tube.end[0]), "theta_dot": pair(tube.end[1]),
-            },
-            "stop": stop_text(&tube),
-            "steps": tube.len(),
+        let mut out = tube.json(&args.t);
+        out["detach"] = detach::provenance();
+        out["arguments"] = json!({
+            "scene": args.source.scene, "scene_file": args.source.scene_file,
+            "params": args.params, "from": args.from, "from_box": args.from_box,
+            "t": args.t, "until": args.until, "order": args.order,
         });
+        out["parameters"] = problem
+            .params
+            .texts()
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), json!(v)))
+            .collect::<serde_json::Map<String, Value>>()
+            .into();
         outln!(
             "{}",
             serde_json::to_string_pretty(&out).map_err(|e| CliError::runtime(e.to_string()))?
@@ -107,21 +100,6 @@ pub fn run_flow(args: &FlowArgs) -> CliResult {
         print_table(&tube);
     }
     super::stdout_status()
-}
-
-/// `["lo", "hi"]`, each end's exact decimal value.
-fn pair(x: Interval) -> Value {
-    json!([exact_decimal(x.inf() + 0.0), exact_decimal(x.sup() + 0.0)])
-}
-
-fn stop_text(tube: &Tube) -> String {
-    match &tube.stop {
-        Stop::End => "end time reached".into(),
-        Stop::Event => "first event".into(),
-        Stop::Undecided(why) => format!("undecided: {why}"),
-        Stop::StepFailed(why) => format!("stopped: {why}"),
-        Stop::Budget => "stopped: step budget reached".into(),
-    }
 }
 
 fn print_table(tube: &Tube) {
@@ -133,7 +111,7 @@ fn print_table(tube: &Tube) {
             x.wid()
         )
     };
-    outln!("{} certified steps; {}", tube.len(), stop_text(tube));
+    outln!("{} certified steps; {}", tube.len(), tube.stop_text());
     for e in &tube.events {
         outln!("event {}:", e.kind);
         outln!("  t        {}", enc(e.time));

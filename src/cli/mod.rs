@@ -15,6 +15,7 @@ pub mod flow;
 pub mod paper;
 pub mod params;
 pub mod proofs;
+pub mod reach;
 pub mod roots;
 pub mod singular;
 pub mod stability;

@@ -3,16 +3,19 @@
 //! them ([`super::event`]).
 
 use super::event::{first_crossing, Crossing, Event, Watched};
+use super::interval_json;
 use super::lohner::{point, LohnerSet, StepData, StepFailure, Stepper, Vector};
 use crate::scene::expr::TaylorTape;
 use inari::Interval;
+use serde_json::{json, Value};
 
 /// How the integrator steps.
 #[derive(Clone, Copy, Debug)]
 pub struct FlowSettings {
     /// Order K of the Taylor method.
     pub order: usize,
-    /// The remainder aimed at per step (absolute); chooses the step size.
+    /// The remainder aimed at per step (absolute, or 10⁻⁶ of the set's
+    /// width when that is larger); chooses the step size.
     pub tolerance: f64,
     /// Most steps before the run stops (and says so).
     pub max_steps: usize,
@@ -20,6 +23,9 @@ pub struct FlowSettings {
     pub min_step: f64,
     /// The longest step.
     pub max_step: f64,
+    /// A set wider than this (in θ or θ̇) ends the run: its tube decides
+    /// nothing more.
+    pub max_width: f64,
 }
 
 impl Default for FlowSettings {
@@ -30,6 +36,7 @@ impl Default for FlowSettings {
             max_steps: 100_000,
             min_step: 1e-9,
             max_step: 0.5,
+            max_width: f64::INFINITY,
         }
     }
 }
@@ -94,6 +101,34 @@ impl Tube {
             h: d.h,
             apriori: d.apriori,
             end: d.end.hull,
+        })
+    }
+
+    /// Why the run ended, in words.
+    pub fn stop_text(&self) -> String {
+        match &self.stop {
+            Stop::End => "end time reached".into(),
+            Stop::Event => "first event".into(),
+            Stop::Undecided(why) => format!("undecided: {why}"),
+            Stop::StepFailed(why) => format!("stopped: {why}"),
+            Stop::Budget => "stopped: step budget reached".into(),
+        }
+    }
+
+    /// `{"events", "end", "stop", "steps"}` with intervals as exact decimal
+    /// text; `t_text` is the end time as asked for, written when reached.
+    pub fn json(&self, t_text: &str) -> Value {
+        json!({
+            "events": self.events.iter().map(|e| json!({
+                "kind": e.kind, "time": interval_json(e.time), "theta": interval_json(e.theta),
+                "theta_dot": interval_json(e.theta_dot), "slope": interval_json(e.slope),
+            })).collect::<Vec<_>>(),
+            "end": {
+                "time": if self.stop == Stop::End { json!(t_text) } else { interval_json(self.end_time) },
+                "theta": interval_json(self.end[0]), "theta_dot": interval_json(self.end[1]),
+            },
+            "stop": self.stop_text(),
+            "steps": self.len(),
         })
     }
 
@@ -182,8 +217,18 @@ pub fn integrate(
         if steps.len() >= settings.max_steps {
             return Ok(finish(steps, set, t, vec![], Stop::Budget));
         }
+        if set.hull.iter().any(|x| x.wid() > settings.max_width) {
+            let why = format!(
+                "the enclosure is wider than {} at t = {t}",
+                settings.max_width
+            );
+            return Ok(finish(steps, set, t, vec![], Stop::StepFailed(why)));
+        }
+        // A wide set needs its remainder small against its own width only.
+        let width = set.hull[0].wid().max(set.hull[1].wid());
+        let tolerance = settings.tolerance.max(BOX_TOLERANCE * width);
         let suggested = stepper
-            .suggest(&set, settings.tolerance)
+            .suggest(&set, tolerance)
             .unwrap_or(settings.min_step);
         let mut h = (suggested * scale).min(settings.max_step).min(2.0 * last_h);
         let mut retries_for_event = 0;
@@ -196,15 +241,14 @@ pub fn integrate(
             let max_remainder = if last || retries_for_remainder == REMAINDER_RETRIES {
                 f64::INFINITY
             } else {
-                REMAINDER_SLACK * settings.tolerance
+                REMAINDER_SLACK * tolerance
             };
             match stepper.step(&set, hi, max_remainder) {
                 Err(StepFailure::RemainderAbove(size)) => {
                     // x_K over the a-priori box exceeds its value at the
                     // midpoint, which chose h: shorten the step (the
                     // remainder scales as h^K) and remember by how much.
-                    let factor =
-                        (0.9 * (settings.tolerance / size).powf(1.0 / order)).clamp(0.1, 0.9);
+                    let factor = (0.9 * (tolerance / size).powf(1.0 / order)).clamp(0.1, 0.9);
                     scale = (scale * factor).max(1e-3);
                     h = hi.inf() * factor;
                     retries_for_remainder += 1;
@@ -299,6 +343,8 @@ fn step_size(h: f64, quantum: f64, t: f64, t_end: Interval) -> (Interval, bool) 
 /// shortened, and a step is shortened for it so many times at most.
 const REMAINDER_SLACK: f64 = 4.0;
 const REMAINDER_RETRIES: usize = 4;
+/// The remainder aimed at per step relative to the set's width.
+const BOX_TOLERANCE: f64 = 1e-6;
 
 /// The crossings in one step of each watched function.
 fn crossings(

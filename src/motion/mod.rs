@@ -9,16 +9,26 @@
 pub mod event;
 pub mod flow;
 pub mod lohner;
+pub mod reach;
 pub mod singular;
 #[cfg(test)]
 mod tests;
 
 use crate::number::param::{enclose_decimal, enclose_window_end, ParamError};
+use crate::params::report::exact_decimal;
+use crate::scene::expr::TaylorTape;
 use crate::scene::file::FileScene;
 pub use event::Event;
-use event::{RegionBoundary, Watched, WindowSide};
+pub use event::Watched;
+use event::{RegionBoundary, WindowSide};
 pub use flow::{FlowError, FlowSettings, Stop, Tube, TubeStep};
 use inari::Interval;
+use serde_json::{json, Value};
+
+/// `["lo", "hi"]`, the exact decimal values of an interval's ends.
+pub fn interval_json(x: Interval) -> Value {
+    json!([exact_decimal(x.inf() + 0.0), exact_decimal(x.sup() + 0.0)])
+}
 
 /// What ends a run besides its end time.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -110,42 +120,81 @@ pub enum MotionError {
     Flow(#[from] FlowError),
 }
 
+/// A scene's motion ready to integrate: its compiled θ̈ and the functions
+/// whose sign changes end a run; one per scene and event set, run from
+/// many starts.
+pub struct Motion<'a> {
+    tape: TaylorTape,
+    regions: Vec<RegionBoundary<'a>>,
+    sides: Vec<WindowSide>,
+}
+
+impl<'a> Motion<'a> {
+    pub fn new(file: &'a FileScene, until: &[Until]) -> Result<Motion<'a>, MotionError> {
+        let tape = file
+            .dynamics_taylor()
+            .ok_or_else(|| MotionError::NoDynamics(file.name.clone()))?;
+        let regions = [Until::Omega, Until::Omega0]
+            .iter()
+            .enumerate()
+            .filter(|(i, u)| until.contains(u) && !(*i == 1 && file.omega0_is_omega()))
+            .map(|(region, _)| RegionBoundary { file, region })
+            .collect();
+        let d = file.domain;
+        let sides = if until.contains(&Until::Domain) {
+            (0..2)
+                .flat_map(|axis| {
+                    let ends = [d.theta, d.theta_dot][axis];
+                    [(ends[0], false), (ends[1], true)].map(|(at, upper)| WindowSide {
+                        axis,
+                        at,
+                        upper,
+                    })
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        Ok(Motion {
+            tape,
+            regions,
+            sides,
+        })
+    }
+
+    /// The certified tube from `start` over [0, `t_end`] or to the first
+    /// event.
+    pub fn run(
+        &self,
+        start: [Interval; 2],
+        t_end: Interval,
+        settings: &FlowSettings,
+    ) -> Result<Tube, FlowError> {
+        flow::integrate(&self.tape, settings, start, t_end, &self.watched())
+    }
+
+    /// The tube from `start` over [0, `t_end`], through any event: the
+    /// contact-mode dynamics continued past the watched boundaries.
+    pub fn run_through(
+        &self,
+        start: [Interval; 2],
+        t_end: Interval,
+        settings: &FlowSettings,
+    ) -> Result<Tube, FlowError> {
+        flow::integrate(&self.tape, settings, start, t_end, &[])
+    }
+
+    /// The functions whose sign changes end a run.
+    pub fn watched(&self) -> Vec<&dyn Watched> {
+        self.regions
+            .iter()
+            .map(|r| r as &dyn Watched)
+            .chain(self.sides.iter().map(|s| s as &dyn Watched))
+            .collect()
+    }
+}
+
 /// The certified trajectory of `file`'s `[dynamics]` for `request`.
 pub fn flow(file: &FileScene, request: &FlowRequest) -> Result<Tube, MotionError> {
-    let tape = file
-        .dynamics_taylor()
-        .ok_or_else(|| MotionError::NoDynamics(file.name.clone()))?;
-    let regions: Vec<RegionBoundary> = [Until::Omega, Until::Omega0]
-        .iter()
-        .enumerate()
-        .filter(|(i, u)| request.until.contains(u) && !(*i == 1 && file.omega0_is_omega()))
-        .map(|(region, _)| RegionBoundary { file, region })
-        .collect();
-    let d = file.domain;
-    let sides: Vec<WindowSide> = if request.until.contains(&Until::Domain) {
-        (0..2)
-            .flat_map(|axis| {
-                let ends = [d.theta, d.theta_dot][axis];
-                [(ends[0], false), (ends[1], true)].map(|(at, upper)| WindowSide {
-                    axis,
-                    at,
-                    upper,
-                })
-            })
-            .collect()
-    } else {
-        Vec::new()
-    };
-    let watched: Vec<&dyn Watched> = regions
-        .iter()
-        .map(|r| r as &dyn Watched)
-        .chain(sides.iter().map(|s| s as &dyn Watched))
-        .collect();
-    Ok(flow::integrate(
-        &tape,
-        &request.settings,
-        request.start,
-        request.t_end,
-        &watched,
-    )?)
+    Ok(Motion::new(file, &request.until)?.run(request.start, request.t_end, &request.settings)?)
 }

@@ -27,6 +27,7 @@
 //! f64 only steers (midpoints, the Krawczyk preconditioner, split points);
 //! every conclusion is read off interval enclosures.
 
+use super::interval_json;
 use crate::number::scalar::{is_continuous, is_defined, Dual, Scalar};
 use crate::params::report::exact_decimal;
 use crate::params::Family;
@@ -691,11 +692,6 @@ pub fn scan(family: &Family, domain: &Domain, opts: &ScanOptions) -> Result<Scan
         boxes,
         thresholds,
     })
-}
-
-/// `[lo, hi]` as exact decimal text.
-pub fn interval_json(x: Interval) -> Value {
-    json!([exact_decimal(x.inf()), exact_decimal(x.sup())])
 }
 
 /// One point as JSON.

@@ -264,3 +264,102 @@ fn a_start_on_a_watched_boundary_is_refused() {
         Err(MotionError::Flow(FlowError::StartOnBoundary(_)))
     ));
 }
+
+/// The largest θ over [0, T] of θ̈ = −θ from (θ₀, ω₀): θ = R cos(t − φ),
+/// R = √(θ₀² + ω₀²), φ = atan2(ω₀, θ₀); for T < π the top R is reached iff
+/// 0 ≤ φ ≤ T, else the larger end value. In MPFR.
+fn oscillator_max(theta0: f64, omega0: f64, t: f64) -> Float {
+    let (a, b) = (f(theta0), f(omega0));
+    let r = (a.clone().pow(2u32) + b.clone().pow(2u32)).sqrt();
+    let phi = b.clone().atan2(&a);
+    if phi >= 0 && phi <= t {
+        return r;
+    }
+    let tt = f(t);
+    let end = a.clone() * tt.clone().cos() + b * tt.sin();
+    if end > a {
+        end
+    } else {
+        a
+    }
+}
+
+#[test]
+fn reach_sets_of_the_oscillator_agree_with_the_closed_form() {
+    use reach::{reach, Fate, ReachOptions};
+    // Target θ = 1/2 (Ω = {θ − 1/2 < 0}) within T = 2, from the window
+    // θ ∈ [−1, 0.4], θ̇ ∈ [−1, 1].
+    let file = scene("-theta", "theta - 0.5");
+    let motion = Motion::new(&file, &[Until::Omega]).unwrap();
+    let window = [[-1.0, 0.4], [-1.0, 1.0]];
+    let t = Interval::try_from((2.0, 2.0)).unwrap();
+    let opts = ReachOptions {
+        eps: 1.0 / 128.0,
+        ..ReachOptions::default()
+    };
+    let run = reach(&motion, window, t, &opts, |_, _, _| {
+        std::ops::ControlFlow::Continue(())
+    });
+    assert!(run.complete);
+    let half = f(0.5);
+    let mut decided = 0.0;
+    for l in &run.leaves {
+        // Corners and centre of each leaf against the closed form.
+        let pts = [0.0, 0.5, 1.0].iter().flat_map(|&u| {
+            [0.0, 0.5, 1.0].map(|v| {
+                (
+                    l.theta[0] + u * (l.theta[1] - l.theta[0]),
+                    l.theta_dot[0] + v * (l.theta_dot[1] - l.theta_dot[0]),
+                )
+            })
+        });
+        let area = (l.theta[1] - l.theta[0]) * (l.theta_dot[1] - l.theta_dot[0]);
+        match &l.fate {
+            Fate::Reaches(window) => {
+                decided += area;
+                assert!(window.sup() <= 2.0);
+                for (a, b) in pts {
+                    assert!(oscillator_max(a, b, 2.0) >= half, "{l:?} at ({a}, {b})");
+                }
+            }
+            Fate::Avoids => {
+                decided += area;
+                for (a, b) in pts {
+                    assert!(oscillator_max(a, b, 2.0) < half, "{l:?} at ({a}, {b})");
+                }
+            }
+            Fate::Undecided(_) => {}
+        }
+    }
+    // The reach set's area by a 500 × 500 midpoint grid of the closed form
+    // (in f64: an estimate) lies within the certified bounds, up to the
+    // grid's error (about the boundary's length times a cell's side).
+    let (inner, outer) = run.area_bounds();
+    let max_f64 = |a: f64, b: f64| {
+        let phi = b.atan2(a);
+        if (0.0..=2.0).contains(&phi) {
+            a.hypot(b)
+        } else {
+            a.max(a * 2f64.cos() + b * 2f64.sin())
+        }
+    };
+    let n = 500;
+    let (dx, dy) = (1.4 / n as f64, 2.0 / n as f64);
+    let mut grid = 0.0;
+    for i in 0..n {
+        for j in 0..n {
+            let a = -1.0 + (i as f64 + 0.5) * dx;
+            let b = -1.0 + (j as f64 + 0.5) * dy;
+            if max_f64(a, b) >= 0.5 {
+                grid += dx * dy;
+            }
+        }
+    }
+    assert!(
+        inner <= grid + 0.01 && grid <= outer + 0.01,
+        "{inner} {grid} {outer}"
+    );
+    // Most of the window is decided.
+    assert!(decided > 0.9 * 2.8, "decided area {decided}");
+    assert!(outer - inner < 0.3, "{inner} {outer}");
+}

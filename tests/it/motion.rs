@@ -238,3 +238,87 @@ fn flow_refuses_bad_input() {
         "theta",
     );
 }
+
+/// `detach reach` on the rod around the reference event of
+/// `motion-reference.json` (mpmath: from (0.3, 4) U = 0 at t = 0.11587…):
+/// the leaf holding the start is never "avoids" within 0.3 nor "reaches"
+/// within 0.1, and an arrival window holds the reference time.
+#[test]
+fn reach_leaves_agree_with_the_reference_event() {
+    let data = reference();
+    let case = &data["events"][0];
+    assert_eq!(case["theta0"], "0.3");
+    assert_eq!(case["theta_dot0"], "4");
+    let time = case["time"].as_str().unwrap();
+    let run = |t: &str| {
+        json(&[
+            "reach",
+            "--scene",
+            "painleve-rod",
+            "--param",
+            "mu=0.5",
+            "--theta",
+            "0.25:0.35",
+            "--theta-dot",
+            "3.9:4.1",
+            "--t",
+            t,
+            "--until",
+            "U=0",
+            "--eps",
+            "0.0625",
+            "--json",
+        ])
+    };
+    let holds = |leaf: &Value| {
+        let end = |k: &str, i: usize| leaf[k][i].as_str().unwrap().parse::<f64>().unwrap();
+        end("theta", 0) <= 0.3
+            && 0.3 <= end("theta", 1)
+            && end("theta_dot", 0) <= 4.0
+            && 4.0 <= end("theta_dot", 1)
+    };
+    let late = run("0.3");
+    assert_eq!(late["complete"], true);
+    let mut seen = 0;
+    for leaf in late["leaves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|l| holds(l))
+    {
+        seen += 1;
+        assert_ne!(leaf["fate"], "avoids", "{leaf}");
+        if leaf["fate"] == "reaches" {
+            let w = leaf["time"].as_array().unwrap();
+            let lo = w[0].as_str().unwrap();
+            let hi = w[1].as_str().unwrap();
+            let window =
+                inari::Interval::try_from((lo.parse::<f64>().unwrap(), hi.parse::<f64>().unwrap()))
+                    .unwrap();
+            assert!(contains_text(window, time), "{window:?} ∌ {time}");
+        }
+    }
+    assert!(seen >= 1);
+    let area = |doc: &Value, k: &str| doc["area"][k].as_str().unwrap().parse::<f64>().unwrap();
+    assert!(area(&late, "inner") > 0.01 && area(&late, "outer") <= 0.02 + 1e-12);
+    let early = run("0.1");
+    for leaf in early["leaves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|l| holds(l))
+    {
+        assert_ne!(leaf["fate"], "reaches", "{leaf}");
+    }
+    for (args, message) in [
+        (vec!["--t", "0.3", "--eps", "2"], "--eps"),
+        (vec!["--t", "0.3", "--until", "none"], "no target"),
+        (vec!["--t", "-1"], "--t"),
+        (vec!["--t", "0.3", "--max-boxes", "0"], "--max-boxes"),
+        (vec!["--t", "0.3", "--theta", "1"], "LO:HI"),
+    ] {
+        let mut all = vec!["reach", "--scene", "painleve-rod"];
+        all.extend(args);
+        assert_bad_input(&all, message);
+    }
+}

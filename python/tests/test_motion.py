@@ -1,0 +1,168 @@
+"""Certified motion from Python: tubes against the mpmath reference of
+`tests/data/motion-reference.json` (written by tests/data/motion_reference.py,
+an independent Taylor integrator at 50 digits), events, boxes of starts,
+and the rod's singular points against their closed form."""
+
+import json
+from fractions import Fraction
+
+import matplotlib
+import mpmath
+import numpy as np
+import pytest
+
+matplotlib.use("Agg")
+
+import detach
+from conftest import REPO, cli_json
+
+REFERENCE = json.loads((REPO / "tests" / "data" / "motion-reference.json").read_text())
+
+
+def holds(pair, text):
+    """`pair` = (lo, hi) floats holds the decimal `text`, compared exactly."""
+    return Fraction(pair[0]) <= Fraction(text) <= Fraction(pair[1])
+
+
+def test_tubes_contain_the_reference_trajectories():
+    for case in REFERENCE["trajectories"][:6]:
+        scene = detach.Scene.load(case["scene"], **case["params"])
+        for p in case["points"]:
+            run = scene.flow((case["theta0"], case["theta_dot0"]), p["t"], until="none")
+            assert run.stop == "end time reached", run.stop
+            theta, theta_dot = run.end
+            assert holds(theta, p["theta"]) and holds(theta_dot, p["theta_dot"])
+            assert theta[1] - theta[0] < 1e-10 and theta_dot[1] - theta_dot[0] < 1e-10
+
+
+def test_an_event_window_holds_the_reference_crossing():
+    case = REFERENCE["events"][0]
+    scene = detach.Scene.load(case["scene"], **case["params"])
+    run = scene.flow((case["theta0"], case["theta_dot0"]), "3", until="U=0")
+    assert run.stop == "first event"
+    (event,) = run.events
+    assert event.kind == "U=0"
+    assert holds(event.time, case["time"])
+    assert holds(event.theta, case["theta"]) and holds(event.theta_dot, case["theta_dot"])
+    # The run ends at the event: its end time is the event's window.
+    assert run.end_time == event.time
+
+
+def test_the_run_is_the_cli_one():
+    scene = detach.Scene.load("viscous-disc")
+    run = scene.flow(("-1.5", "1"), "2", until="none")
+    cli = cli_json("flow", "--scene", "viscous-disc", "--from", "-1.5,1", "--t", "2",
+                   "--until", "none", "--json")
+    assert run.json()["end"] == cli["end"] and run.steps == cli["steps"]
+    assert str(run.end_time) == "2"
+
+
+def test_the_band_covers_the_reference_at_its_times():
+    case = REFERENCE["trajectories"][0]
+    scene = detach.Scene.load(case["scene"], **case["params"])
+    p = case["points"][0]
+    band = scene.flow((case["theta0"], case["theta_dot0"]), p["t"], until="none").band(4)
+    assert band.dtype.names == ("t_lo", "t_hi", "theta_lo", "theta_hi",
+                                "theta_dot_lo", "theta_dot_hi")
+    assert np.all(band["t_lo"] <= band["t_hi"]) and np.all(band["theta_lo"] <= band["theta_hi"])
+    # Rows tile [0, t]: each starts where the one before ends.
+    assert band["t_lo"][0] == 0.0 and np.all(band["t_lo"][1:] <= band["t_hi"][:-1])
+    last = band[-1]
+    assert Fraction(last["t_lo"]) <= Fraction(p["t"]) <= Fraction(last["t_hi"])
+    assert Fraction(last["theta_lo"]) <= Fraction(p["theta"]) <= Fraction(last["theta_hi"])
+    ax = scene.flow((case["theta0"], case["theta_dot0"]), p["t"], until="none").plot()
+    assert len(ax.collections) == 1
+
+
+def test_a_box_of_starts_gives_one_tube_for_all():
+    case = REFERENCE["trajectories"][4]  # viscous-disc from (-1.5, 1)
+    assert case["scene"] == "viscous-disc"
+    scene = detach.Scene.load("viscous-disc")
+    p = case["points"][-1]
+    run = scene.flow((("-1.5005", "-1.4995"), ("0.9995", "1.0005")), p["t"], until="none")
+    theta, theta_dot = run.end
+    assert holds(theta, p["theta"]) and holds(theta_dot, p["theta_dot"])
+    point = scene.flow(("-1.5", "1"), p["t"], until="none").end[0]
+    assert theta[1] - theta[0] > 100 * (point[1] - point[0])
+
+
+def test_bad_input_is_a_value_error():
+    scene = detach.Scene.load("viscous-disc")
+    with pytest.raises(ValueError, match="float"):
+        scene.flow((-1.5, "1"), "2")
+    with pytest.raises(ValueError, match="unknown event"):
+        scene.flow(("-1.5", "1"), "2", until="sometimes")
+    with pytest.raises(ValueError, match="end time"):
+        scene.flow(("-1.5", "1"), "-1")
+    with pytest.raises(ValueError, match="order"):
+        scene.flow(("-1.5", "1"), "1", order=1)
+    with pytest.raises(ValueError, match="pieces"):
+        scene.flow(("-1.5", "1"), "1").band(0)
+
+
+def rod_singular_thetas(mu):
+    """tan θ = (3μ ∓ √(9μ² − 16))/2 (the rod's U = V = 0, l = 1), 50 digits."""
+    mpmath.mp.dps = 50
+    mu = mpmath.mpf(mu)
+    d = mpmath.sqrt(9 * mu**2 - 16)
+    return [mpmath.atan((3 * mu - d) / 2), mpmath.atan((3 * mu + d) / 2)]
+
+
+def test_the_rods_singular_points_are_its_closed_form():
+    points = detach.Scene.load("painleve-rod", mu="1.5").singular_points()["points"]
+    singular = [p for p in points if p["kind"] == "singular"]
+    assert len(singular) == 4 and all(p["unique"] for p in singular)
+    for th in rod_singular_thetas("1.5"):
+        hits = [p for p in singular
+                if mpmath.mpf(p["theta"][0]) <= th <= mpmath.mpf(p["theta"][1])]
+        assert len(hits) == 2, th  # θ̇ = ±√(g/(l sin θ))
+    # Below 4/3 there is none.
+    points = detach.Scene.load("painleve-rod", mu="1.3").singular_points()["points"]
+    assert not [p for p in points if p["kind"] == "singular"]
+    no_dynamics = detach.Scene.from_toml((REPO / "tests" / "data" / "vertical-line.toml").read_text())
+    with pytest.raises(ValueError, match=r"no \[dynamics\]"):
+        no_dynamics.singular_points()
+    with pytest.raises(ValueError, match=r"no \[dynamics\]"):
+        no_dynamics.flow(("0.5", "0"), "1")
+
+
+def leaf_at(reach, theta, theta_dot):
+    """Indices of the leaves holding the point (text, compared exactly)."""
+    L = reach.leaves
+    th, w = Fraction(theta), Fraction(theta_dot)
+    return [i for i in range(len(L))
+            if Fraction(float(L["theta_lo"][i])) <= th <= Fraction(float(L["theta_hi"][i]))
+            and Fraction(float(L["theta_dot_lo"][i])) <= w <= Fraction(float(L["theta_dot_hi"][i]))]
+
+
+def test_reach_agrees_with_the_reference_event_time():
+    # The reference (mpmath): the rod at mu = 0.5 from (0.3, 4) reaches U = 0
+    # at t = 0.11587...; so it reaches within 0.3 and not within 0.1.
+    case = REFERENCE["events"][0]
+    assert (case["theta0"], case["theta_dot0"], case["function"]) == ("0.3", "4", "omega")
+    scene = detach.Scene.load(case["scene"], **case["params"])
+    window = dict(theta=("0.25", "0.35"), theta_dot=("3.9", "4.1"), eps=1 / 16)
+    late = scene.reach("0.3", until="U=0", **window)
+    early = scene.reach("0.1", until="U=0", **window)
+    assert late.complete and early.complete
+    for i in leaf_at(late, "0.3", "4"):
+        assert late.leaves["fate"][i] != 1  # not "avoids"
+        if late.leaves["fate"][i] == 0:
+            assert late.leaves["t_lo"][i] <= float(case["time"]) <= late.leaves["t_hi"][i]
+    for i in leaf_at(early, "0.3", "4"):
+        assert early.leaves["fate"][i] != 0  # not "reaches"
+    inner, outer = late.area()
+    assert 0 < inner <= outer <= 0.1 * 0.2
+    assert inner > 0.5 * 0.02  # most of the window reaches by 0.3
+    cli = cli_json("reach", "--scene", "painleve-rod", "--param", "mu=0.5", "--theta",
+                   "0.25:0.35", "--theta-dot", "3.9:4.1", "--t", "0.3", "--until", "U=0",
+                   "--eps", "0.0625", "--json")
+    assert len(cli["leaves"]) == len(late)
+    # The CLI sums in intervals, Python in exact rationals: the CLI's bounds
+    # are the same or looser.
+    assert Fraction(cli["area"]["inner"]) <= Fraction(inner)
+    assert Fraction(cli["area"]["outer"]) >= Fraction(outer)
+    with pytest.raises(ValueError, match="eps"):
+        scene.reach("0.3", eps=2)
+    with pytest.raises(ValueError, match="unknown event"):
+        scene.reach("0.3", until="later")

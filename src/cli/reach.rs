@@ -1,0 +1,180 @@
+//! `detach reach`: the initial states of a window from which the motion
+//! reaches a target within a time, as a certified paving.
+
+use super::atlas::{split_window, windowed_domain};
+use super::{CliError, CliResult, SceneSource};
+use detach::motion::reach::{reach, Fate, ReachOptions, ReachRun};
+use detach::motion::{interval_json, Motion, Until};
+use detach::number::param::enclose_decimal;
+use detach::params::report::exact_decimal;
+use detach::scene::Variant;
+use serde_json::json;
+use std::ops::ControlFlow;
+
+/// Pave a window of initial states by whether the motion reaches a target
+/// (the first event of `--until`) within `--t`: proved to reach, proved to
+/// avoid, undecided.
+#[derive(clap::Args, Debug)]
+pub struct ReachArgs {
+    #[command(flatten)]
+    pub source: SceneSource,
+    /// Scene parameter override, repeatable (decimal text, enclosed).
+    #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
+    pub params: Vec<String>,
+    /// θ window of the initial states (default: the domain).
+    #[arg(long, value_name = "LO:HI", allow_hyphen_values = true)]
+    pub theta: Option<String>,
+    /// θ̇ window of the initial states (default: the domain).
+    #[arg(long = "theta-dot", value_name = "LO:HI", allow_hyphen_values = true)]
+    pub theta_dot: Option<String>,
+    /// The time within which the target is to be reached (decimal text).
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub t: String,
+    /// The target, comma-separated: `U=0`, `N=0` (detachment onset),
+    /// `cell` (leaving the start cell), `domain`.
+    #[arg(long, default_value = "cell")]
+    pub until: String,
+    /// Boxes narrower than this fraction of the window per axis are not
+    /// split.
+    #[arg(long, default_value_t = 1.0 / 256.0)]
+    pub eps: f64,
+    /// Most leaves; a run that reaches it writes its coarser result.
+    #[arg(long = "max-boxes", default_value_t = 100_000)]
+    pub max_boxes: usize,
+    /// Print JSON (with every leaf) instead of a summary.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run_reach(args: &ReachArgs) -> CliResult {
+    let overrides = super::parse_overrides(&args.params)?;
+    let problem = args.source.problem(&overrides, Variant::Derived)?;
+    let scene = &problem.scene;
+    let file = scene.reading(Variant::Derived);
+    if !(args.eps.is_finite() && args.eps > 0.0 && args.eps < 1.0) {
+        return Err(CliError::usage(format!(
+            "--eps must be a number in (0, 1), got {}",
+            args.eps
+        )));
+    }
+    if args.max_boxes == 0 {
+        return Err(CliError::usage("--max-boxes must be at least 1"));
+    }
+    let t_end = enclose_decimal("t", &args.t).map_err(CliError::usage)?;
+    if !(t_end.inf() > 0.0 && t_end.is_common_interval()) {
+        return Err(CliError::usage(format!(
+            "--t must be a number > 0, got `{}`",
+            args.t
+        )));
+    }
+    let until = Until::parse_list(&args.until).map_err(CliError::usage)?;
+    if until.is_empty() {
+        return Err(CliError::usage("--until names no target"));
+    }
+    let th = split_window("theta", &args.theta)?;
+    let thd = split_window("theta-dot", &args.theta_dot)?;
+    let window = windowed_domain(scene, &th, &thd)?.inner_box();
+    let motion = Motion::new(file, &until).map_err(CliError::usage)?;
+    let opts = ReachOptions {
+        eps: args.eps,
+        max_boxes: args.max_boxes,
+        ..ReachOptions::default()
+    };
+    let levels = (2.0 * (1.0 / args.eps).log2().ceil()) as u64 + 1;
+    let bar = super::progress_bar(levels, scene.name());
+    bar.enable_steady_tick(std::time::Duration::from_millis(500));
+    let run = reach(&motion, window, t_end, &opts, |depth, open, leaves| {
+        bar.set_position(depth as u64);
+        bar.set_message(format!("{open} open, {leaves} leaves"));
+        ControlFlow::Continue(())
+    });
+    bar.finish_and_clear();
+    if !run.complete {
+        eprintln!(
+            "detach: note: the box budget (--max-boxes {}) ended the paving; the open boxes \
+             are undecided",
+            args.max_boxes
+        );
+    }
+    if args.json {
+        let doc = run_json(&run, args);
+        outln!("{}", serde_json::to_string_pretty(&doc).expect("JSON"));
+    } else {
+        print_summary(&run, args);
+    }
+    super::stdout_status()
+}
+
+fn counts(run: &ReachRun) -> [usize; 3] {
+    let mut c = [0; 3];
+    for l in &run.leaves {
+        c[match l.fate {
+            Fate::Reaches(_) => 0,
+            Fate::Avoids => 1,
+            Fate::Undecided(_) => 2,
+        }] += 1;
+    }
+    c
+}
+
+fn run_json(run: &ReachRun, args: &ReachArgs) -> serde_json::Value {
+    let (inner, outer) = run.area_bounds();
+    let [reaches, avoids, undecided] = counts(run);
+    json!({
+        "detach": detach::provenance(),
+        "arguments": {
+            "scene": args.source.scene, "scene_file": args.source.scene_file,
+            "params": args.params, "theta": args.theta, "theta_dot": args.theta_dot,
+            "t": args.t, "until": args.until, "eps": args.eps, "max_boxes": args.max_boxes,
+        },
+        "window": run.window.map(|w| w.map(exact_decimal)),
+        "complete": run.complete,
+        "area": {"inner": exact_decimal(inner), "outer": exact_decimal(outer)},
+        "boxes": {"reaches": reaches, "avoids": avoids, "undecided": undecided},
+        "leaves": run.leaves.iter().map(|l| {
+            let (fate, extra) = match &l.fate {
+                Fate::Reaches(t) => ("reaches", json!({"time": interval_json(*t)})),
+                Fate::Avoids => ("avoids", json!({})),
+                Fate::Undecided(why) => ("undecided", json!({"reason": why})),
+            };
+            let mut leaf = json!({
+                "theta": l.theta.map(exact_decimal), "theta_dot": l.theta_dot.map(exact_decimal),
+                "fate": fate,
+            });
+            if let (Some(m), Some(e)) = (leaf.as_object_mut(), extra.as_object()) {
+                m.extend(e.clone());
+            }
+            leaf
+        }).collect::<Vec<_>>(),
+    })
+}
+
+fn print_summary(run: &ReachRun, args: &ReachArgs) {
+    let (inner, outer) = run.area_bounds();
+    let [reaches, avoids, undecided] = counts(run);
+    let w = run.window;
+    outln!(
+        "initial states in θ ∈ [{}, {}], θ̇ ∈ [{}, {}] reaching `{}` within t = {}:",
+        w[0][0],
+        w[0][1],
+        w[1][0],
+        w[1][1],
+        args.until,
+        args.t
+    );
+    outln!("  area in [{inner:.6e}, {outer:.6e}]");
+    outln!("  boxes: {reaches} reach, {avoids} avoid, {undecided} undecided");
+    let mut reasons: Vec<(&str, usize)> = Vec::new();
+    for l in &run.leaves {
+        if let Fate::Undecided(why) = &l.fate {
+            match reasons.iter_mut().find(|(r, _)| *r == why.as_str()) {
+                Some((_, n)) => *n += 1,
+                None => reasons.push((why, 1)),
+            }
+        }
+    }
+    reasons.sort_by(|a, b| b.1.cmp(&a.1));
+    for (why, n) in reasons.iter().take(5) {
+        outln!("  undecided ({n}): {why}");
+    }
+}
