@@ -40,6 +40,11 @@ struct Scene {
     problem: Problem,
 }
 
+/// A window `[lo, hi]` of text as the library takes it.
+fn window_refs(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
+    w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()])
+}
+
 fn pairs(params: &[(String, String)]) -> Vec<(&str, &str)> {
     params
         .iter()
@@ -233,11 +238,15 @@ impl Scene {
             max_boxes,
             ..ReachOptions::default()
         };
-        let refs = |w: &Option<[String; 2]>| w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()]);
         let run = py
             .detach(|| {
-                self.problem
-                    .reach(refs(&theta), refs(&theta_dot), t, &until, &opts)
+                self.problem.reach(
+                    window_refs(&theta),
+                    window_refs(&theta_dot),
+                    t,
+                    &until,
+                    &opts,
+                )
             })
             .map_err(value_error)?;
         let leaves = run
@@ -265,9 +274,11 @@ impl Scene {
         theta: Option<[String; 2]>,
         theta_dot: Option<[String; 2]>,
     ) -> PyResult<String> {
-        let refs = |w: &Option<[String; 2]>| w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()]);
         let report = py
-            .detach(|| self.problem.singular_points(refs(&theta), refs(&theta_dot)))
+            .detach(|| {
+                self.problem
+                    .singular_points(window_refs(&theta), window_refs(&theta_dot))
+            })
             .map_err(value_error)?;
         Ok(detach::motion::singular::report_json(&report).to_string())
     }
@@ -292,12 +303,15 @@ impl Scene {
             }
             opts.eps = eps;
         }
-        let refs = |w: &Option<[String; 2]>| w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()]);
         let axis = ParamAxis { name, lo, hi };
         let scan = py
             .detach(|| {
-                self.problem
-                    .singular_scan(axis, refs(&theta), refs(&theta_dot), &opts)
+                self.problem.singular_scan(
+                    axis,
+                    window_refs(&theta),
+                    window_refs(&theta_dot),
+                    &opts,
+                )
             })
             .map_err(value_error)?;
         // The boxes cover the range: its ends are theirs.

@@ -123,19 +123,24 @@ fn decide(motion: &Motion, bx: [[f64; 2]; 2], t_end: Interval, settings: &FlowSe
         Ok(tube) => tube,
         Err(e) => return Fate::Undecided(e.to_string()),
     };
-    // Per watched function, the first time it may leave its sign.
+    // Per watched function, the first time it may leave its sign, and
+    // whether it may be undefined or discontinuous on the tube before now
+    // (then a sign change proves no crossing).
     let mut first_open: Vec<Option<f64>> = vec![None; watched.len()];
+    let mut broken = vec![false; watched.len()];
     for (time, states) in tube.band(PIECES) {
         for (i, w) in watched.iter().enumerate() {
-            match w.value(states).and_then(sign) {
+            let value = w.value(states);
+            match value.and_then(sign) {
                 Some(s) if s == signs[i] => {}
-                Some(_) if time.sup() <= t_end.inf() => {
+                Some(_) if time.sup() <= t_end.inf() && !broken[i] => {
                     let from = first_open[i].unwrap_or(time.inf());
                     let window = Interval::try_from((from, time.sup())).unwrap_or(time);
                     return Fate::Reaches(window);
                 }
                 _ => {
                     first_open[i].get_or_insert(time.inf());
+                    broken[i] |= value.is_none();
                 }
             }
         }

@@ -363,3 +363,32 @@ fn reach_sets_of_the_oscillator_agree_with_the_closed_form() {
     assert!(decided > 0.9 * 2.8, "decided area {decided}");
     assert!(outer - inner < 0.3, "{inner} {outer}");
 }
+
+#[test]
+fn a_sign_change_across_a_pole_is_not_a_reach() {
+    use reach::{reach, Fate, ReachOptions};
+    // θ̈ = 0, θ̇ ≈ 1: θ passes 1/2, where g = 1/(θ − 1/2) jumps from − to +
+    // without vanishing. No state reaches g = 0; a sign change read across
+    // the pole must not say otherwise.
+    let file = scene("0", "1/(theta - 0.5)");
+    let motion = Motion::new(&file, &[Until::Omega]).unwrap();
+    let window = [[-0.5, 0.0], [0.9, 1.1]];
+    let t = Interval::try_from((2.0, 2.0)).unwrap();
+    let run = reach(&motion, window, t, &ReachOptions::default(), |_, _, _| {
+        std::ops::ControlFlow::Continue(())
+    });
+    assert!(run
+        .leaves
+        .iter()
+        .all(|l| !matches!(l.fate, Fate::Reaches(_))));
+    // The same motion does reach θ = 1/2 itself (g = θ − 1/2).
+    let file = scene("0", "theta - 0.5");
+    let motion = Motion::new(&file, &[Until::Omega]).unwrap();
+    let run = reach(&motion, window, t, &ReachOptions::default(), |_, _, _| {
+        std::ops::ControlFlow::Continue(())
+    });
+    assert!(run
+        .leaves
+        .iter()
+        .all(|l| matches!(l.fate, Fate::Reaches(_))));
+}
