@@ -173,7 +173,7 @@ fn print_summary(run: &ReachRun, args: &ReachArgs) {
             }
         }
     }
-    reasons.sort_by(|a, b| b.1.cmp(&a.1));
+    reasons.sort_by_key(|r| std::cmp::Reverse(r.1));
     for (why, n) in reasons.iter().take(5) {
         outln!("  undecided ({n}): {why}");
     }
