@@ -424,6 +424,14 @@ impl<T: Num> Num for Dual<T> {
     }
 }
 
+/// Counts `n` operations of a check done outside [`apply`] (the Taylor
+/// series of a trajectory); false once past the work bound.
+pub(crate) fn spend(n: u64) -> bool {
+    let done = WORK_DONE.get().saturating_add(n);
+    WORK_DONE.set(done);
+    done <= WORK_BOUND.get()
+}
+
 /// Applies one operation to already computed slots.
 #[inline]
 pub fn apply<T: Num>(op: &Op, s: &[T], vars: &[T]) -> T {

@@ -2,14 +2,16 @@
 //!
 //! A proof file states one claim of detach — the areas of a paving, the
 //! roots of an equation, the bound κ₀, the critical band, where in a
-//! parameter box a set is empty or not — and carries the
+//! parameter box a set is empty or not, where a motion is at a time and when
+//! it first crosses a watched function — and carries the
 //! evidence for it. The checker confirms the claim by re-deriving every
 //! enclosure from the statement and the evidence with its own JSON access,
 //! expression parser, interval evaluator (forward-mode duals, nested for
 //! second derivatives) and decoders: it replays a paving's tree from the root
 //! box and re-decides every leaf label, sums areas exactly, re-checks every
-//! root witness and exclusion piece, and compares claimed bounds
-//! conservatively. The verdict is VALID, INVALID with the first failed check,
+//! root witness and exclusion piece, re-checks a trajectory's steps (Picard
+//! inclusion of each a-priori box and its Taylor remainder), and compares
+//! claimed bounds conservatively. The verdict is VALID, INVALID with the first failed check,
 //! UNCHECKED past the limits for the file's size, or unreadable.
 //!
 //! # Trusted base
@@ -70,7 +72,11 @@ mod output;
 mod param_atlas;
 mod paving;
 mod pieces;
+mod reach;
 mod roots;
+mod series;
+mod trajectory;
+mod tree;
 
 pub use self::encoding::{base64_decode, decimal_enclosure, parse_hex_f64};
 pub use self::eval::{with_loose_rounding, with_looseness, Looseness};
@@ -110,6 +116,19 @@ pub fn work_bound(bytes: usize) -> u64 {
 
 /// See [`work_bound`].
 pub const WORK_PER_BYTE: u64 = 1 << 6;
+
+/// [`work_bound`] of a `trajectory` or `reach` file: [`SERIES_WORK_PER_BYTE`]
+/// per byte, since a step of a few hundred bytes costs the Taylor series
+/// of order K, O(K²) operations per operation of the equation, over a box
+/// and in dual numbers.
+pub fn series_work_bound(bytes: usize) -> u64 {
+    (bytes as u64)
+        .saturating_mul(SERIES_WORK_PER_BYTE)
+        .max(WORK_FLOOR)
+}
+
+/// See [`series_work_bound`].
+pub const SERIES_WORK_PER_BYTE: u64 = 1 << 10;
 
 /// See [`work_bound`].
 pub const WORK_FLOOR: u64 = 1 << 26;
@@ -192,8 +211,20 @@ impl Outcome {
 /// Checks a proof given as text.
 pub fn check_str(text: &str) -> Result<Report, Unreadable> {
     let start = Instant::now();
-    let bound = work_bound(text.len());
-    let (out, cut) = eval::with_work_bound(bound, || check_value(text));
+    let root = match read_value(text)? {
+        Ok(root) => root,
+        Err(out) => return Ok(report(out, start)),
+    };
+    let series = matches!(
+        root.get("claim").and_then(serde_json::Value::as_str),
+        Some("trajectory" | "reach")
+    );
+    let bound = if series {
+        series_work_bound(text.len())
+    } else {
+        work_bound(text.len())
+    };
+    let (out, cut) = eval::with_work_bound(bound, || check_value(&root));
     // Past a limit every operation gave NaI, or the statement was cut off:
     // whatever the check concluded is no verdict.
     let limit = match cut {
@@ -212,28 +243,37 @@ pub fn check_str(text: &str) -> Result<Report, Unreadable> {
         (Err(e), None) => return Err(e),
         (o, Some(why)) => Outcome::unchecked(why, o.map(|o| o.claim).unwrap_or_default()),
     };
-    Ok(Report {
+    Ok(report(out, start))
+}
+
+fn report(out: Outcome, start: Instant) -> Report {
+    Report {
         verdict: out.verdict,
         claim: out.claim,
         checked: out.checked,
         unit: out.unit,
         seconds: start.elapsed().as_secs_f64(),
-    })
+    }
 }
 
-/// The claim check of a file's text, before the work bound is applied.
-fn check_value(text: &str) -> Result<Outcome, Unreadable> {
+/// A file's text parsed, or why not (too many values: unchecked).
+fn read_value(text: &str) -> Result<Result<serde_json::Value, Outcome>, Unreadable> {
     let values = json::count_values(text);
     if values > MAX_JSON_VALUES {
-        return Ok(Outcome::unchecked(
+        return Ok(Err(Outcome::unchecked(
             format!("{values} JSON values, more than {MAX_JSON_VALUES}"),
             String::new(),
-        ));
+        )));
     }
     let root: serde_json::Value =
         serde_json::from_str(text).map_err(|e| Unreadable(format!("not JSON: {e}")))?;
     json::reject_duplicate_keys(text)?;
-    let obj = json::as_obj(&root, "the file")?;
+    Ok(Ok(root))
+}
+
+/// The claim check of a parsed file.
+fn check_value(root: &serde_json::Value) -> Result<Outcome, Unreadable> {
+    let obj = json::as_obj(root, "the file")?;
     let format = json::str_of(obj, "format")?;
     if format != "detach-proof/1" {
         return Err(Unreadable(format!("unknown format {format:?}")));
@@ -244,6 +284,8 @@ fn check_value(text: &str) -> Result<Outcome, Unreadable> {
         "kappa0" => kappa0::check(obj)?,
         "critical-band" => band::check(obj)?,
         "parameter-atlas" => param_atlas::check(obj)?,
+        "trajectory" => trajectory::check(obj)?,
+        "reach" => reach::check(obj)?,
         other => return Err(Unreadable(format!("unknown claim {other:?}"))),
     };
     Ok(out)

@@ -9,6 +9,7 @@ use super::eval::{parameter_enclosure, Program};
 use super::json::{arr_of, as_obj, decls, obj_of, opt_str, pair_of, str_of, u64_of, Obj};
 use super::paving::{convex_holds, holds, monotone_bound};
 use super::roots::constant;
+use super::tree::walk;
 use super::{Outcome, Unreadable};
 use serde_json::Value;
 
@@ -639,59 +640,23 @@ pub(crate) fn empty_tree(
     checked: &mut u64,
 ) -> Result<(), String> {
     let mut bits = BitReader::new(body);
-    let mut stack = vec![st.phase_box];
-    let mut nodes = 0u64;
     let mut leaves = 0u64;
-    while let Some(b) = stack.pop() {
-        nodes += 1;
-        if nodes > nodes_claimed {
-            return Err(format!(
-                "{what}: the tree has more than the claimed {nodes_claimed} nodes"
-            ));
+    let walked = walk(&mut bits, st.phase_box, nodes_claimed, |b, bits, node| {
+        leaves += 1;
+        let (t, w) = (iv(b[0], b[1]), iv(b[2], b[3]));
+        match reason_fails(st, literals, bits, t, w) {
+            Err(()) => return Err(format!("the bit string ends inside node {node}")),
+            Ok(Some(why)) => return Err(format!("leaf {leaves} {}: {why}", show_box(&b))),
+            Ok(None) => {}
         }
-        let end = || format!("{what}: the bit string ends inside node {nodes}");
-        if !bits.bit().ok_or_else(end)? {
-            leaves += 1;
-            let (t, w) = (iv(b[0], b[1]), iv(b[2], b[3]));
-            match reason_fails(st, literals, &mut bits, t, w) {
-                Err(()) => return Err(end()),
-                Ok(Some(why)) => {
-                    return Err(format!("{what}: leaf {leaves} {}: {why}", show_box(&b)))
-                }
-                Ok(None) => {}
-            }
-            *checked += 1;
-            continue;
-        }
-        let (axis, p) = if bits.bit().ok_or_else(end)? {
-            let axis = usize::from(bits.bit().ok_or_else(end)?);
-            (axis, f64::from_bits(bits.bits(64).ok_or_else(end)?))
-        } else {
-            let axis = usize::from(bits.bit().ok_or_else(end)?);
-            (axis, 0.5 * b[2 * axis] + 0.5 * b[2 * axis + 1])
-        };
-        let (lo, hi) = (b[2 * axis], b[2 * axis + 1]);
-        if !(p.is_finite() && lo < p && p < hi) {
-            return Err(format!(
-                "{what}: node {nodes}: split point {p:e} on {} is not inside ({lo:e}, {hi:e})",
-                if axis == 0 { "t" } else { "w" }
-            ));
-        }
-        let (mut lower, mut upper) = (b, b);
-        lower[2 * axis + 1] = p;
-        upper[2 * axis] = p;
-        stack.push(upper);
-        stack.push(lower);
-    }
-    if nodes != nodes_claimed {
+        *checked += 1;
+        Ok(())
+    })
+    .map_err(|e| format!("{what}: {e}"))?;
+    if walked.nodes != nodes_claimed {
         return Err(format!(
-            "{what}: the tree has {nodes} nodes, claimed {nodes_claimed}"
-        ));
-    }
-    if bits.len() - bits.position() >= 8 || !bits.rest_is_zero() {
-        return Err(format!(
-            "{what}: bits after the last node (bit {}) are not a zero padding of the last byte",
-            bits.position()
+            "{what}: the tree has {} nodes, claimed {nodes_claimed}",
+            walked.nodes
         ));
     }
     Ok(())

@@ -10,6 +10,7 @@ use super::eval::{apply, continuous, defined, loosen_i, show, Dual, Num, Op, Pro
 use super::json::{arr_of, as_obj, decls, obj_of, opt_str, pair_of, str_of, u64_of, Obj};
 use super::param_atlas::{empty_tree, factor_table, Reasons};
 use super::roots::constant;
+use super::tree::{labels, walk};
 use super::{Outcome, Unreadable};
 
 /// Cached intervals per axis before the cache is emptied (the preorder walk
@@ -483,10 +484,6 @@ pub(crate) fn convex_holds(
         })
 }
 
-/// A leaf box `[t0, t1] × [w0, w1]`.
-#[derive(Clone, Copy)]
-struct Cell([f64; 4]);
-
 fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
     // 1. The domain and R ⊂ D.
     let d: Vec<Interval> = ["t_lo", "t_hi", "w_lo", "w_hi"]
@@ -523,109 +520,71 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
     let mut inner = vec![AreaSum::default(); st.areas.len()];
     let mut outer = vec![AreaSum::default(); st.areas.len()];
     let mut bits = BitReader::new(&st.body);
-    let mut stack = vec![Cell(r)];
-    let mut nodes = 0u64;
     let mut leaves = 0u64;
-    while let Some(Cell(b)) = stack.pop() {
-        nodes += 1;
-        if nodes > st.nodes {
-            return Err(format!(
-                "the tree has more than the claimed {} nodes",
-                st.nodes
-            ));
-        }
-        let end = || format!("the bit string ends inside node {nodes}");
-        if !bits.bit().ok_or_else(end)? {
-            leaves += 1;
-            let mut labels = [0u8; 4];
-            let mut mask = 0usize;
-            for (c, l) in labels.iter_mut().enumerate().take(nc) {
-                *l = bits.bits(2).ok_or_else(end)? as u8;
-                if *l == IN || *l == OUT {
-                    mask |= 1 << c;
+    let walked = walk(&mut bits, r, st.nodes, |b, bits, node| {
+        leaves += 1;
+        let labels = labels(bits, nc, node)?;
+        let mask = (0..nc)
+            .filter(|&c| labels[c] == IN || labels[c] == OUT)
+            .fold(0usize, |m, c| m | 1 << c);
+        let (t, w) = (iv(b[0], b[1]), iv(b[2], b[3]));
+        if mask != 0 {
+            ev.eval(t, w, mask);
+            for (c, &l) in labels.iter().enumerate().take(nc) {
+                if mask >> c & 1 == 0 {
+                    continue;
+                }
+                let v = ev.value(c);
+                let ok = holds(v, l == IN)
+                    || holds(
+                        monotone_bound(&st.prog, st.roots[c], t, w, l == IN),
+                        l == IN,
+                    )
+                    || convex_holds(&st.prog, st.roots[c], t, w, l == IN);
+                if !ok {
+                    return Err(format!(
+                        "leaf {leaves} [{:e}, {:e}] x [{:e}, {:e}], constraint {}: \
+                         claimed {}, computed {}",
+                        b[0],
+                        b[1],
+                        b[2],
+                        b[3],
+                        st.names[c],
+                        if l == IN { "in" } else { "out" },
+                        show(v)
+                    ));
                 }
             }
-            let (t, w) = (iv(b[0], b[1]), iv(b[2], b[3]));
-            if mask != 0 {
-                ev.eval(t, w, mask);
-                for (c, &l) in labels.iter().enumerate().take(nc) {
-                    if mask >> c & 1 == 0 {
-                        continue;
-                    }
-                    let v = ev.value(c);
-                    let ok = holds(v, l == IN)
-                        || holds(
-                            monotone_bound(&st.prog, st.roots[c], t, w, l == IN),
-                            l == IN,
-                        )
-                        || convex_holds(&st.prog, st.roots[c], t, w, l == IN);
-                    if !ok {
-                        return Err(format!(
-                            "leaf {leaves} [{:e}, {:e}] x [{:e}, {:e}], constraint {}: \
-                             claimed {}, computed {}",
-                            b[0],
-                            b[1],
-                            b[2],
-                            b[3],
-                            st.names[c],
-                            if l == IN { "in" } else { "out" },
-                            show(v)
-                        ));
-                    }
-                }
-            }
-            let la = LeafArea::of((b[0], b[1]), (b[2], b[3]));
-            for (k, a) in st.areas.iter().enumerate() {
-                let mut proved = true;
-                let mut contradicted = false;
-                for &(c, want_in) in &a.literals {
-                    let (yes, no) = if want_in { (IN, OUT) } else { (OUT, IN) };
-                    proved &= labels[c] == yes;
-                    contradicted |= labels[c] == no;
-                }
-                if proved {
-                    inner[k].add(&la);
-                }
-                if !contradicted {
-                    outer[k].add(&la);
-                }
-            }
-            *checked += 1;
-            continue;
         }
-        let (axis, p) = if bits.bit().ok_or_else(end)? {
-            let axis = usize::from(bits.bit().ok_or_else(end)?);
-            (axis, f64::from_bits(bits.bits(64).ok_or_else(end)?))
-        } else {
-            let axis = usize::from(bits.bit().ok_or_else(end)?);
-            (axis, 0.5 * b[2 * axis] + 0.5 * b[2 * axis + 1])
-        };
-        let (lo, hi) = (b[2 * axis], b[2 * axis + 1]);
-        if !(p.is_finite() && lo < p && p < hi) {
-            return Err(format!(
-                "node {nodes}: split point {p:e} on {} is not inside ({lo:e}, {hi:e})",
-                if axis == 0 { "t" } else { "w" }
-            ));
+        let la = LeafArea::of((b[0], b[1]), (b[2], b[3]));
+        for (k, a) in st.areas.iter().enumerate() {
+            let mut proved = true;
+            let mut contradicted = false;
+            for &(c, want_in) in &a.literals {
+                let (yes, no) = if want_in { (IN, OUT) } else { (OUT, IN) };
+                proved &= labels[c] == yes;
+                contradicted |= labels[c] == no;
+            }
+            if proved {
+                inner[k].add(&la);
+            }
+            if !contradicted {
+                outer[k].add(&la);
+            }
         }
-        let (mut lower, mut upper) = (b, b);
-        lower[2 * axis + 1] = p;
-        upper[2 * axis] = p;
-        stack.push(Cell(upper));
-        stack.push(Cell(lower));
-    }
-    if nodes != st.nodes {
-        return Err(format!("the tree has {nodes} nodes, claimed {}", st.nodes));
-    }
-    if leaves != st.leaves {
+        *checked += 1;
+        Ok(())
+    })?;
+    if walked.nodes != st.nodes {
         return Err(format!(
-            "the tree has {leaves} leaves, claimed {}",
-            st.leaves
+            "the tree has {} nodes, claimed {}",
+            walked.nodes, st.nodes
         ));
     }
-    if bits.len() - bits.position() >= 8 || !bits.rest_is_zero() {
+    if walked.leaves != st.leaves {
         return Err(format!(
-            "bits after the last node (bit {}) are not a zero padding of the last byte",
-            bits.position()
+            "the tree has {} leaves, claimed {}",
+            walked.leaves, st.leaves
         ));
     }
 
