@@ -17,6 +17,10 @@
 #[path = "support/timing.rs"]
 mod timing;
 
+use detach::api::{PaveRequest, Problem};
+use detach::figures::{
+    atlas_portrait, phase_portrait_px, plot_area_pixels, AtlasStyle, LINE_SPACING,
+};
 use detach::motion::{flow, FlowRequest, FlowSettings};
 use detach::scene::{Scene, Variant};
 use serde_json::Value;
@@ -219,10 +223,70 @@ fn main() {
          are left out; the JSON keeps them.",
         load()
     );
+    atlas_portraits(&mut md);
     let out = Path::new("docs/performance/motion.md");
     match std::fs::write(out, &md) {
         Ok(()) => println!("wrote {}", out.display()),
         Err(e) => eprintln!("cannot write {}: {e}", out.display()),
     }
     print!("{md}");
+}
+
+/// The atlas's portrait: certified tubes against the `f64` curves they
+/// replace, each beside the paving of the same atlas (default size, its
+/// one-pixel eps), on the machine's threads as `detach atlas` runs them.
+fn atlas_portraits(md: &mut String) {
+    let group = Group::new("atlas-portrait").samples(5);
+    let style = AtlasStyle::default();
+    let px = plot_area_pixels(&style);
+    let eps = (1.0 / px.0.max(px.1) as f64).log2().floor().exp2();
+    let _ = writeln!(
+        md,
+        "\n## The atlas's portrait\n\nPer shipped scene at the default atlas size \
+         ({}×{} plot pixels, eps = {eps}): the paving, the certified tubes and the \
+         `f64` curves they replace (median seconds, {} threads). Load average before: {}.\n\n\
+         | scene | paving | certified tubes | f64 curves | atlas with tubes / with f64 curves |\n\
+         |---|---|---|---|---|",
+        px.0,
+        px.1,
+        rayon::current_num_threads(),
+        load()
+    );
+    for name in ["painleve-rod", "viscous-disc", "smooth-disc", "ice-disc"] {
+        let Ok(problem) = Problem::load(name, &[]) else {
+            continue;
+        };
+        let req = PaveRequest {
+            eps,
+            ..PaveRequest::default()
+        };
+        let Some(pave) = group.bench(&format!("{name}_paving"), || problem.pave(&req).ok()) else {
+            continue;
+        };
+        let Ok(paved) = problem.pave(&req) else {
+            continue;
+        };
+        let root = paved.paving.root;
+        let spacing = LINE_SPACING;
+        let Some(tubes) = group.bench(&format!("{name}_tubes"), || {
+            atlas_portrait(&problem.scene, problem.variant, &root, px, spacing)
+                .curves
+                .len()
+        }) else {
+            continue;
+        };
+        let Some(curves) = group.bench(&format!("{name}_f64"), || {
+            phase_portrait_px(&problem.scene, problem.variant, &root, px, spacing).len()
+        }) else {
+            continue;
+        };
+        let _ = writeln!(
+            md,
+            "| {name} | {} | {} | {} | {:.2} |",
+            seconds(pave),
+            seconds(tubes),
+            seconds(curves),
+            (pave + tubes) / (pave + curves)
+        );
+    }
 }

@@ -423,6 +423,12 @@ impl Paved {
     }
 }
 
+/// Writes a proof file (such as [`Problem::flow_with_proof`]'s) to `path`
+/// once the checker says VALID.
+pub fn write_checked_proof(proof: &serde_json::Value, path: &Path) -> Result<(), String> {
+    write_valid(proof, path)
+}
+
 /// Writes a proof file to `path` once the checker says VALID.
 fn write_valid(proof: &serde_json::Value, path: &Path) -> Result<(), String> {
     let bytes = crate::certificate::to_bytes(proof);
@@ -633,6 +639,29 @@ impl Problem {
         motion::flow(self.scene.reading(self.variant), request).map_err(|e| e.to_string())
     }
 
+    /// [`Problem::flow`] and its `trajectory` proof file (JSON), confirmed
+    /// by a checker with looser rounding before it is returned; `t_text` is
+    /// the end time as given. Fails when the run ends undecided (nothing
+    /// is proved to claim).
+    pub fn flow_with_proof(
+        &self,
+        request: &FlowRequest,
+        t_text: &str,
+    ) -> Result<(Tube, serde_json::Value), String> {
+        if request.settings.backward {
+            return Err("a trajectory proof is of forward time only".into());
+        }
+        let file = self.scene.reading(self.variant);
+        let motion = motion::Motion::new(file, &request.until).map_err(|e| e.to_string())?;
+        let tube = motion
+            .run(request.start, request.t_end, &request.settings)
+            .map_err(|e| e.to_string())?;
+        let proof =
+            crate::certificate::trajectory::checked_trajectory_proof(file, &motion, &tube, t_text)
+                .map_err(|e| e.to_string())?;
+        Ok((tube, proof))
+    }
+
     /// The initial states of the domain (or a window of it) whose motion
     /// reaches the first event of `until` within `t` (decimal text), as a
     /// certified paving: `detach reach`.
@@ -664,6 +693,24 @@ impl Problem {
             opts,
             |_, _, _| std::ops::ControlFlow::Continue(()),
         ))
+    }
+
+    /// The `reach` proof of `run`, a [`Problem::reach`] made with the same
+    /// `t`, `until` and `opts`: each decided leaf's certificate confirmed
+    /// by the strictest and loosest checkers, a leaf none confirms stated
+    /// undecided. Returns the proof and how many such leaves there are.
+    pub fn reach_proof(
+        &self,
+        run: &motion::reach::ReachRun,
+        t: &str,
+        until: &[Until],
+        opts: &ReachOptions,
+    ) -> Result<(serde_json::Value, usize), String> {
+        let t_end = crate::number::param::enclose_decimal("t", t).map_err(|e| e.to_string())?;
+        let file = self.scene.reading(self.variant);
+        let motion = motion::Motion::new(file, until).map_err(|e| e.to_string())?;
+        crate::certificate::reach::reach_proof(file, &motion, run, t_end, t, opts)
+            .map_err(|e| e.to_string())
     }
 
     /// The equilibria and singular points in the domain (or a window of

@@ -8,6 +8,7 @@
 //! | `roots/2.10` | `roots-2.10.json` | the roots of (2.10) at κ = 0.1 |
 //! | `roots/2.12` | `roots-2.12.json` | the stationary points of Π̃ (2.12) at the smooth-disc defaults |
 //! | `critical-band` | `critical-band.json` | κ_crit(α) of (2.9) within a band on 31 α-boxes of [0, 31/32]: two roots below, none above |
+//! | `trajectory/painleve-rod` | `trajectory-painleve-rod.json` | the rod at μ = 0.5 from (θ, θ̇) = (0.6, 2): its first event, the contact cell left when U = 0, time and state enclosed |
 
 use super::paving::{paving_proof, PavingStatement};
 use super::roots::{build_pieces, kappa0_proof, roots_proof, RootsStatement};
@@ -42,6 +43,7 @@ pub const HEADLINE: &[&str] = &[
     "roots/2.10",
     "roots/2.12",
     "critical-band",
+    "trajectory/painleve-rod",
 ];
 
 /// The file name of a named result: `atlas/ice-disc/derived` →
@@ -76,6 +78,7 @@ pub fn prove_named(name: &str) -> Result<Value, String> {
             scene: Some(SceneId::SmoothDisc.name()),
             ..RootsInputs::default()
         }),
+        ["trajectory", "painleve-rod"] => rod_trajectory(),
         _ => Err(format!(
             "unknown result `{name}` (known: {})",
             HEADLINE.join(", ")
@@ -107,6 +110,21 @@ pub fn atlas_proof(id: SceneId, variant: Variant) -> Value {
         },
         &paving,
     )
+}
+
+/// The rod at μ = 0.5 from (0.6, 2) to its first event (within 1 s).
+fn rod_trajectory() -> Result<Value, String> {
+    use crate::motion::{FlowRequest, Motion, Until};
+    let (scene, _) = Scene::by_name("painleve-rod", &[("mu".into(), "0.5".into())])
+        .map_err(|e| e.to_string())?;
+    let file = scene.reading(Variant::Derived);
+    let request = FlowRequest::parse("0.6", "2", "1").map_err(|e| e.to_string())?;
+    let motion = Motion::new(file, &Until::CELL_OR_DOMAIN).map_err(|e| e.to_string())?;
+    let tube = motion
+        .run(request.start, request.t_end, &request.settings)
+        .map_err(|e| e.to_string())?;
+    super::trajectory::checked_trajectory_proof(file, &motion, &tube, "1")
+        .map_err(|e| e.to_string())
 }
 
 /// The proof of a root problem, solved within the default budget.

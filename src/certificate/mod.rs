@@ -13,13 +13,16 @@ pub mod confirm;
 pub mod numbers;
 pub mod params;
 pub mod paving;
+pub mod reach;
 pub mod roots;
 pub mod statement;
+pub mod trajectory;
 
 pub use catalog::{prove_named, HEADLINE};
 pub use params::{param_atlas_proof, ParamAtlasStatement};
 pub use paving::{paving_proof, PavingStatement};
 pub use roots::{build_pieces, kappa0_proof, roots_proof, RootsStatement};
+pub use trajectory::{trajectory_proof, TrajectoryProofError};
 
 use serde_json::{json, Value};
 

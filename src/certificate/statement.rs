@@ -119,16 +119,29 @@ pub struct FileStatement {
 
 /// The statement of `f`'s regions as the author wrote them.
 pub fn file_statement(f: &FileScene) -> FileStatement {
+    FileStatement {
+        definitions: definitions_for(f, f.regions.iter().map(|r| r.expr.as_str())),
+        omega: in_proof_names(&f.regions[0].expr),
+        omega0: in_proof_names(&f.regions[1].expr),
+    }
+}
+
+/// The definitions of `f` that `exprs` use, directly or through others,
+/// each placed after every definition it names, in the proof's names.
+pub fn definitions_for<'a>(
+    f: &FileScene,
+    exprs: impl IntoIterator<Item = &'a str>,
+) -> Vec<(String, String)> {
     let defs = &f.definitions;
     let index = |n: &str| defs.iter().position(|(d, _)| d == n);
-    // Depth-first from the regions: a definition is placed after every
-    // definition it names. The file's definitions have no cycle (the scene
-    // compiler refuses one), and `placed` bounds the walk regardless.
+    // Depth-first from the expressions. The file's definitions have no
+    // cycle (the scene compiler refuses one), and `placed` bounds the walk
+    // regardless.
     let mut placed = vec![false; defs.len()];
     let mut order = Vec::new();
     let mut stack: Vec<(usize, bool)> = Vec::new();
-    for r in &f.regions {
-        for n in names_in(&r.expr) {
+    for e in exprs {
+        for n in names_in(e) {
             if let Some(i) = index(n) {
                 stack.push((i, false));
             }
@@ -150,14 +163,10 @@ pub fn file_statement(f: &FileScene) -> FileStatement {
             stack.extend(uses.into_iter().rev().map(|j| (j, false)));
         }
     }
-    FileStatement {
-        definitions: order
-            .into_iter()
-            .map(|i| (defs[i].0.clone(), in_proof_names(&defs[i].1)))
-            .collect(),
-        omega: in_proof_names(&f.regions[0].expr),
-        omega0: in_proof_names(&f.regions[1].expr),
-    }
+    order
+        .into_iter()
+        .map(|i| (defs[i].0.clone(), in_proof_names(&defs[i].1)))
+        .collect()
 }
 
 #[cfg(test)]

@@ -43,6 +43,10 @@ pub struct FlowArgs {
     /// Print JSON instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// Also write the run as a `trajectory` proof file (checked before it
+    /// is written; `detach verify` or `detach-check` re-checks it).
+    #[arg(long, value_name = "FILE")]
+    pub proof: Option<std::path::PathBuf>,
 }
 
 pub fn run_flow(args: &FlowArgs) -> CliResult {
@@ -76,7 +80,20 @@ pub fn run_flow(args: &FlowArgs) -> CliResult {
     let mut request = FlowRequest::parse(theta, theta_dot, &args.t).map_err(CliError::usage)?;
     request.until = Until::parse_list(&args.until).map_err(CliError::usage)?;
     request.settings.order = args.order;
-    let tube = flow(file, &request).map_err(CliError::usage)?;
+    let tube = match &args.proof {
+        None => flow(file, &request).map_err(CliError::usage)?,
+        Some(path) => {
+            let (tube, proof) = problem
+                .flow_with_proof(&request, &args.t)
+                .map_err(|e| CliError::runtime(format!("no proof written: {e}")))?;
+            let (bytes, _, units) = super::write_checked(path, &proof)?;
+            eprintln!(
+                "wrote {} ({bytes} B, {units}, checked VALID)",
+                detach::files::shown(path)
+            );
+            tube
+        }
+    };
     if args.json {
         let mut out = tube.json(&args.t);
         out["detach"] = detach::provenance();

@@ -44,12 +44,15 @@ fn hex_digest(bytes: &[u8]) -> String {
 
 /// The manifest of the proof files `names` (this run's) in `dir`, in
 /// `sha256sum` format.
-fn write_manifest(dir: &Path, names: &[String]) -> CliResult {
+/// Writes `MANIFEST.sha256` into `dir`, hashing each file from `dir` or, when
+/// `dir` does not hold it, from `kept` (the folder it will be carried over from).
+fn write_manifest(dir: &Path, kept: &Path, names: &[String]) -> CliResult {
     let mut names = names.to_vec();
     names.sort();
     let mut text = String::new();
     for n in &names {
-        let bytes = std::fs::read(dir.join(n))
+        let from = if dir.join(n).is_file() { dir } else { kept };
+        let bytes = std::fs::read(from.join(n))
             .map_err(|e| CliError::runtime(format!("cannot read {n}: {e}")))?;
         text.push_str(&format!("{}  {n}\n", hex_digest(&bytes)));
     }
@@ -94,7 +97,14 @@ pub fn run_prove(args: &ProveArgs) -> CliResult {
             check_s
         ));
     }
-    write_manifest(draft.path(), &written)?;
+    // The manifest lists every headline file the folder will hold: the ones
+    // written now and the ones the commit carries over from the old folder.
+    let listed: Vec<String> = HEADLINE
+        .iter()
+        .map(|n| file_name(n))
+        .filter(|f| written.contains(f) || args.out.join(f).is_file())
+        .collect();
+    write_manifest(draft.path(), &args.out, &listed)?;
     draft
         .commit()
         .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", args.out.display())))?;

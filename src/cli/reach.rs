@@ -3,6 +3,7 @@
 
 use super::atlas::{split_window, windowed_domain};
 use super::{CliError, CliResult, SceneSource};
+use detach::certificate::reach::reach_proof;
 use detach::motion::reach::{reach, Fate, ReachOptions, ReachRun};
 use detach::motion::{interval_json, Motion, Until};
 use detach::number::param::enclose_decimal;
@@ -44,6 +45,10 @@ pub struct ReachArgs {
     /// Print JSON (with every leaf) instead of a summary.
     #[arg(long)]
     pub json: bool,
+    /// Also write the paving as a `reach` proof file (checked before it is
+    /// written; `detach verify` or `detach-check` re-checks it).
+    #[arg(long, value_name = "FILE")]
+    pub proof: Option<std::path::PathBuf>,
 }
 
 pub fn run_reach(args: &ReachArgs) -> CliResult {
@@ -95,6 +100,21 @@ pub fn run_reach(args: &ReachArgs) -> CliResult {
              are undecided",
             args.max_boxes
         );
+    }
+    if let Some(path) = &args.proof {
+        let (proof, dropped) = reach_proof(file, &motion, &run, t_end, &args.t, &opts)
+            .map_err(|e| CliError::runtime(format!("no proof written: {e}")))?;
+        let (bytes, _, units) = super::write_checked(path, &proof)?;
+        eprintln!(
+            "wrote {} ({bytes} B, {units}, checked VALID)",
+            detach::files::shown(path)
+        );
+        if dropped > 0 {
+            eprintln!(
+                "detach: note: {dropped} decided boxes are stated undecided in the proof \
+                 (their certificates need more room than a checker is given)"
+            );
+        }
     }
     if args.json {
         let doc = run_json(&run, args);

@@ -35,6 +35,11 @@ pub struct Event {
     pub theta_dot: Interval,
     /// An enclosure of dg/dt at the crossing (of one sign: transversal).
     pub slope: Interval,
+    /// In the step's own time: `[a0, b0]` where dg/dt has one sign and
+    /// `[a, b]` where g changes sign, `[a0, b0, a, b]` (what a proof states).
+    pub(crate) local: [f64; 4],
+    /// Which of the run's watched functions crosses (its index).
+    pub(crate) watch: usize,
 }
 
 /// What a step shows of one watched function.
@@ -118,6 +123,7 @@ pub fn first_crossing(
         };
     };
     // Transversal on [a, b]: one sign of dg/dt there.
+    let (a0, b0) = (a, b);
     let window = data.enclose(tau(a, b));
     let mut field = |x: Vector| stepper.field(x).ok();
     let Some(slope) = field(window).and_then(|f| w.slope(window, f)) else {
@@ -186,6 +192,8 @@ pub fn first_crossing(
         theta: state[0],
         theta_dot: state[1],
         slope,
+        local: [a0, b0, a, b],
+        watch: 0,
     })
 }
 

@@ -26,6 +26,9 @@ pub struct FlowSettings {
     /// A set wider than this (in θ or θ̇) ends the run: its tube decides
     /// nothing more.
     pub max_width: f64,
+    /// Integrate back in time: the tube's times are then times before the
+    /// start (τ = −t).
+    pub backward: bool,
 }
 
 impl Default for FlowSettings {
@@ -37,6 +40,7 @@ impl Default for FlowSettings {
             min_step: 1e-9,
             max_step: 0.5,
             max_width: f64::INFINITY,
+            backward: false,
         }
     }
 }
@@ -93,6 +97,11 @@ impl Tube {
 
     pub fn is_empty(&self) -> bool {
         self.steps.is_empty()
+    }
+
+    /// Each step's start time and data (what a proof replays).
+    pub(crate) fn step_data(&self) -> &[(f64, StepData)] {
+        &self.steps
     }
 
     pub fn steps(&self) -> impl Iterator<Item = TubeStep> + '_ {
@@ -191,6 +200,9 @@ pub fn integrate(
         }
     }
     let mut stepper = Stepper::new(tape, settings.order);
+    if settings.backward {
+        stepper = stepper.backward();
+    }
     let mut set = LohnerSet::from_box(start);
     let mut t = 0.0_f64;
     let mut steps: Vec<(f64, StepData)> = Vec::new();
@@ -357,7 +369,13 @@ fn crossings(
     watched
         .iter()
         .zip(signs)
-        .map(|(w, &s)| first_crossing(data, *w, s, t0, stepper))
+        .enumerate()
+        .map(
+            |(i, (w, &s))| match first_crossing(data, *w, s, t0, stepper) {
+                Crossing::Found(e) => Crossing::Found(Event { watch: i, ..e }),
+                c => c,
+            },
+        )
         .collect()
 }
 
@@ -373,7 +391,7 @@ fn first_events(mut events: Vec<Event>) -> Vec<Event> {
 }
 
 /// −1 or 1 by the sign of `x`, `None` when it may be 0.
-pub(super) fn sign(x: Interval) -> Option<f64> {
+pub(crate) fn sign(x: Interval) -> Option<f64> {
     if x.is_empty() {
         None
     } else if x.inf() > 0.0 {

@@ -54,7 +54,7 @@ impl LohnerSet {
 }
 
 /// `x` as an exact interval.
-pub(super) fn point(x: f64) -> Interval {
+pub(crate) fn point(x: f64) -> Interval {
     Interval::try_from((x, x)).unwrap_or(Interval::ENTIRE)
 }
 
@@ -99,6 +99,9 @@ pub struct StepData {
     pub h: Interval,
     /// Every solution from the set stays in this box over the step.
     pub apriori: Vector,
+    /// The box the Picard inclusion was proved on (`apriori` ⊆ it, and
+    /// E + [0, h]·f(B) ⊆ B holds for every B between the two).
+    pub(crate) apriori_outer: Vector,
     /// The set at the step's end.
     pub end: LohnerSet,
     start: LohnerSet,
@@ -123,6 +126,16 @@ impl StepData {
         let j = self.jacobian(tau);
         let spread = mat_vec(&mat_mul(&j, &exact_matrix(&self.start.frame)), self.start.r);
         intersect(add(add(p, rem), spread), self.apriori)
+    }
+
+    /// The order K of the step's Taylor method.
+    pub(crate) fn order(&self) -> usize {
+        self.order
+    }
+
+    /// The frame A' of the end set `{m' + A'·r}` (rows).
+    pub(crate) fn end_frame(&self) -> [[f64; 2]; 2] {
+        self.end.frame
     }
 
     /// An upper bound of the Lagrange remainder h^K·x_K(B) at the step's
@@ -166,6 +179,9 @@ pub struct Stepper<'a> {
     /// The series `0..=order` at the last midpoint asked for: the step
     /// size and the step both read it, for every step size tried.
     at_mid: Option<([f64; 2], [Vec<Interval>; 2])>,
+    /// Steps go back in time: the solution y(τ) = x(−τ), whose Taylor
+    /// coefficients are (−1)^k x_k.
+    backward: bool,
 }
 
 impl<'a> Stepper<'a> {
@@ -176,13 +192,35 @@ impl<'a> Stepper<'a> {
             work: Vec::new(),
             work_dual: Vec::new(),
             at_mid: None,
+            backward: false,
         }
+    }
+
+    /// The same method stepping back in time.
+    pub fn backward(self) -> Stepper<'a> {
+        Stepper {
+            backward: true,
+            ..self
+        }
+    }
+
+    /// −1 for the odd degrees of a backward run, else 1.
+    fn flips(&self, degree: usize) -> bool {
+        self.backward && degree % 2 == 1
     }
 
     /// The Taylor coefficients `0..=order` of the solution through `x`.
     pub fn series(&mut self, x: Vector, order: usize) -> Result<[Vec<Interval>; 2], NotAnalytic> {
         let s = self.tape.ode_series(x[0], x[1], order, &mut self.work)?;
-        Ok([s.theta, s.theta_dot])
+        let mut out = [s.theta, s.theta_dot];
+        for c in &mut out {
+            for (d, ck) in c.iter_mut().enumerate() {
+                if self.flips(d) {
+                    *ck = -*ck;
+                }
+            }
+        }
+        Ok(out)
     }
 
     /// The series `0..=order` at the point `mid`, computed once per point.
@@ -204,8 +242,8 @@ impl<'a> Stepper<'a> {
     }
 
     /// A box B ⊇ E + [0, h]·f(B): every solution from E stays in it on
-    /// [0, h]. Returned tightened to E + [0, h]·f(B) itself.
-    fn apriori(&mut self, e: Vector, h: Interval) -> Result<Vector, StepFailure> {
+    /// [0, h]. Returned tightened to E + [0, h]·f(B) itself, with B.
+    fn apriori(&mut self, e: Vector, h: Interval) -> Result<(Vector, Vector), StepFailure> {
         let span = Interval::try_from((0.0, h.sup())).map_err(|_| StepFailure::Unbounded)?;
         let f = self.field(e).map_err(StepFailure::NotAnalytic)?;
         let mut b = add(e, [span * f[0], span * f[1]]);
@@ -223,7 +261,7 @@ impl<'a> Stepper<'a> {
                 return Err(StepFailure::Unbounded);
             }
             if next[0].subset(wide[0]) && next[1].subset(wide[1]) {
-                return Ok(next);
+                return Ok((next, wide));
             }
             b = next;
         }
@@ -260,7 +298,7 @@ impl<'a> Stepper<'a> {
     ) -> Result<StepData, StepFailure> {
         let k = self.order;
         let e = set.hull;
-        let b = self.apriori(e, h)?;
+        let (b, outer) = self.apriori(e, h)?;
         let rem = self.series(b, k).map_err(StepFailure::NotAnalytic)?;
         let remainder = [rem[0][k], rem[1][k]];
         let hk = h.powi(k as i32);
@@ -292,6 +330,7 @@ impl<'a> Stepper<'a> {
         let data = StepData {
             h,
             apriori: b,
+            apriori_outer: outer,
             end: *set,
             start: *set,
             at_mid,
@@ -335,7 +374,14 @@ impl<'a> Stepper<'a> {
             )
             .map_err(StepFailure::NotAnalytic)?;
         Ok((0..=order)
-            .map(|d| [s.theta[d].grad, s.theta_dot[d].grad])
+            .map(|d| {
+                let j = [s.theta[d].grad, s.theta_dot[d].grad];
+                if self.flips(d) {
+                    j.map(|row| row.map(|x| -x))
+                } else {
+                    j
+                }
+            })
             .collect())
     }
 }

@@ -9,6 +9,7 @@
 pub mod event;
 pub mod flow;
 pub mod lohner;
+pub mod portrait;
 pub mod reach;
 pub mod singular;
 #[cfg(test)]
@@ -184,6 +185,18 @@ impl<'a> Motion<'a> {
         flow::integrate(&self.tape, settings, start, t_end, &[])
     }
 
+    /// What each of [`Motion::watched`] is, in the same order.
+    pub(crate) fn watch_items(&self) -> Vec<WatchItem> {
+        self.regions
+            .iter()
+            .map(|r| WatchItem::Region(r.region))
+            .chain(self.sides.iter().map(|s| WatchItem::Side {
+                axis: s.axis,
+                upper: s.upper,
+            }))
+            .collect()
+    }
+
     /// The functions whose sign changes end a run.
     pub fn watched(&self) -> Vec<&dyn Watched> {
         self.regions
@@ -192,6 +205,14 @@ impl<'a> Motion<'a> {
             .chain(self.sides.iter().map(|s| s as &dyn Watched))
             .collect()
     }
+}
+
+/// One watched function: a region's expression (0 for Ω, 1 for Ω₀) or a
+/// side of the domain (θ or θ̇, its lower or upper end).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum WatchItem {
+    Region(usize),
+    Side { axis: usize, upper: bool },
 }
 
 /// The certified trajectory of `file`'s `[dynamics]` for `request`.

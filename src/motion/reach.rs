@@ -97,7 +97,7 @@ impl ReachRun {
 }
 
 /// Pieces per step in which the tube is read.
-const PIECES: usize = 4;
+pub const PIECES: usize = 4;
 
 /// What one box's integration decides. The tube is continued through the
 /// target's boundary: a time b ≤ T at which every state of the tube has
@@ -159,6 +159,24 @@ fn decide(motion: &Motion, bx: [[f64; 2]; 2], t_end: Interval, settings: &FlowSe
     }
 }
 
+/// How a box of the paving of `window` is split: the wider side relative
+/// to the window, at a recorded double; `None` when no double lies inside.
+pub fn split_of(bx: [[f64; 2]; 2], window: [[f64; 2]; 2]) -> Option<(usize, f64)> {
+    let rel = [0, 1].map(|a| (bx[a][1] - bx[a][0]) / (window[a][1] - window[a][0]));
+    let axis = if rel[1] > rel[0] { 1 } else { 0 };
+    let m = split_point(bx[axis][0], bx[axis][1]);
+    (m > bx[axis][0]).then_some((axis, m))
+}
+
+/// The integration settings of a box's tube in the paving of `window`: a
+/// tube wider than the window decides nothing about its states.
+pub fn tube_settings(window: [[f64; 2]; 2], opts: &ReachOptions) -> FlowSettings {
+    FlowSettings {
+        max_width: (window[0][1] - window[0][0]).max(window[1][1] - window[1][0]),
+        ..opts.settings
+    }
+}
+
 /// The reach paving of `window` (doubles, inside the domain) for the
 /// events `motion` watches, within `t_end`. `level(depth, open, leaves)` is
 /// called before each level; `Break` stops there with the open boxes
@@ -171,11 +189,7 @@ pub fn reach(
     mut level: impl FnMut(usize, usize, usize) -> ControlFlow<()>,
 ) -> ReachRun {
     let min_width = [0, 1].map(|a| (window[a][1] - window[a][0]) * opts.eps);
-    // A tube wider than the window decides nothing about its states.
-    let settings = FlowSettings {
-        max_width: (window[0][1] - window[0][0]).max(window[1][1] - window[1][0]),
-        ..opts.settings
-    };
+    let settings = tube_settings(window, opts);
     let mut open = vec![window];
     let mut leaves = Vec::new();
     let mut depth = 0;
@@ -206,11 +220,7 @@ pub fn reach(
             let splittable = [0, 1].map(|a| bx[a][1] - bx[a][0] > min_width[a]);
             match fate {
                 Fate::Undecided(_) if splittable.contains(&true) => {
-                    // The wider side (relative to the window) is split.
-                    let rel = [0, 1].map(|a| (bx[a][1] - bx[a][0]) / (window[a][1] - window[a][0]));
-                    let axis = if rel[1] > rel[0] { 1 } else { 0 };
-                    let m = split_point(bx[axis][0], bx[axis][1]);
-                    if m > bx[axis][0] {
+                    if let Some((axis, m)) = split_of(bx, window) {
                         let (mut lo, mut hi) = (bx, bx);
                         lo[axis][1] = m;
                         hi[axis][0] = m;

@@ -392,3 +392,49 @@ fn a_sign_change_across_a_pole_is_not_a_reach() {
         .iter()
         .all(|l| matches!(l.fate, Fate::Reaches(_))));
 }
+
+#[test]
+fn backward_steps_enclose_the_past_of_the_separatrix() {
+    // θ̈ = −sin θ from (0, 2) back over 2: θ(−2) = 4 atan(e⁻²) − π,
+    // θ̇(−2) = 2 sech 2 (closed form, MPFR here).
+    let file = scene("-sin(theta)", "theta - 100");
+    let mut request = FlowRequest::parse("0", "2", "2").unwrap();
+    request.until = vec![];
+    request.settings.backward = true;
+    let tube = flow(&file, &request).unwrap();
+    assert_eq!(tube.stop, Stop::End);
+    let pi = Float::with_val(PREC, Constant::Pi);
+    let th = Float::with_val(PREC, 4) * f(-2.0).exp().atan() - pi;
+    let w = Float::with_val(PREC, 2) / f(2.0).cosh();
+    assert!(
+        contains(tube.end[0], &th) && contains(tube.end[1], &w),
+        "{:?}",
+        tube.end
+    );
+    assert!(tube.end[0].wid() < 1e-12, "{:?}", tube.end);
+}
+
+#[test]
+fn portrait_curves_stay_on_their_energy_level() {
+    // θ̈ = −sin θ conserves E = θ̇²/2 − cos θ: the energy over every box of
+    // one certified curve must share a value (the seed's, computed in MPFR).
+    let file = scene("-sin(theta)", "theta - 100");
+    let window = [[-3.0, 3.0], [-2.5, 2.5]];
+    let seeds = [(0.5, 0.3), (-1.0, 1.5), (2.0, -0.7)];
+    let opts = portrait::CurveSettings {
+        piece: [0.01, 0.01],
+        time: 20.0,
+        steps: 200,
+    };
+    let curves = portrait::certified_curves(&file, window, &seeds, &opts);
+    assert_eq!(curves.len(), seeds.len());
+    for (curve, &(t, w)) in curves.iter().zip(&seeds) {
+        let e = f(w) * f(w) / Float::with_val(PREC, 2) - f(t).cos();
+        assert!(curve.len() > 50, "{} boxes", curve.len());
+        for b in curve {
+            let energy = b[1].sqr() / Interval::try_from((2.0, 2.0)).unwrap() - b[0].cos();
+            assert!(contains(energy, &e), "{b:?}: E ∈ {energy:?}, seed's {e}");
+            assert!(b[0].wid() <= 0.011 && b[1].wid() <= 0.011, "{b:?}");
+        }
+    }
+}

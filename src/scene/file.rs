@@ -741,6 +741,11 @@ impl FileScene {
         self.dynamics.as_ref()?.taylor()
     }
 
+    /// θ̈ of `[dynamics]` as written, if the file gives it.
+    pub fn dynamics_text(&self) -> Option<&str> {
+        self.dynamics_text[0].as_deref()
+    }
+
     /// θ̈ of `[dynamics]` as compiled, if the file gives it.
     pub fn dynamics_program(&self) -> Option<&Program> {
         self.dynamics.as_ref()

@@ -413,21 +413,31 @@ fn area_refuses_places_below_binary64_rounding() {
     );
 }
 
+/// A round-joined path (a polyline, or a phase band whose stroke is the
+/// certified band's own width in pixels: data, not style).
+const BAND: &str = "stroke-linejoin=\"round\"";
+
 /// Every `attr="…"` number of an SVG outside its `<defs>` (the hatching
-/// texture keeps its fine spacing), sorted.
-fn svg_numbers(svg: &str, attr: &str) -> Vec<f64> {
+/// texture keeps its fine spacing), on lines that are phase bands or not,
+/// sorted.
+fn svg_numbers_of(svg: &str, attr: &str, bands: bool) -> Vec<f64> {
     let key = format!("{attr}=\"");
     let body = match (svg.find("<defs>"), svg.find("</defs>")) {
         (Some(a), Some(b)) => format!("{}{}", &svg[..a], &svg[b..]),
         _ => svg.to_string(),
     };
     let mut v: Vec<f64> = body
-        .split(&key)
-        .skip(1)
+        .lines()
+        .filter(|l| l.contains(BAND) == bands)
+        .flat_map(|l| l.split(&key).skip(1))
         .map(|s| s[..s.find('"').unwrap()].parse().unwrap())
         .collect();
     v.sort_by(f64::total_cmp);
     v
+}
+
+fn svg_numbers(svg: &str, attr: &str) -> Vec<f64> {
+    svg_numbers_of(svg, attr, false)
 }
 
 /// `--size` twice the default in both directions doubles every font size
@@ -469,6 +479,12 @@ fn atlas_text_and_lines_grow_with_size() {
                 "{attr}: {x} at 1200x800, {y} at 2400x1600"
             );
         }
+    }
+    // Round-joined strokes (polylines and bands) are never thinner than
+    // the scaled one-pixel line.
+    for (svg, least) in [(&small, 1.0), (&large, 2.0)] {
+        let w = svg_numbers_of(svg, "stroke-width", true);
+        assert!(!w.is_empty() && w[0] >= least - 0.005, "{w:?}");
     }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -322,3 +322,166 @@ fn reach_leaves_agree_with_the_reference_event() {
         assert_bad_input(&all, message);
     }
 }
+
+/// `detach-check`'s verdict on a proof, first word only.
+fn verdict(proof: &Value) -> String {
+    let text = serde_json::to_string(proof).unwrap();
+    match detach::check::check_str(&text) {
+        Ok(r) => format!("{:?}", r.verdict),
+        Err(e) => format!("UNREADABLE {e}"),
+    }
+}
+
+/// `[lo, hi]` decimal text as an exact-enough interval (outward).
+fn claimed(v: &Value) -> inari::Interval {
+    let end = |i: usize| v[i].as_str().unwrap().parse::<f64>().unwrap();
+    inari::Interval::try_from((end(0).next_down(), end(1).next_up())).unwrap()
+}
+
+#[test]
+fn trajectory_proofs_check_hold_the_reference_and_fail_off_it() {
+    // The reference is mpmath's (tests/data/motion_reference.py), not the
+    // prover: each proof detach writes is VALID for detach-check, its
+    // claimed box or window holds the reference, and the same proof with
+    // the claim moved just off the reference is INVALID.
+    let data = reference();
+    for case in data["trajectories"].as_array().unwrap() {
+        let name = case["scene"].as_str().unwrap();
+        let owned = params(case);
+        let pairs: Vec<(&str, &str)> = owned
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.as_str()))
+            .collect();
+        let problem = detach::api::Problem::load(name, &pairs).unwrap();
+        let p = &case["points"].as_array().unwrap()[0];
+        let t = p["t"].as_str().unwrap();
+        let mut request = FlowRequest::parse(
+            case["theta0"].as_str().unwrap(),
+            case["theta_dot0"].as_str().unwrap(),
+            t,
+        )
+        .unwrap();
+        request.until = vec![];
+        let (_, proof) = problem.flow_with_proof(&request, t).unwrap();
+        assert_eq!(verdict(&proof), "Valid", "{name} to {t}");
+        let end = &proof["statement"]["end"];
+        let r = p["theta"].as_str().unwrap();
+        let box_t = claimed(&end["t"]);
+        assert!(contains_text(box_t, r), "{name}: {box_t:?} ∌ {r}");
+        assert!(
+            box_t.wid() < 1e-9,
+            "{name}: claimed width {:e}",
+            box_t.wid()
+        );
+        let mut moved = proof.clone();
+        let above = r.parse::<f64>().unwrap() + 1e-9;
+        moved["statement"]["end"]["t"] =
+            serde_json::json!([format!("{above:e}"), format!("{:e}", above + 1e-9)]);
+        assert!(
+            verdict(&moved).starts_with("Invalid"),
+            "{name}: {}",
+            verdict(&moved)
+        );
+    }
+    for case in data["events"].as_array().unwrap() {
+        let name = case["scene"].as_str().unwrap();
+        let owned = params(case);
+        let pairs: Vec<(&str, &str)> = owned
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.as_str()))
+            .collect();
+        let problem = detach::api::Problem::load(name, &pairs).unwrap();
+        let mut request = FlowRequest::parse(
+            case["theta0"].as_str().unwrap(),
+            case["theta_dot0"].as_str().unwrap(),
+            "3",
+        )
+        .unwrap();
+        request.until = vec![match case["function"].as_str().unwrap() {
+            "omega" => Until::Omega,
+            _ => Until::Omega0,
+        }];
+        let (_, proof) = problem.flow_with_proof(&request, "3").unwrap();
+        assert_eq!(verdict(&proof), "Valid", "{name} event");
+        let time = claimed(&proof["statement"]["event"]["time"]);
+        let r = case["time"].as_str().unwrap();
+        assert!(contains_text(time, r), "{name}: {time:?} ∌ {r}");
+        let mut moved = proof.clone();
+        let later = r.parse::<f64>().unwrap() + 1e-9;
+        moved["statement"]["event"]["time"] =
+            serde_json::json!([format!("{later:e}"), format!("{:e}", later + 1e-9)]);
+        assert!(
+            verdict(&moved).starts_with("Invalid"),
+            "{name}: {}",
+            verdict(&moved)
+        );
+    }
+}
+
+/// `detach reach --proof` around the reference event of
+/// `tests/data/motion-reference.json`: the file checks VALID on its own,
+/// claims no more than the run proved, and a claim changed against the
+/// evidence — more reaching area, or a T before the reference event at
+/// τ ≈ 0.2071 — is INVALID.
+#[test]
+fn reach_proofs_check_and_fail_when_mutated() {
+    let dir = std::env::temp_dir().join(format!("detach-reach-proof-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("reach.json");
+    let args = [
+        "reach",
+        "--scene",
+        "painleve-rod",
+        "--param",
+        "mu=0.5",
+        "--theta",
+        "0.25:0.35",
+        "--theta-dot",
+        "3.9:4.1",
+        "--t",
+        "0.3",
+        "--until",
+        "U=0",
+        "--eps",
+        "0.0625",
+        "--json",
+        "--proof",
+        path.to_str().unwrap(),
+    ];
+    let run = json(&args);
+    let bytes = std::fs::read(&path).unwrap();
+    let verdict = |b: &[u8]| detach::check::check_bytes(b).unwrap().verdict;
+    assert_eq!(verdict(&bytes), detach::check::Verdict::Valid);
+    let proof: Value = serde_json::from_slice(&bytes).unwrap();
+    let num = |v: &Value| v.as_str().unwrap().parse::<f64>().unwrap();
+    let (inner, outer) = (
+        num(&proof["statement"]["area"]["inner"]),
+        num(&proof["statement"]["area"]["outer"]),
+    );
+    // Both are bounds of exact sums over the same or fewer leaves, each
+    // rounded in its own order: they may differ in the last digits.
+    let (run_inner, run_outer) = (num(&run["area"]["inner"]), num(&run["area"]["outer"]));
+    assert!(
+        inner > 0.0 && inner <= run_inner * (1.0 + 1e-12),
+        "{inner} vs {run_inner}"
+    );
+    assert!(
+        outer >= run_outer * (1.0 - 1e-12) && outer <= 0.02 + 1e-12,
+        "{outer} vs {run_outer}"
+    );
+    let mutated = |f: &dyn Fn(&mut Value)| {
+        let mut p = proof.clone();
+        f(&mut p);
+        verdict(&serde_json::to_vec(&p).unwrap())
+    };
+    let more = format!("{:e}", 1.5 * inner);
+    assert!(matches!(
+        mutated(&|p| p["statement"]["area"]["inner"] = Value::from(more.as_str())),
+        detach::check::Verdict::Invalid(_)
+    ));
+    assert!(matches!(
+        mutated(&|p| p["statement"]["time"] = Value::from("0.1")),
+        detach::check::Verdict::Invalid(_)
+    ));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -210,6 +210,32 @@ fn a_stale_manifest_entry_is_reported_once() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `detach prove NAME` into a folder of proofs rewrites NAME and keeps the
+/// manifest lines of the files it did not touch (their hashes read from
+/// the committed manifest, not recomputed by the code under test).
+#[test]
+fn proving_one_result_keeps_the_rest_of_the_manifest() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("proofs");
+    let dir = std::env::temp_dir().join(format!("detach-prove-one-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let manifest = std::fs::read_to_string(src.join("MANIFEST.sha256")).unwrap();
+    for line in manifest.lines() {
+        let name = line.split_whitespace().nth(1).unwrap();
+        std::fs::copy(src.join(name), dir.join(name)).unwrap();
+    }
+    std::fs::write(dir.join("MANIFEST.sha256"), &manifest).unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_detach"))
+        .args(["prove", "kappa0", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let after = std::fs::read_to_string(dir.join("MANIFEST.sha256")).unwrap();
+    assert_eq!(after, manifest);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// Every committed proof holds for a checker whose outward rounding is
 /// correct but looser than detach's: each operation's result widened by
 /// 2 ulps at each end (exact results of `+ − × ÷` kept), and for the
