@@ -30,7 +30,10 @@ pub use canvas::{
 };
 pub use output::{check_size, render_rgb, write_figure, Area};
 pub use palette::{delta_e, min_delta_e};
-pub use portrait::{level_lines, phase_portrait, phase_portrait_px, thin, trajectories, Polyline};
+pub use portrait::{
+    atlas_portrait, level_lines, phase_portrait, phase_portrait_px, thin, trajectories, Polyline,
+    Portrait,
+};
 pub use raster::{merge_rects, rasterize, Class, PixelRect, Raster};
 pub use regions::{even_odd_area, inside_even_odd, vector_regions, Region, Tracing};
 pub use ticks::{nice_ticks, theta_ticks, tick_label};
@@ -78,7 +81,7 @@ pub const MIN_WIDTH: u32 = 640;
 pub const MIN_HEIGHT: u32 = 400;
 
 /// Least distance in pixels between two drawn phase curves.
-const LINE_SPACING: f64 = 6.0;
+pub const LINE_SPACING: f64 = 6.0;
 
 // Layout in pixels at the default size; every length of the picture (these,
 // fonts, lines, ticks) is multiplied by `scale_of(style)`.
@@ -131,7 +134,7 @@ type Rings = Vec<Vec<(f64, f64)>>;
 struct Prepared {
     cells: CellLayer,
     /// Phase curves in plot-area pixel coordinates.
-    lines: Vec<Vec<(f64, f64)>>,
+    lines: Portrait,
     /// Share of the root box's area in each class, in [`Class::ALL`] order.
     shares: [f64; 6],
     /// Why a class is empty by what the scene proves, in the same order.
@@ -183,7 +186,7 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
         root.theta_dot[1] - root.theta_dot[0],
     );
     let scale = scale_of(style);
-    let lines = phase_portrait_px(
+    let lines = atlas_portrait(
         info.scene,
         info.variant,
         &root,
@@ -352,9 +355,9 @@ fn render(root: &Area, paving: &Paving, prep: &Prepared) -> Result<(), FigureErr
 
     // Phase portrait.
     native(&plot, |fig, o| {
-        for l in &prep.lines {
+        for (l, width) in &prep.lines.curves {
             let pts: Vec<(f64, f64)> = l.iter().map(|p| (o.0 + p.0, o.1 + p.1)).collect();
-            fig.stroke(&pts, LINE.mix(0.8).to_backend_color(), 1.1 * s)?;
+            fig.stroke(&pts, LINE.mix(0.8).to_backend_color(), width.max(1.1 * s))?;
         }
         Ok(())
     })
@@ -707,7 +710,12 @@ fn draw_legend(area: &Area, prep: &Prepared) -> Result<(), FigureError> {
     let tx = x0 + sw + k(10);
     area.draw_text("phase portrait", &name.color(&INK), (tx, y - k(3)))
         .map_err(draw_err)?;
-    area.draw_text("f64, not certified", &body.color(&INK), (tx, y + k(15)))
+    let how = if prep.lines.certified {
+        "certified tubes"
+    } else {
+        "f64, not certified"
+    };
+    area.draw_text(how, &body.color(&INK), (tx, y + k(15)))
         .map_err(draw_err)?;
     y += sh + k(26);
     let notes = [

@@ -1,11 +1,16 @@
-//! Phase portraits in plain `f64` (for drawing only, not certified).
+//! Phase portraits.
 //!
-//! Scenes with a conserved energy get level lines of it (marching squares);
-//! the others get trajectories of θ̈ integrated by Dormand–Prince 5(4) with
-//! error control.
+//! A scene with `[dynamics]` gets certified curves in the atlas: the tubes
+//! of [`crate::motion::portrait`] through a grid of seeds, each drawn as a
+//! band that covers its boxes. The plain-`f64` portraits remain for the
+//! other pictures (and a scene with an energy but no equation of motion):
+//! level lines of the energy (marching squares), or trajectories of θ̈ by
+//! Dormand–Prince 5(4) with error control.
 
+use crate::motion::portrait::{certified_curves, BoxCurve, CurveSettings};
 use crate::pave::PhaseBox;
 use crate::scene::{Angle, Scene, Variant};
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// A polyline in phase-plane coordinates `(θ, θ̇)`.
@@ -293,7 +298,6 @@ pub fn trajectories_with_heads(
         root.theta[1] - root.theta[0],
         root.theta_dot[1] - root.theta_dot[0],
     );
-    let (seeds_x, seeds_y) = (8usize, 6usize);
     // Long enough that a curve ends at the box's edge, at rest or at a
     // singularity, not in open plane (where it would read as a sink).
     let max_arc = 4.0;
@@ -305,14 +309,8 @@ pub fn trajectories_with_heads(
     let norm = |v: (f64, f64)| (v.0 / w).hypot(v.1 / h);
     let finite = |s: (f64, f64)| s.0.is_finite() && s.1.is_finite();
     let mut out = Vec::new();
-    for i in 0..seeds_x {
-        for j in 0..seeds_y {
-            // Staggered rows, so seeds do not line up.
-            let shift = if j % 2 == 0 { 0.25 } else { 0.75 };
-            let seed = (
-                root.theta[0] + w * (i as f64 + shift) / seeds_x as f64,
-                root.theta_dot[0] + h * (j as f64 + 0.5) / seeds_y as f64,
-            );
+    for seed in seeds(root) {
+        {
             let mut both = Vec::new();
             for dir in [-1.0, 1.0] {
                 let mut s = seed;
@@ -396,6 +394,131 @@ fn arrowhead(at: (f64, f64), dir: (f64, f64), w: f64, h: f64) -> Option<Polyline
         (at.0 + len * bu * w, at.1 + len * bv * h)
     };
     Some(vec![wing(1.0), at, wing(-1.0)])
+}
+
+/// The phase curves an atlas draws, in picture pixels.
+pub struct Portrait {
+    /// Polylines and the stroke width that covers each one's boxes (1 for
+    /// an uncertified curve or an arrowhead).
+    pub curves: Vec<(Vec<(f64, f64)>, f64)>,
+    /// The curves are certified bands: every solution through a seed
+    /// stays inside its stroke.
+    pub certified: bool,
+}
+
+/// The atlas's portrait: certified bands for a scene with `[dynamics]`,
+/// otherwise [`phase_portrait_px`]'s `f64` curves.
+pub fn atlas_portrait(
+    scene: &Scene,
+    variant: Variant,
+    root: &PhaseBox,
+    px: (u32, u32),
+    spacing: f64,
+) -> Portrait {
+    if !scene.has_dynamics() {
+        let curves = phase_portrait_px(scene, variant, root, px, spacing);
+        return Portrait {
+            curves: curves.into_iter().map(|c| (c, 1.0)).collect(),
+            certified: false,
+        };
+    }
+    let (w, h) = (
+        root.theta[1] - root.theta[0],
+        root.theta_dot[1] - root.theta_dot[0],
+    );
+    let (pw, ph) = (f64::from(px.0), f64::from(px.1));
+    let to_px = |(t, v): (f64, f64)| {
+        (
+            (t - root.theta[0]) / w * pw,
+            (root.theta_dot[1] - v) / h * ph,
+        )
+    };
+    let window = [root.theta, root.theta_dot];
+    let opts = CurveSettings {
+        piece: [1.5 * w / pw, 1.5 * h / ph],
+        time: 20.0,
+        steps: 80,
+    };
+    let seeds = seeds(root);
+    let file = scene.reading(variant);
+    let runs: Vec<((f64, f64), Vec<BoxCurve>)> = seeds
+        .par_iter()
+        .map(|s| {
+            (
+                *s,
+                certified_curves(file, window, std::slice::from_ref(s), &opts),
+            )
+        })
+        .collect();
+    let (kept_seeds, boxes): (Vec<(f64, f64)>, Vec<BoxCurve>) = runs
+        .into_iter()
+        .filter_map(|(s, mut c)| c.pop().map(|c| (s, c)))
+        .unzip();
+    // Each box in pixels: its centre, and the half-diagonal a stroke
+    // through the centres must reach to cover it.
+    let inside = |c: (f64, f64)| c.0 >= 0.0 && c.0 <= pw && c.1 >= 0.0 && c.1 <= ph;
+    let mut centres = Vec::with_capacity(boxes.len());
+    let mut reach = Vec::with_capacity(boxes.len());
+    for curve in &boxes {
+        let mut line = Vec::with_capacity(curve.len());
+        let mut r: f64 = 0.0;
+        for b in curve {
+            let lo = to_px((b[0].inf(), b[1].sup()));
+            let hi = to_px((b[0].sup(), b[1].inf()));
+            let c = (0.5 * (lo.0 + hi.0), 0.5 * (lo.1 + hi.1));
+            if inside(c) {
+                r = r.max(0.5 * (hi.0 - lo.0).hypot(hi.1 - lo.1));
+                line.push(c);
+            }
+        }
+        centres.push(line);
+        reach.push(r);
+    }
+    let simplify_tol = 0.1;
+    let pieces = thin(&centres, spacing, 3.0 * spacing);
+    // An arrowhead (a glyph of the direction of motion, from the field in
+    // f64) at each seed whose curve is still drawn there.
+    let mut curves: Vec<(Vec<(f64, f64)>, f64)> = Vec::new();
+    for (k, seed) in kept_seeds.iter().enumerate() {
+        let tip = to_px(*seed);
+        let drawn = pieces
+            .iter()
+            .filter(|(c, _)| *c == k)
+            .any(|(_, p)| p.iter().any(|q| (q.0 - tip.0).hypot(q.1 - tip.1) <= 1.5));
+        let acc = scene.acceleration(variant, &Angle::new(seed.0), seed.1);
+        if let (true, Some(head)) = (drawn, arrowhead(*seed, (seed.1, acc), w, h)) {
+            curves.push((head.into_iter().map(to_px).collect(), 1.0));
+        }
+    }
+    curves.extend(pieces.into_iter().map(|(k, piece)| {
+        let width = (2.0 * (reach[k] + simplify_tol)).max(1.1);
+        (simplify(&piece, simplify_tol), width)
+    }));
+    Portrait {
+        curves,
+        certified: true,
+    }
+}
+
+/// Seeds of phase curves: a staggered grid over `root`.
+fn seeds(root: &PhaseBox) -> Vec<(f64, f64)> {
+    let (w, h) = (
+        root.theta[1] - root.theta[0],
+        root.theta_dot[1] - root.theta_dot[0],
+    );
+    let (seeds_x, seeds_y) = (8usize, 6usize);
+    let mut out = Vec::with_capacity(seeds_x * seeds_y);
+    for i in 0..seeds_x {
+        for j in 0..seeds_y {
+            // Staggered rows, so seeds do not line up.
+            let shift = if j % 2 == 0 { 0.25 } else { 0.75 };
+            out.push((
+                root.theta[0] + w * (i as f64 + shift) / seeds_x as f64,
+                root.theta_dot[0] + h * (j as f64 + 0.5) / seeds_y as f64,
+            ));
+        }
+    }
+    out
 }
 
 /// Phase curves in picture pixels (`(0, 0)` the top left of the plot area,
