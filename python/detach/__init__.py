@@ -229,14 +229,16 @@ class Scene:
             raise Interrupted(atlas)
         return atlas
 
-    def flow(self, start, t, until="cell,domain", order=20):
+    def flow(self, start, t, until="cell,domain", order=20, proof=False):
         """A certified trajectory, as `detach flow`: the tube of every
         solution from `start` over [0, t], up to the first event of `until`
         (`"U=0"`, `"N=0"`, `"cell"`, `"domain"`, `"none"`, comma-separated).
 
         `start`: `(theta, theta_dot)`, each decimal text (`"pi/4"`), an int,
         a `Decimal`, or a pair `(lo, hi)` for a box of initial states. `t`:
-        the end time, decimal text. The GIL is released while it runs."""
+        the end time, decimal text. With `proof=True` the run also makes its
+        `trajectory` proof (`Trajectory.save_proof`), and fails when it
+        ends undecided. The GIL is released while it runs."""
         try:
             theta, theta_dot = start
         except (TypeError, ValueError):
@@ -247,23 +249,26 @@ class Scene:
             decimal_text("t", t),
             str(until),
             _order(order),
+            bool(proof),
         )
         return Trajectory(native)
 
     def reach(self, t, until="cell", theta=None, theta_dot=None, eps=1 / 256,
-              max_boxes=100_000):
+              max_boxes=100_000, proof=False):
         """The initial states whose motion reaches the first event of
         `until` within time `t`, as `detach reach`: a certified paving of
         the domain (or the window `theta`, `theta_dot`), each leaf proved to
         reach (with the time window of its arrival), proved to avoid, or
-        undecided with the reason. The GIL is released while it runs."""
+        undecided with the reason. With `proof=True` the run also makes its
+        `reach` proof (`Reach.save_proof`). The GIL is released while it
+        runs."""
         if isinstance(max_boxes, bool) or not isinstance(max_boxes, int) or max_boxes < 1:
             raise ValueError(f"max_boxes must be a positive integer, got {max_boxes!r}")
-        leaves, complete = self._native.reach(
+        leaves, complete, made = self._native.reach(
             decimal_text("t", t), str(until), float(eps), max_boxes,
-            _window("theta", theta), _window("theta_dot", theta_dot),
+            _window("theta", theta), _window("theta_dot", theta_dot), bool(proof),
         )
-        return Reach(leaves, complete)
+        return Reach(leaves, complete, made)
 
     def singular_points(self, theta=None, theta_dot=None, x=None, eps=None):
         """The equilibria and singular points of the scene's `[dynamics]`,
@@ -336,6 +341,12 @@ class Trajectory:
         """What `detach flow --json` prints (without the run's arguments)."""
         return self._doc
 
+    def save_proof(self, path):
+        """Writes the run's `trajectory` proof file (proofs/FORMAT.md), once
+        the independent checker says VALID, as `detach flow --proof`; the
+        run must have been made with `Scene.flow(..., proof=True)`."""
+        self._native.save_proof(str(path))
+
     @property
     def events(self):
         return [
@@ -393,7 +404,8 @@ class Reach:
     `theta_lo, theta_hi, theta_dot_lo, theta_dot_hi, fate, t_lo, t_hi`),
     the undecided leaves' reasons, and certified area bounds."""
 
-    def __init__(self, leaves, complete):
+    def __init__(self, leaves, complete, proof=None):
+        self._proof = proof
         self.leaves = np.array(
             [row[:7] for row in leaves],
             dtype=[("theta_lo", "f8"), ("theta_hi", "f8"), ("theta_dot_lo", "f8"),
@@ -419,6 +431,21 @@ class Reach:
 
         inner, outer = total(self.leaves["fate"] == 0), total(self.leaves["fate"] != 1)
         return (_round(inner, down=True), _round(outer, down=False))
+
+    @property
+    def undecided_in_proof(self):
+        """How many decided leaves the proof states undecided (their
+        certificates are not confirmed by every checker); `None` without a
+        proof."""
+        return None if self._proof is None else self._proof[1]
+
+    def save_proof(self, path):
+        """Writes the paving's `reach` proof file (proofs/FORMAT.md), once
+        the independent checker says VALID, as `detach reach --proof`; the
+        paving must have been made with `Scene.reach(..., proof=True)`."""
+        if self._proof is None:
+            raise ValueError("this paving has no proof: run Scene.reach(..., proof=True)")
+        _detach.write_proof(self._proof[0], str(path))
 
     def __len__(self):
         return len(self.leaves)

@@ -190,6 +190,7 @@ impl Scene {
     /// A certified trajectory from `theta`, `theta_dot` (each `X` or
     /// `LO:HI`, decimal text) over `[0, t]`, stopped by `until` (as `detach
     /// flow --until`), with the GIL released.
+    #[allow(clippy::too_many_arguments)]
     fn flow(
         &self,
         py: Python<'_>,
@@ -198,6 +199,7 @@ impl Scene {
         t: &str,
         until: &str,
         order: usize,
+        proof: bool,
     ) -> PyResult<Trajectory> {
         if !(2..=60).contains(&order) {
             return Err(value_error(format!("order must be in 2..=60, got {order}")));
@@ -206,12 +208,21 @@ impl Scene {
             FlowRequest::parse(theta, theta_dot, t).map_err(|e| value_error(e.to_string()))?;
         request.until = Until::parse_list(until).map_err(|e| value_error(e.to_string()))?;
         request.settings.order = order;
-        let tube = py
-            .detach(|| self.problem.flow(&request))
-            .map_err(value_error)?;
+        let (tube, proof) = if proof {
+            let (tube, p) = py
+                .detach(|| self.problem.flow_with_proof(&request, t))
+                .map_err(value_error)?;
+            (tube, Some(p))
+        } else {
+            let tube = py
+                .detach(|| self.problem.flow(&request))
+                .map_err(value_error)?;
+            (tube, None)
+        };
         Ok(Trajectory {
             tube,
             t: t.to_string(),
+            proof,
         })
     }
 
@@ -228,7 +239,8 @@ impl Scene {
         max_boxes: usize,
         theta: Option<[String; 2]>,
         theta_dot: Option<[String; 2]>,
-    ) -> PyResult<(Vec<(f64, f64, f64, f64, u8, f64, f64, String)>, bool)> {
+        proof: bool,
+    ) -> PyResult<ReachNative> {
         let until = Until::parse_list(until).map_err(|e| value_error(e.to_string()))?;
         if max_boxes == 0 {
             return Err(value_error("max_boxes must be at least 1".into()));
@@ -240,15 +252,26 @@ impl Scene {
         };
         let run = py
             .detach(|| {
-                self.problem.reach(
-                    window_refs(&theta),
-                    window_refs(&theta_dot),
-                    t,
-                    &until,
-                    &opts,
-                )
+                self.problem
+                    .reach(
+                        window_refs(&theta),
+                        window_refs(&theta_dot),
+                        t,
+                        &until,
+                        &opts,
+                    )
+                    .and_then(|run| {
+                        let proof = if proof {
+                            let (p, dropped) = self.problem.reach_proof(&run, t, &until, &opts)?;
+                            Some((p.to_string(), dropped))
+                        } else {
+                            None
+                        };
+                        Ok((run, proof))
+                    })
             })
             .map_err(value_error)?;
+        let (run, proof) = run;
         let leaves = run
             .leaves
             .iter()
@@ -263,7 +286,7 @@ impl Scene {
                 (t0, t1, w0, w1, fate, time.0, time.1, why)
             })
             .collect();
-        Ok((leaves, run.complete))
+        Ok((leaves, run.complete, proof))
     }
 
     /// The equilibria and singular points (as `detach singular --json`),
@@ -582,10 +605,23 @@ impl ParamAtlas {
 struct Trajectory {
     tube: Tube,
     t: String,
+    /// The run's `trajectory` proof, when asked for.
+    proof: Option<serde_json::Value>,
 }
 
 #[pymethods]
 impl Trajectory {
+    /// Writes the run's proof file, once the checker says VALID.
+    fn save_proof(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        let Some(proof) = &self.proof else {
+            return Err(value_error(
+                "this trajectory has no proof: run Scene.flow(..., proof=True)".to_string(),
+            ));
+        };
+        py.detach(|| detach::api::write_checked_proof(proof, &path))
+            .map_err(value_error)
+    }
+
     /// `{"events", "end", "stop", "steps"}` as `detach flow --json`.
     fn json(&self) -> String {
         self.tube.json(&self.t).to_string()
@@ -616,6 +652,24 @@ impl Trajectory {
         }
         Ok(PyBytes::new(py, &bytes))
     }
+}
+
+/// Reach leaves `(θ lo, θ hi, θ̇ lo, θ̇ hi, fate, t lo, t hi, reason)`,
+/// whether the paving is complete, and its proof (JSON text and how many
+/// decided leaves it states undecided) when asked for.
+type ReachNative = (
+    Vec<(f64, f64, f64, f64, u8, f64, f64, String)>,
+    bool,
+    Option<(String, usize)>,
+);
+
+/// Writes a proof given as JSON text to `path`, once the checker says VALID.
+#[pyfunction]
+fn write_proof(py: Python<'_>, text: &str, path: PathBuf) -> PyResult<()> {
+    let proof: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| value_error(e.to_string()))?;
+    py.detach(|| detach::api::write_checked_proof(&proof, &path))
+        .map_err(value_error)
 }
 
 #[pyfunction]
@@ -673,6 +727,7 @@ fn _detach(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Paving>()?;
     m.add_class::<ParamAtlas>()?;
     m.add_class::<Trajectory>()?;
+    m.add_function(wrap_pyfunction!(write_proof, m)?)?;
     m.add_function(wrap_pyfunction!(verify, m)?)?;
     m.add_function(wrap_pyfunction!(palette, m)?)?;
     m.add_function(wrap_pyfunction!(scene_names, m)?)?;

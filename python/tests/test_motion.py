@@ -166,3 +166,48 @@ def test_reach_agrees_with_the_reference_event_time():
         scene.reach("0.3", eps=2)
     with pytest.raises(ValueError, match="unknown event"):
         scene.reach("0.3", until="later")
+
+
+def test_a_saved_trajectory_proof_verifies_and_a_moved_end_does_not(tmp_path):
+    case = REFERENCE["trajectories"][4]  # viscous-disc from (-1.5, 1)
+    scene = detach.Scene.load(case["scene"], **case["params"])
+    p = case["points"][0]
+    run = scene.flow((case["theta0"], case["theta_dot0"]), p["t"], until="none", proof=True)
+    path = tmp_path / "traj.json"
+    run.save_proof(path)
+    assert detach.verify(path).verdict == "VALID"
+    proof = json.loads(path.read_text())
+    end = proof["statement"]["end"]
+    # The claimed end holds the mpmath reference; one moved wholly above it
+    # is a false claim the checker must refuse.
+    lo, hi = Fraction(end["t"][0]), Fraction(end["t"][1])
+    assert lo <= Fraction(p["theta"]) <= hi
+    shift = 2 * (hi - lo) + Fraction(1, 10**9)
+    end["t"] = [str(float(lo + shift)), str(float(hi + shift))]
+    (tmp_path / "moved.json").write_text(json.dumps(proof))
+    assert detach.verify(tmp_path / "moved.json").verdict == "INVALID"
+
+
+def test_save_proof_of_a_run_made_without_proof_is_an_error(tmp_path):
+    run = detach.Scene.load("viscous-disc").flow(("-1.5", "1"), "1", until="none")
+    with pytest.raises(ValueError):
+        run.save_proof(tmp_path / "x.json")
+
+
+def test_a_saved_reach_proof_verifies_and_a_larger_inner_area_does_not(tmp_path):
+    scene = detach.Scene.load("painleve-rod", mu="0.5")
+    window = dict(theta=("0.25", "0.35"), theta_dot=("3.9", "4.1"), eps=1 / 16)
+    paving = scene.reach("0.3", until="U=0", proof=True, **window)
+    path = tmp_path / "reach.json"
+    paving.save_proof(path)
+    assert detach.verify(path).verdict == "VALID"
+    proof = json.loads(path.read_text())
+    inner = Fraction(proof["statement"]["area"]["inner"])
+    # No more than the paving proved (the same leaves, or fewer).
+    assert 0 < inner <= Fraction(paving.area()[0]) * (1 + Fraction(1, 10**12))
+    assert paving.undecided_in_proof is not None and paving.undecided_in_proof >= 0
+    proof["statement"]["area"]["inner"] = str(float(inner) * 1.5)
+    (tmp_path / "more.json").write_text(json.dumps(proof))
+    assert detach.verify(tmp_path / "more.json").verdict == "INVALID"
+    with pytest.raises(ValueError, match="no proof"):
+        scene.reach("0.3", until="U=0", **window).save_proof(tmp_path / "x.json")
