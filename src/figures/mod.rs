@@ -9,7 +9,9 @@
 //! colour only when it is wholly covered by leaves proved in that cell. The
 //! SVG draws, for each class, exactly the union of its leaves as vector
 //! regions ([`vector_regions`]), so it zooms cleanly and its size depends on
-//! the regions' boundaries, not on the leaf count. The phase portrait is
+//! the regions' boundaries, not on the leaf count. For a scene with
+//! `[dynamics]` the phase portrait is drawn as certified tubes (every
+//! solution through a seed stays inside its stroke); otherwise it is
 //! computed in plain `f64` and labelled as not certified.
 
 mod canvas;

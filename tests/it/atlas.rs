@@ -73,10 +73,13 @@ fn draws_svg_and_png_with_legend() {
             "undecided",
             "undefined",
             "phase portrait",
-            "f64, not certified",
+            // Every paper scene carries `[dynamics]`, so its portrait is
+            // drawn as certified tubes, never as f64 curves.
+            "certified tubes",
         ] {
             assert!(text.contains(needle), "{} lacks {needle:?}", svg.display());
         }
+        assert!(!text.contains("f64, not certified"), "{}", svg.display());
     }
     std::fs::remove_dir_all(&dir).ok();
 }
