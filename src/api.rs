@@ -421,6 +421,14 @@ impl Paved {
     pub fn write_proof(&self, problem: &Problem, path: &Path) -> Result<(), String> {
         write_valid(&self.proof(problem), path)
     }
+
+    /// [`Paved::proof`] as the bytes of its file, once the checker says
+    /// VALID.
+    pub fn checked_proof_bytes(&self, problem: &Problem) -> Result<Vec<u8>, String> {
+        let bytes = crate::certificate::to_bytes(&self.proof(problem));
+        checked(&bytes, "the proof")?;
+        Ok(bytes)
+    }
 }
 
 /// Writes a proof file (such as [`Problem::flow_with_proof`]'s) to `path`
@@ -433,16 +441,20 @@ pub fn write_checked_proof(proof: &serde_json::Value, path: &Path) -> Result<(),
 fn write_valid(proof: &serde_json::Value, path: &Path) -> Result<(), String> {
     let bytes = crate::certificate::to_bytes(proof);
     let shown = crate::files::shown(path);
-    let report = crate::check::check_bytes(&bytes)
+    checked(&bytes, &shown)?;
+    crate::files::write_atomic(path, &bytes).map_err(|e| format!("cannot write {shown}: {e}"))
+}
+
+/// `Ok` when the checker says the proof file `bytes` (named `shown` in
+/// messages) is VALID.
+fn checked(bytes: &[u8], shown: &str) -> Result<(), String> {
+    let report = crate::check::check_bytes(bytes)
         .map_err(|e| format!("{shown}: the checker cannot read it: {e}"))?;
     match &report.verdict {
-        Verdict::Valid => {}
-        Verdict::Invalid(why) => return Err(format!("{shown}: the checker rejects it: {why}")),
-        Verdict::Unchecked(why) => {
-            return Err(format!("{shown}: the checker cannot check it: {why}"))
-        }
+        Verdict::Valid => Ok(()),
+        Verdict::Invalid(why) => Err(format!("{shown}: the checker rejects it: {why}")),
+        Verdict::Unchecked(why) => Err(format!("{shown}: the checker cannot check it: {why}")),
     }
-    crate::files::write_atomic(path, &bytes).map_err(|e| format!("cannot write {shown}: {e}"))
 }
 
 // ------------------------------------------------------ parameter atlases

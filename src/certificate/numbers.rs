@@ -92,6 +92,17 @@ pub fn fixed(x: f64, places: usize, dir: Round) -> String {
     }
 }
 
+/// An area for a table, rounded outward in the direction `dir` (a lower
+/// bound down, an upper bound up): six decimals, or six significant digits
+/// when tiny or huge (a window one ulp wide has areas near 1e-17).
+pub fn area_text(x: f64, dir: Round) -> String {
+    if x == 0.0 || (1e-3..1e9).contains(&x.abs()) {
+        fixed(x + 0.0, 6, dir)
+    } else {
+        decimal(x, 6, dir)
+    }
+}
+
 /// `123e-2` → `1.23`; keeps exponent form only for very large or small numbers.
 fn tidy(t: &str) -> String {
     let (m, e) = t.split_once('e').expect("exponent form");

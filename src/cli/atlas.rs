@@ -1,7 +1,7 @@
 //! `detach atlas`, `detach pave`, `detach scenes`.
 
 use super::{parse_overrides, progress_bar, CliError, CliResult};
-use detach::certificate::numbers::{decimal, fixed, Round};
+use detach::certificate::numbers::{area_text, Round};
 use detach::figures::{
     draw_atlas_files, parse_size, plot_area_pixels, AtlasStyle, Formats, PictureInfo, MIN_HEIGHT,
     MIN_WIDTH,
@@ -343,17 +343,6 @@ pub(super) fn pad(s: &str, width: usize) -> String {
     format!("{s}{}", " ".repeat(width.saturating_sub(shown)))
 }
 
-/// An area for the table, rounded outward in the direction `dir` (a lower
-/// bound down, an upper bound up): six decimals, or six significant digits
-/// when tiny or huge (a window one ulp wide has areas near 1e-17).
-fn fmt_area(x: f64, dir: Round) -> String {
-    if x == 0.0 || (1e-3..1e9).contains(&x.abs()) {
-        fixed(x + 0.0, 6, dir)
-    } else {
-        decimal(x, 6, dir)
-    }
-}
-
 fn print_table(r: &PaveReport) {
     let params: Vec<String> = r
         .params
@@ -426,9 +415,9 @@ fn print_table(r: &PaveReport) {
         outln!(
             "  {} {:>12} {:>12} {:>12} {:>12} {:>12} {:>12}",
             pad(g.label, 7),
-            fmt_area(g.inner_area, Round::Down),
-            fmt_area(g.outer_area, Round::Up),
-            fmt_area(g.undecided_area, Round::Up),
+            area_text(g.inner_area, Round::Down),
+            area_text(g.outer_area, Round::Up),
+            area_text(g.undecided_area, Round::Up),
             g.boxes.inner,
             g.boxes.outer,
             g.boxes.undecided
