@@ -79,6 +79,8 @@ pub mod certificate;
 /// The independent proof checker, its own crate so that it can be built alone.
 pub use detach_check as check;
 pub mod claims;
+#[cfg(feature = "explore")]
+pub mod explore;
 pub mod figures;
 pub mod files;
 pub mod motion;
