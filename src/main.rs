@@ -55,6 +55,8 @@ enum Command {
     Singular(cli::singular::SingularArgs),
     /// Initial states that reach a target within a time: a certified paving.
     Reach(cli::reach::ReachArgs),
+    /// A local page where the certified atlas follows the parameters.
+    Explore(cli::explore::ExploreArgs),
 }
 
 /// The command line; `detach` alone runs `detach atlas`.
@@ -86,6 +88,7 @@ fn run(command: Command) -> CliResult {
         Command::Flow(a) => cli::flow::run_flow(&a),
         Command::Singular(a) => cli::singular::run_singular(&a),
         Command::Reach(a) => cli::reach::run_reach(&a),
+        Command::Explore(a) => cli::explore::run_explore(&a),
     }
 }
 

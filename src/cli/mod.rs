@@ -11,6 +11,7 @@ macro_rules! outln {
 
 pub mod area;
 pub mod atlas;
+pub mod explore;
 pub mod flow;
 pub mod paper;
 pub mod params;
