@@ -34,6 +34,7 @@ __all__ = [
     "Trajectory",
     "Event",
     "Reach",
+    "Explorer",
     "FATES",
     "Interrupted",
     "verify",
@@ -253,6 +254,16 @@ class Scene:
         )
         return Trajectory(native)
 
+    def explore(self, port=0):
+        """The page of `detach explore` for this scene at its parameters,
+        served on 127.0.0.1 until `Explorer.stop` (or the kernel ends). In
+        Jupyter the returned `Explorer` shows the page inline; its `params`
+        are those of the page's last drawn atlas."""
+        if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
+            raise ValueError(f"port must be an integer in 0..=65535, got {port!r}")
+        scene, text = (self.name, None) if self._toml is None else (None, self._toml)
+        return Explorer(_detach.Explorer(scene, text, list(self.params.items()), port))
+
     def reach(self, t, until="cell", theta=None, theta_dot=None, eps=1 / 256,
               max_boxes=100_000, proof=False):
         """The initial states whose motion reaches the first event of
@@ -327,6 +338,47 @@ class Event:
 
 def _pair(texts):
     return (float(texts[0]), float(texts[1]))
+
+
+class Explorer:
+    """A running `detach explore` page (`Scene.explore`)."""
+
+    def __init__(self, native):
+        self._native = native
+
+    @property
+    def url(self):
+        """The page's address, its session token included."""
+        return self._native.url
+
+    @property
+    def state(self):
+        """`{"scene", "params", "text"?}` of the page's last drawn atlas."""
+        return json.loads(self._native.state())
+
+    @property
+    def params(self):
+        """`{name: decimal text}` the page's last atlas was drawn at: the
+        parameters the user ended on."""
+        return dict(self.state["params"])
+
+    def stop(self):
+        """Stops serving; the page stops answering."""
+        self._native.stop()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.stop()
+
+    def _repr_html_(self):
+        return (f'<iframe src="{self.url}" width="100%" height="1150" '
+                'style="border: 1px solid #ccc"></iframe>'
+                f'<div><a href="{self.url}" target="_blank">open in a tab</a></div>')
+
+    def __repr__(self):
+        return f"<detach.Explorer {self.url}>"
 
 
 class Trajectory:

@@ -721,12 +721,66 @@ fn scene_names() -> Vec<String> {
         .collect()
 }
 
+/// A running `detach explore` page; stops when closed or collected.
+#[pyclass(module = "detach._detach", frozen)]
+struct Explorer {
+    url: String,
+    inner: std::sync::Mutex<Option<detach::explore::Explorer>>,
+}
+
+#[pymethods]
+impl Explorer {
+    /// Starts the page for a scene by name or a scene file's text, at the
+    /// given parameters, on 127.0.0.1 and `port` (0: any free one).
+    #[new]
+    fn new(
+        scene: Option<String>,
+        text: Option<String>,
+        params: Vec<(String, String)>,
+        port: u16,
+    ) -> PyResult<Explorer> {
+        let config = detach::explore::Config {
+            scene,
+            scene_text: text,
+            params,
+            port,
+            ..Default::default()
+        };
+        let e = detach::explore::Explorer::start(config).map_err(value_error)?;
+        Ok(Explorer {
+            url: e.url.clone(),
+            inner: std::sync::Mutex::new(Some(e)),
+        })
+    }
+
+    #[getter]
+    fn url(&self) -> String {
+        self.url.clone()
+    }
+
+    /// The scene and parameters of the page's last atlas, as JSON text.
+    fn state(&self) -> PyResult<String> {
+        let guard = self.inner.lock().map_err(|e| value_error(e.to_string()))?;
+        match guard.as_ref() {
+            Some(e) => Ok(e.state().to_string()),
+            None => Err(value_error("this explorer is stopped".into())),
+        }
+    }
+
+    /// Stops serving (the page stops answering).
+    fn stop(&self, py: Python<'_>) {
+        let taken = self.inner.lock().ok().and_then(|mut g| g.take());
+        py.detach(move || drop(taken));
+    }
+}
+
 #[pymodule]
 fn _detach(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_class::<Paving>()?;
     m.add_class::<ParamAtlas>()?;
     m.add_class::<Trajectory>()?;
+    m.add_class::<Explorer>()?;
     m.add_function(wrap_pyfunction!(write_proof, m)?)?;
     m.add_function(wrap_pyfunction!(verify, m)?)?;
     m.add_function(wrap_pyfunction!(palette, m)?)?;

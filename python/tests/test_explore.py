@@ -1,0 +1,60 @@
+"""`Scene.explore()`: the page served from Python, its areas against the
+CLI's `detach pave --json` (a separate process), and the parameters the
+page ends on read back from Python."""
+
+import http.client
+import json
+import urllib.parse
+
+import detach
+from conftest import cli_json
+
+
+def post(url, path, doc):
+    u = urllib.parse.urlsplit(url)
+    c = http.client.HTTPConnection(u.hostname, u.port, timeout=120)
+    c.request("POST", f"{path}?{u.query}", body=json.dumps(doc))
+    r = c.getresponse()
+    return r.status, json.loads(r.read())
+
+
+def test_the_page_serves_the_scene_at_its_parameters():
+    rod = detach.Scene.load("painleve-rod", mu="0.5")
+    with rod.explore() as page:
+        assert page.url.startswith("http://127.0.0.1:") and "token=" in page.url
+        assert "<iframe" in page._repr_html_()
+        # Before any atlas: the parameters it was started with.
+        assert page.params["mu"] == "0.5"
+        status, s = post(page.url, "/api/scene", {"client": "t", "seq": 1, "start": True})
+        assert status == 200 and s["name"] == "painleve-rod"
+        assert {p["name"]: p["value"] for p in s["params"]}["mu"] == "0.5"
+
+
+def test_the_page_areas_are_those_of_pave_and_its_last_view_is_read_back():
+    rod = detach.Scene.load("painleve-rod")
+    with rod.explore() as page:
+        req = {"client": "t", "seq": 1, "scene": "painleve-rod", "params": {"mu": "1.25"},
+               "eps": 1 / 1024, "width": 800, "height": 600}
+        status, a = post(page.url, "/api/atlas", req)
+        assert status == 200, a
+        assert a["width"] * a["height"] == sum(a["rle"][1::2])
+        want = cli_json("pave", "--scene", "painleve-rod", "--param", "mu=1.25",
+                        "--eps", repr(1 / 1024), "--json")
+        got = {r["name"]: (r["inner"], r["outer"]) for r in a["areas"]}
+        assert got == {r["name"]: (r["inner_area"], r["outer_area"]) for r in want["regions"]}
+        assert page.params == {"m": "1", "l": "1", "g": "9.81", "mu": "1.25"}
+
+
+def test_a_stopped_page_answers_no_more():
+    page = detach.Scene.load("viscous-disc").explore()
+    url = page.url
+    page.stop()
+    u = urllib.parse.urlsplit(url)
+    c = http.client.HTTPConnection(u.hostname, u.port, timeout=5)
+    try:
+        c.request("GET", f"/?{u.query}")
+        c.getresponse()
+        answered = True
+    except OSError:
+        answered = False
+    assert not answered
