@@ -58,3 +58,37 @@ def test_a_stopped_page_answers_no_more():
     except OSError:
         answered = False
     assert not answered
+
+
+def download(url, doc):
+    u = urllib.parse.urlsplit(url)
+    c = http.client.HTTPConnection(u.hostname, u.port, timeout=300)
+    c.request("POST", f"/api/download?{u.query}", body=json.dumps(doc))
+    r = c.getresponse()
+    return r.status, r.getheader("Content-Disposition"), r.read()
+
+
+def test_the_view_downloads_as_svg_png_csv_and_a_valid_proof(tmp_path):
+    rod = detach.Scene.load("painleve-rod", mu="1.4")
+    with rod.explore() as page:
+        view = {"client": "t", "scene": "painleve-rod", "params": {"mu": "1.4"},
+                "eps": 1 / 64, "width": 800, "height": 600}
+        files = {}
+        for seq, kind in enumerate(["svg", "png", "csv", "proof"]):
+            status, disposition, body = download(page.url, dict(view, kind=kind, seq=seq))
+            assert status == 200, body[:200]
+            assert "attachment" in disposition
+            files[kind] = body
+        assert files["svg"].startswith(b"<svg") and b"certified tubes" in files["svg"]
+        assert files["png"].startswith(b"\x89PNG\r\n\x1a\n")
+        # The leaves CSV is the paving `detach pave --leaves` writes: as
+        # many rows as the CLI's paving of the same view has leaves.
+        rows = [l for l in files["csv"].decode().splitlines() if l and not l.startswith("#")]
+        want = cli_json("pave", "--scene", "painleve-rod", "--param", "mu=1.4",
+                        "--eps", repr(1 / 64), "--json")
+        assert len(rows) - 1 == want["leaves"]
+        proof = tmp_path / "view.json"
+        proof.write_bytes(files["proof"])
+        assert detach.verify(proof).verdict == "VALID"
+        status, _, body = download(page.url, dict(view, kind="exe", seq=9))
+        assert status == 400 and b"unknown download" in body
