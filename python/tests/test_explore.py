@@ -92,3 +92,30 @@ def test_the_view_downloads_as_svg_png_csv_and_a_valid_proof(tmp_path):
         assert detach.verify(proof).verdict == "VALID"
         status, _, body = download(page.url, dict(view, kind="exe", seq=9))
         assert status == 400 and b"unknown download" in body
+
+
+def test_an_atlas_is_answered_while_a_parameter_plane_computes():
+    import threading
+    import time
+
+    rod = detach.Scene.load("painleve-rod")
+    with rod.explore() as page:
+        plane = {"client": "t", "seq": 1, "scene": "painleve-rod", "params": {},
+                 "x": {"name": "mu", "lo": "0", "hi": "3"},
+                 "y": {"name": "l", "lo": "0.5", "hi": "2"}, "eps": 1 / 1024}
+        done = {}
+        worker = threading.Thread(target=lambda: done.update(r=post(page.url, "/api/params", plane)))
+        start = time.monotonic()
+        worker.start()
+        time.sleep(0.5)
+        atlas = {"client": "t", "seq": 1, "scene": "painleve-rod", "params": {"mu": "1.2"},
+                 "eps": 1 / 64, "width": 400, "height": 300}
+        status, a = post(page.url, "/api/atlas", atlas)
+        answered = time.monotonic()
+        assert status == 200 and a["leaves"] > 0
+        assert worker.is_alive(), "the plane was finished before the atlas: no overlap shown"
+        # A newer plane supersedes the running one, which stops and says so.
+        status, _ = post(page.url, "/api/params", dict(plane, seq=2, eps=1 / 4))
+        worker.join(timeout=60)
+        assert done["r"][1].get("superseded") is True
+        assert answered - start < 30
