@@ -61,7 +61,7 @@ fn main() {
     )
     .unwrap();
     let mut seq = 0u64;
-    for scene in detach::explore::views::scene_names() {
+    for scene in detach::scene::Scene::names() {
         let info = post(
             addr,
             &token,

@@ -710,14 +710,9 @@ fn param_axis(text: &str) -> PyResult<(String, String, String)> {
 /// The shipped scene names: the paper's, then the scene files.
 #[pyfunction]
 fn scene_names() -> Vec<String> {
-    detach::scene::SceneId::ALL
-        .iter()
-        .map(|id| id.name().to_string())
-        .chain(
-            detach::scene::file::SHIPPED
-                .iter()
-                .map(|(n, _)| n.to_string()),
-        )
+    detach::scene::Scene::names()
+        .into_iter()
+        .map(str::to_string)
         .collect()
 }
 

@@ -413,6 +413,16 @@ impl Scene {
         Scene::build(id, &[]).expect("defaults are valid").0
     }
 
+    /// The names [`Scene::by_name`] takes: the paper's scenes, then the
+    /// shipped scene files.
+    pub fn names() -> Vec<&'static str> {
+        SceneId::ALL
+            .iter()
+            .map(|id| id.name())
+            .chain(file::SHIPPED.iter().map(|s| s.0))
+            .collect()
+    }
+
     /// A scene by name: one of the paper's, or a shipped scene file
     /// ([`file::SHIPPED`]).
     pub fn by_name(
@@ -427,9 +437,8 @@ impl Scene {
                 Ok((Scene::File(Box::new(f)), params))
             }
             (Err(_), None) => Err(format!(
-                "unknown scene `{name}` (known: {}, {})",
-                SceneId::ALL.map(|i| i.name()).join(", "),
-                file::SHIPPED.map(|s| s.0).join(", ")
+                "unknown scene `{name}` (known: {})",
+                Scene::names().join(", ")
             )),
         }
     }
