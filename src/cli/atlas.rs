@@ -478,24 +478,9 @@ pub fn run_pave(args: &PaveArgs) -> CliResult {
         &args.flags.method_options()?,
     )?;
     if let Some(path) = &args.leaves {
-        let params: Vec<String> = params
-            .texts()
-            .iter()
-            .map(|(n, t)| format!("{n}={t}"))
-            .collect();
-        let provenance = format!(
-            "detach {}; scene {} ({}, method {}); {}; theta in [{:?}, {:?}], theta_dot in [{:?}, {:?}]; eps {}",
-            detach::LONG_VERSION,
-            scene.name(),
-            args.flags.variant,
-            args.flags.method,
-            params.join(" "),
-            paving.root.theta[0],
-            paving.root.theta[1],
-            paving.root.theta_dot[0],
-            paving.root.theta_dot[1],
-            paving.eps
-        );
+        let run = format!("{}, method {}", args.flags.variant, args.flags.method);
+        let provenance =
+            detach::pave::export::provenance(scene.name(), &run, &params.texts(), &paving);
         write_leaves(&paving, &provenance, path)?;
     }
     if let Some(path) = &args.proof {

@@ -9,8 +9,8 @@ use crate::api::{Cell, FlowRequest, Method, ParamRequest, PaveRequest, Paved, Pr
 use crate::certificate::numbers::{area_text, Round};
 use crate::figures::{rasterize, Class, PictureInfo};
 use crate::number::param::ParamSpec;
-use crate::scene::file::{SceneText, EMBEDDED, SHIPPED};
-use crate::scene::SceneId;
+use crate::scene::file::{SceneText, EMBEDDED};
+use crate::scene::Scene;
 use serde_json::{json, Value};
 use std::path::Path;
 
@@ -21,15 +21,6 @@ pub const MIN_EPS: f64 = 1.0 / 8192.0;
 
 /// A request the page got wrong: answered 400 with the message.
 pub type ViewError = String;
-
-/// The scenes the page offers by name.
-pub fn scene_names() -> Vec<&'static str> {
-    SceneId::ALL
-        .iter()
-        .map(|id| id.name())
-        .chain(SHIPPED.iter().map(|s| s.0))
-        .collect()
-}
 
 fn text_of(req: &Value, key: &str) -> Option<String> {
     req.get(key)?.as_str().map(str::to_string)
@@ -118,7 +109,7 @@ pub fn scene(req: &Value, start_text: Option<&str>) -> Result<Value, ViewError> 
             let (r, g, b) = c.rgb();
             json!({"symbol": c.symbol(), "meaning": c.meaning(), "rgb": [r, g, b], "certified": c.is_cell()})
         }).collect::<Vec<_>>(),
-        "scenes": scene_names(),
+        "scenes": Scene::names(),
         "embedded": EMBEDDED.len(),
     }))
 }
@@ -333,7 +324,7 @@ pub fn download(req: &Value, ticket: &Ticket, dir: &Path) -> Result<(String, Vec
                 complete: paved.paving.complete,
                 window: None,
             };
-            let path = dir.join(format!("{}.{kind}", ticket_name(ticket)));
+            let path = dir.join(format!("{}.{kind}", fresh_name()));
             let (svg, png) = if kind == "svg" {
                 (Some(path.as_path()), None)
             } else {
@@ -347,23 +338,12 @@ pub fn download(req: &Value, ticket: &Ticket, dir: &Path) -> Result<(String, Vec
         }
         "csv" => {
             let mut bytes = Vec::new();
-            let params: Vec<String> = problem
-                .params
-                .texts()
-                .iter()
-                .map(|(n, t)| format!("{n}={t}"))
-                .collect();
             let p = &paved.paving;
-            let provenance = format!(
-                "detach {}; scene {} (detach explore); {}; theta in [{:?}, {:?}], theta_dot in [{:?}, {:?}]; eps {}",
-                crate::LONG_VERSION,
+            let provenance = crate::pave::export::provenance(
                 problem.scene.name(),
-                params.join(" "),
-                p.root.theta[0],
-                p.root.theta[1],
-                p.root.theta_dot[0],
-                p.root.theta_dot[1],
-                p.eps
+                "detach explore",
+                &problem.params.texts(),
+                p,
             );
             crate::pave::export::write_leaves_csv(p, &provenance, &mut bytes)
                 .map_err(|e| e.to_string())?;
@@ -378,7 +358,7 @@ pub fn download(req: &Value, ticket: &Ticket, dir: &Path) -> Result<(String, Vec
 }
 
 /// A file name no two requests share.
-fn ticket_name(_: &Ticket) -> String {
+fn fresh_name() -> String {
     static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
     let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     format!("view-{n}")

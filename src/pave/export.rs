@@ -17,6 +17,23 @@
 use super::{Label, Paving};
 use std::io::{self, Write};
 
+/// The CSV's comment line: what wrote it and for which problem. `run`
+/// says how (`derived, method slices`), `params` are `(name, text)` pairs.
+pub fn provenance(scene: &str, run: &str, params: &[(&str, String)], paving: &Paving) -> String {
+    let params: Vec<String> = params.iter().map(|(n, t)| format!("{n}={t}")).collect();
+    let r = &paving.root;
+    format!(
+        "detach {}; scene {scene} ({run}); {}; theta in [{:?}, {:?}], theta_dot in [{:?}, {:?}]; eps {}",
+        crate::LONG_VERSION,
+        params.join(" "),
+        r.theta[0],
+        r.theta[1],
+        r.theta_dot[0],
+        r.theta_dot[1],
+        paving.eps
+    )
+}
+
 /// The C99 hexadecimal spelling of a double, exact (as Python's
 /// `float.hex`): `0x1.<13 hex digits>p±e` for normal numbers,
 /// `0x0.<13 hex digits>p-1022` for subnormals, `0x0.0p+0` for zero.
