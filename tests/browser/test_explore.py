@@ -93,6 +93,14 @@ def pave_areas(mu):
     return {g["name"]: (g["inner_area"], g["outer_area"]) for g in json.loads(r.stdout)["regions"]}
 
 
+def click(d, canvas, x, y):
+    """A click at pixel (x, y) of a canvas."""
+    d.execute_script("""const o = document.getElementById(arguments[0]);
+        const r = o.getBoundingClientRect();
+        o.dispatchEvent(new MouseEvent('click', {clientX: r.left + arguments[1],
+                                                 clientY: r.top + arguments[2]}));""", canvas, x, y)
+
+
 def move_slider(d, name, value):
     d.execute_script(
         "const s = document.getElementById(arguments[0]); s.value = arguments[1];"
@@ -118,9 +126,7 @@ def test_moving_mu_across_four_thirds_matches_pave(server, browser):
     assert any(above[c][0] > 0 for c in paradox), above
     if os.environ.get("DETACH_SCREENSHOTS"):
         wait(browser, "return /boxes/.test(document.getElementById('pstatus').textContent)")
-        browser.execute_script("""const o = document.getElementById('overlay');
-            const r = o.getBoundingClientRect();
-            o.dispatchEvent(new MouseEvent('click', {clientX: r.left + 120, clientY: r.top + 200}));""")
+        click(browser, "overlay", 120, 200)
         wait(browser, "return /steps/.test(document.getElementById('events').textContent)")
         browser.save_screenshot(str(pathlib.Path(os.environ["DETACH_SCREENSHOTS"]) / "explore.png"))
 
@@ -148,9 +154,7 @@ def test_the_pointer_reads_cell_and_state(server, browser):
 def test_a_click_draws_a_certified_trajectory(server, browser):
     browser.get(server)
     wait_fine(browser, "1.5")
-    browser.execute_script("""const o = document.getElementById('overlay');
-        const r = o.getBoundingClientRect();
-        o.dispatchEvent(new MouseEvent('click', {clientX: r.left + 300, clientY: r.top + 250}));""")
+    click(browser, "overlay", 300, 250)
     wait(browser, "return /steps/.test(document.getElementById('events').textContent)")
 
 
@@ -160,9 +164,7 @@ def test_the_parameter_plane_moves_the_point(server, browser):
     wait(browser, "return /boxes/.test(document.getElementById('pstatus').textContent)", 120)
     assert browser.find_element(By.ID, "px").get_attribute("value") == "mu"
     # A click at the left quarter of the plane: μ = 3/4 of its range [0, 3].
-    browser.execute_script("""const o = document.getElementById('pover');
-        const r = o.getBoundingClientRect();
-        o.dispatchEvent(new MouseEvent('click', {clientX: r.left + 100, clientY: r.top + 150}));""")
+    click(browser, "pover", 100, 150)
     wait_fine(browser, "0.75")
 
 
