@@ -64,7 +64,7 @@ def test_other_threads_run_while_paving():
     t.start()
     try:
         before = len(ticks)
-        p = scene.pave(eps=1 / 16384)
+        p = scene.pave(eps=1 / 65536)
         during = len(ticks) - before
     finally:
         stop.set()
