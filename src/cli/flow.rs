@@ -34,7 +34,8 @@ pub struct FlowArgs {
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub t: String,
     /// What ends the run before T, comma-separated: `U=0` (Ω's boundary),
-    /// `N=0` (Ω₀'s: the reaction vanishes), `cell` (both), `domain`, `none`.
+    /// `N=0` (Ω₀'s: the reaction vanishes), `V=0` (the singular line where
+    /// θ̈'s denominator vanishes), `cell` (all three), `domain`, `none`.
     #[arg(long, default_value = "cell,domain")]
     pub until: String,
     /// Order of the Taylor method.

@@ -60,6 +60,9 @@ pub enum Stop {
     StepFailed(String),
     /// The step budget ran out.
     Budget,
+    /// The singular line g = 0 of θ̈ = f/g is reached (the one event, of
+    /// kind `V=0`), with what proves it.
+    Arrival(super::arrival::Arrival),
 }
 
 /// A certified tube: the solutions from every initial state of the start
@@ -121,6 +124,7 @@ impl Tube {
             Stop::Undecided(why) => format!("undecided: {why}"),
             Stop::StepFailed(why) => format!("stopped: {why}"),
             Stop::Budget => "stopped: step budget reached".into(),
+            Stop::Arrival(_) => "reaches the singular line V = 0".into(),
         }
     }
 

@@ -6,6 +6,7 @@
 //! The stage after [`crate::scene`]: it evaluates the scene's compiled
 //! θ̈ over intervals, duals and Taylor series, and knows nothing of pavings.
 
+pub mod arrival;
 pub mod event;
 pub mod flow;
 pub mod lohner;
@@ -17,13 +18,14 @@ mod tests;
 
 use crate::number::param::{enclose_decimal, enclose_window_end, ParamError};
 use crate::params::report::exact_decimal;
-use crate::scene::expr::TaylorTape;
+use crate::scene::expr::{Quotient, TaylorTape};
 use crate::scene::file::FileScene;
 pub use event::Event;
 pub use event::Watched;
 use event::{RegionBoundary, WindowSide};
 pub use flow::{FlowError, FlowSettings, Stop, Tube, TubeStep};
 use inari::Interval;
+use lohner::Vector;
 use serde_json::{json, Value};
 
 /// `["lo", "hi"]`, the exact decimal values of an interval's ends.
@@ -40,23 +42,27 @@ pub enum Until {
     Omega0,
     /// The state leaves the scene's domain.
     Domain,
+    /// θ̈'s denominator vanishes (`V=0`: the singular line is reached).
+    Singular,
 }
 
 impl Until {
-    /// The default: leaving the start cell (either region's boundary) or
-    /// the domain.
-    pub const CELL_OR_DOMAIN: [Until; 3] = [Until::Omega, Until::Omega0, Until::Domain];
+    /// The default: leaving the start cell (either region's boundary, or
+    /// the singular line where θ̈ is undefined) or the domain.
+    pub const CELL_OR_DOMAIN: [Until; 4] =
+        [Until::Omega, Until::Omega0, Until::Singular, Until::Domain];
 
-    /// `U=0`/`omega`, `N=0`/`omega0`, `domain`, `cell` (both regions),
-    /// `none`, comma-separated.
+    /// `U=0`/`omega`, `N=0`/`omega0`, `V=0`/`singular`, `domain`, `cell`
+    /// (both regions and the singular line), `none`, comma-separated.
     pub fn parse_list(text: &str) -> Result<Vec<Until>, MotionError> {
         let mut out = Vec::new();
         for item in text.split(',').map(str::trim) {
             let add: &[Until] = match item {
                 "U=0" | "omega" => &[Until::Omega],
                 "N=0" | "omega0" => &[Until::Omega0],
+                "V=0" | "singular" => &[Until::Singular],
                 "domain" => &[Until::Domain],
-                "cell" => &[Until::Omega, Until::Omega0],
+                "cell" => &[Until::Omega, Until::Omega0, Until::Singular],
                 "none" => &[],
                 other => return Err(MotionError::Until(other.to_string())),
             };
@@ -111,7 +117,9 @@ impl FlowRequest {
 pub enum MotionError {
     #[error("scene `{0}` has no [dynamics]: there is no equation of motion to integrate")]
     NoDynamics(String),
-    #[error("unknown event `{0}` (known: U=0, N=0, omega, omega0, cell, domain, none)")]
+    #[error(
+        "unknown event `{0}` (known: U=0, N=0, V=0, omega, omega0, singular, cell, domain, none)"
+    )]
     Until(String),
     #[error("{0} `{1}` is not LO:HI with LO <= HI")]
     Range(String, String),
@@ -128,6 +136,8 @@ pub struct Motion<'a> {
     tape: TaylorTape,
     regions: Vec<RegionBoundary<'a>>,
     sides: Vec<WindowSide>,
+    /// θ̈ = f/g with g of θ alone, when the singular line g = 0 is watched.
+    singular: Option<Quotient>,
 }
 
 impl<'a> Motion<'a> {
@@ -156,10 +166,14 @@ impl<'a> Motion<'a> {
         } else {
             Vec::new()
         };
+        let singular = file
+            .dynamics_quotient()
+            .filter(|q| until.contains(&Until::Singular) && !q.denominator.reads_theta_dot());
         Ok(Motion {
             tape,
             regions,
             sides,
+            singular,
         })
     }
 
@@ -171,7 +185,32 @@ impl<'a> Motion<'a> {
         t_end: Interval,
         settings: &FlowSettings,
     ) -> Result<Tube, FlowError> {
-        flow::integrate(&self.tape, settings, start, t_end, &self.watched())
+        let tube = flow::integrate(&self.tape, settings, start, t_end, &self.watched())?;
+        Ok(self.to_singular_line(tube, &self.watched()))
+    }
+
+    /// A run that stopped for want of a step, carried to the singular line
+    /// when its arrival is proved ([`arrival`]); `others` must stay non-zero
+    /// until then.
+    fn to_singular_line(&self, mut tube: Tube, others: &[&dyn Watched]) -> Tube {
+        let (Some(q), Stop::StepFailed(why)) = (&self.singular, &tube.stop) else {
+            return tube;
+        };
+        match arrival::certify(q, others, tube.end_time.inf(), padded(tube.end, 1.0)) {
+            Ok((event, evidence)) => {
+                tube.end_time = event.time;
+                tube.end = [event.theta, event.theta_dot];
+                tube.events = vec![event];
+                tube.stop = Stop::Arrival(evidence);
+            }
+            Err(not) => {
+                tube.stop = Stop::StepFailed(format!(
+                    "{why}; the singular line {} is not proved reached: {not}",
+                    arrival::KIND
+                ));
+            }
+        }
+        tube
     }
 
     /// The tube from `start` over [0, `t_end`], through any event: the
@@ -182,7 +221,29 @@ impl<'a> Motion<'a> {
         t_end: Interval,
         settings: &FlowSettings,
     ) -> Result<Tube, FlowError> {
-        flow::integrate(&self.tape, settings, start, t_end, &[])
+        let tube = flow::integrate(&self.tape, settings, start, t_end, &[])?;
+        Ok(self.to_singular_line(tube, &[]))
+    }
+
+    /// The arrival at the singular line from the set `e` at the exact time
+    /// `t`, the set padded `room` times as a run pads it (what a proof
+    /// states, with room for a checker's wider set), or why not.
+    pub(crate) fn arrival_from(
+        &self,
+        t: f64,
+        e: Vector,
+        room: f64,
+    ) -> Result<(Event, arrival::Arrival), String> {
+        let q = self
+            .singular
+            .as_ref()
+            .ok_or("the singular line is not watched")?;
+        arrival::certify(q, &self.watched(), t, padded(e, room))
+    }
+
+    /// Whether a run is carried to the singular line when it reaches it.
+    pub fn watches_singular_line(&self) -> bool {
+        self.singular.is_some()
     }
 
     /// What each of [`Motion::watched`] is, in the same order.
@@ -205,6 +266,16 @@ impl<'a> Motion<'a> {
             .chain(self.sides.iter().map(|s| s as &dyn Watched))
             .collect()
     }
+}
+
+/// `e` widened on each side by `room` times 10⁻⁶ of its width and 10⁻¹²
+/// of its size: room for a checker whose end set is a little wider than
+/// ours.
+fn padded(e: Vector, room: f64) -> Vector {
+    e.map(|x| {
+        let pad = room * (1e-6 * x.wid() + 1e-12 * (1.0 + x.mag()));
+        Interval::try_from((x.inf() - pad, x.sup() + pad)).unwrap_or(Interval::ENTIRE)
+    })
 }
 
 /// One watched function: a region's expression (0 for Ω, 1 for Ω₀) or a

@@ -438,3 +438,96 @@ fn portrait_curves_stay_on_their_energy_level() {
         }
     }
 }
+
+#[test]
+fn the_singular_line_is_reached_when_the_closed_form_says() {
+    // θ̈ = k(c − θ̇)/(1 − θ) has the solutions θ̇ ≡ c: from (θ₀, c) the state
+    // reaches the line θ = 1, where θ̈'s denominator vanishes, at
+    // t = (1 − θ₀)/c with θ̇ = c. Bands of θ̇ around c are invariant (θ̈ > 0
+    // below c, < 0 above, while θ < 1).
+    for (k, c, theta0, t_star) in [
+        ("1", "1", "0", 1.0),
+        ("3", "2", "0", 0.5),
+        ("1", "0.5", "0.25", 1.5),
+    ] {
+        let acc = format!("{k}*({c} - theta_dot)/(1 - theta)");
+        let tube = run(&acc, "theta - 100", theta0, c, "5", &[Until::Singular]);
+        assert!(
+            matches!(tube.stop, Stop::Arrival(_)),
+            "{acc}: {:?}",
+            tube.stop
+        );
+        let e = &tube.events[0];
+        assert_eq!(e.kind, "V=0");
+        assert!(
+            e.time.contains(t_star) && e.time.wid() < 1e-9,
+            "{acc}: {:?}",
+            e.time
+        );
+        assert!(
+            e.theta.contains(1.0) && e.theta.wid() < 1e-9,
+            "{:?}",
+            e.theta
+        );
+        let w: f64 = c.parse().unwrap();
+        assert!(
+            e.theta_dot.contains(w) && e.theta_dot.wid() < 1e-6,
+            "{:?}",
+            e.theta_dot
+        );
+        // dV/dt = −θ̇ < 0: the line is crossed, not touched.
+        assert!(e.slope.sup() < 0.0);
+        assert_eq!(tube.end_time, e.time);
+    }
+}
+
+#[test]
+fn the_singular_line_is_reached_moving_left_and_from_a_box() {
+    // θ̈ = (−1 − θ̇)/(θ + 1): θ̇ ≡ −1 from (θ₀, −1) reaches θ = −1 at 1 + θ₀.
+    let tube = run(
+        "(-1 - theta_dot)/(theta + 1)",
+        "theta - 100",
+        "0:0.001",
+        "-1",
+        "5",
+        &[Until::Singular],
+    );
+    assert!(matches!(tube.stop, Stop::Arrival(_)), "{:?}", tube.stop);
+    let e = &tube.events[0];
+    assert!(
+        e.time.contains(1.0) && e.time.contains(1.001),
+        "{:?}",
+        e.time
+    );
+    assert!(e.time.wid() < 2e-3 && e.theta.contains(-1.0), "{:?}", e);
+}
+
+#[test]
+fn a_watched_expression_on_the_way_blocks_the_arrival() {
+    // θ − 0.999999 vanishes between the last certified set and the line:
+    // the first event cannot be the arrival, and the run says why.
+    let tube = run(
+        "(1 - theta_dot)/(1 - theta)",
+        "theta - 0.999999999",
+        "0",
+        "1",
+        "5",
+        &[Until::Omega, Until::Singular],
+    );
+    match &tube.stop {
+        // Either the crossing is found first, or the arrival is refused.
+        Stop::Event => assert_eq!(tube.events[0].kind, "U=0"),
+        Stop::StepFailed(why) => assert!(why.contains("may vanish"), "{why}"),
+        other => panic!("{other:?}"),
+    }
+    // Without the singular line watched the run stops as before.
+    let tube = run(
+        "(1 - theta_dot)/(1 - theta)",
+        "theta - 100",
+        "0",
+        "1",
+        "5",
+        &[],
+    );
+    assert!(matches!(tube.stop, Stop::StepFailed(_)), "{:?}", tube.stop);
+}
