@@ -6,7 +6,7 @@
 //! expressions' signs on every stated piece of time.
 
 use super::encoding::{decimal_enclosure, parse_hex_f64};
-use super::eval::{continuous, defined, exact, show, Dual, Num, Program};
+use super::eval::{continuous, defined, exact, show, Dual, Num, Op, Program};
 use super::json::{arr_of, as_obj, decls, obj_of, opt_str, pair_of, str_of, Obj};
 use super::series::ode_series;
 use super::{Outcome, Unreadable};
@@ -83,6 +83,14 @@ enum Outcomes {
         time: (Interval, Interval),
         t: (Interval, Interval),
         w: (Interval, Interval),
+    },
+    Arrival {
+        time: (Interval, Interval),
+        t: (Interval, Interval),
+        w: (Interval, Interval),
+        /// The evidence: θ̇'s band and the bracket of the zero of g.
+        band: [f64; 2],
+        root: [f64; 2],
     },
 }
 
@@ -223,14 +231,14 @@ fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
     let ev = obj_of(root, "evidence")?;
     let eq = parse_equation(st)?;
     let start = decimal_box(obj_of(st, "start")?, "start")?;
-    let outcome = match (st.get("end"), st.get("event")) {
-        (Some(_), None) => {
+    let outcome = match (st.get("end"), st.get("event"), st.get("arrival")) {
+        (Some(_), None, None) => {
             let e = obj_of(st, "end")?;
             let time = decimal_enclosure(str_of(e, "time")?).map_err(Unreadable)?;
             let [t, w] = decimal_box(e, "end")?;
             Outcomes::End { time, t, w }
         }
-        (None, Some(_)) => {
+        (None, Some(_), None) => {
             let e = obj_of(st, "event")?;
             let name = str_of(e, "watch")?;
             let watch_i = eq
@@ -249,15 +257,29 @@ fn parse(root: &Obj) -> Result<(Statement, String), Unreadable> {
                 w,
             }
         }
+        (None, None, Some(_)) => {
+            let e = obj_of(st, "arrival")?;
+            let time = decimal_pair(e.get("time").unwrap_or(&Value::Null), "arrival time")?;
+            let [t, w] = decimal_box(e, "arrival")?;
+            let evidence = obj_of(ev, "arrival")?;
+            Outcomes::Arrival {
+                time,
+                t,
+                w,
+                band: hexes::<2>(evidence, "band", "arrival")?,
+                root: hexes::<2>(evidence, "root", "arrival")?,
+            }
+        }
         _ => {
             return Err(Unreadable(
-                "exactly one of `end` and `event` is required".into(),
+                "exactly one of `end`, `event` and `arrival` is required".into(),
             ))
         }
     };
     let is_end = matches!(outcome, Outcomes::End { .. });
+    let is_event = matches!(outcome, Outcomes::Event { .. });
     let order = parse_order(ev)?;
-    let steps = parse_steps(arr_of(ev, "steps")?, is_end, !is_end)?;
+    let steps = parse_steps(arr_of(ev, "steps")?, is_end, is_event)?;
     let claim = format!(
         "trajectory{}: {} steps",
         opt_str(st, "scene")?
@@ -642,6 +664,7 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
     let eq = &st.eq;
     let (event, end) = match &st.outcome {
         Outcomes::Event { watch, .. } => (Some(*watch), None),
+        Outcomes::Arrival { .. } => (None, None),
         Outcomes::End { time, .. } => {
             if time.inf() <= 0.0 {
                 return Err("end time must be > 0".into());
@@ -693,7 +716,111 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
             }
         }
         Outcomes::Event { .. } => Err("the last step has no window".into()),
+        Outcomes::Arrival { .. } => {
+            let to = st.steps.last().and_then(|s| s.to).ok_or("no last step")?;
+            check_arrival(st, e, pt(to))
+        }
     }
+}
+
+/// The arrival rules on the final set `e` at the exact time `tau`.
+fn check_arrival(st: &Statement, e: V, tau: DecInterval) -> Result<(), String> {
+    let Outcomes::Arrival {
+        time,
+        t,
+        w,
+        band: [a, b],
+        root: [r0, r1],
+    } = st.outcome
+    else {
+        return Err("not an arrival claim".into());
+    };
+    let eq = &st.eq;
+    let p = &eq.f_prog;
+    let Some(&Op::Div(u, v)) = p.ops().get(eq.f as usize) else {
+        return Err("theta_ddot is not a division at its top level".into());
+    };
+    if p.deps()[v as usize] & 2 != 0 {
+        return Err("theta_ddot's denominator reads w".into());
+    }
+    if !(a <= b && r0 < r1) {
+        return Err("the band or the bracket is not ordered".into());
+    }
+    let dir = if a > 0.0 {
+        1.0
+    } else if b < 0.0 {
+        -1.0
+    } else {
+        return Err("the band contains 0".into());
+    };
+    let (et, ew) = (hull_of(e[0]), hull_of(e[1]));
+    let band = iv(a, b).ok_or("bad band")?;
+    if !ew.subset(band) {
+        return Err(format!(
+            "the final set's θ̇ {} is not inside the band",
+            show(e[1])
+        ));
+    }
+    let (near, far, near_end, far_end) = if dir > 0.0 {
+        (r0, r1, et.sup(), et.inf())
+    } else {
+        (r1, r0, et.inf(), et.sup())
+    };
+    if (near - near_end) * dir < 0.0 {
+        return Err("the bracket does not lie ahead of the final set".into());
+    }
+    let strip = d(iv(far_end.min(far), far_end.max(far)).ok_or("bad strip")?);
+    let bw = d(band);
+    let sigma = sign_on(p, v, e).ok_or("the denominator has no sign on the final set")?;
+    if sign_on(p, v, [pt(near), bw]) != Some(sigma) || sign_on(p, v, [pt(far), bw]) != Some(-sigma)
+    {
+        return Err("the denominator does not change sign across the bracket".into());
+    }
+    // Dual numbers over the strip, the seeded variable's derivative 1.
+    let seeded = |seed: usize| -> [Dual<DecInterval>; 2] {
+        let at = |i: usize, x: DecInterval| Dual {
+            v: x,
+            d: pt(if i == seed { 1.0 } else { 0.0 }),
+        };
+        [at(0, strip), at(1, bw)]
+    };
+    let dv = p.value(&seeded(0), v);
+    if !(continuous(dv.v) && continuous(dv.d) && !hull_of(dv.d).contains(0.0)) {
+        return Err("the denominator is not proved monotone on the strip".into());
+    }
+    if sign_on(p, u, [strip, pt(a)]) != Some(sigma) || sign_on(p, u, [strip, pt(b)]) != Some(-sigma)
+    {
+        return Err("θ̈ does not point into the band on its faces".into());
+    }
+    for seed in 0..2 {
+        let du = p.value(&seeded(seed), u);
+        if !(continuous(du.v) && continuous(du.d)) {
+            return Err("the numerator is not proved C¹ on the strip".into());
+        }
+    }
+    for (name, g) in &eq.watch {
+        if sign_on(&eq.g_prog, *g, [strip, bw]).is_none() {
+            return Err(format!("{name:?} may vanish before the arrival"));
+        }
+    }
+    let speed = band.abs();
+    let gap = |x: f64, y: f64, by: f64| hull_of(pt(x).sub(pt(y)).mul(pt(dir)).div(pt(by)));
+    let lo = gap(near, near_end, speed.sup()).inf().max(0.0);
+    let hi = gap(far, far_end, speed.inf()).sup();
+    let when = hull_of(tau.add(d(iv(lo, hi).ok_or("bad arrival window")?)));
+    if !(when.inf() >= time.0.sup() && when.sup() <= time.1.inf()) {
+        return Err(format!(
+            "the arrival time [{:e}, {:e}] is not inside the claimed window",
+            when.inf(),
+            when.sup()
+        ));
+    }
+    let inside =
+        |x: Interval, (lo, hi): (Interval, Interval)| x.inf() >= lo.sup() && x.sup() <= hi.inf();
+    if !(inside(iv(r0, r1).ok_or("bad bracket")?, t) && inside(band, w)) {
+        return Err("the arrival state is not inside the claimed box".into());
+    }
+    Ok(())
 }
 
 /// The event rules on the last step (its start time `tau`, length `s`).

@@ -42,6 +42,8 @@ pub enum TrajectoryProofError {
     Pieces(usize),
     #[error("the event's other watched expressions are not proved non-zero on its window")]
     Window,
+    #[error("the arrival at the singular line is not proved from the proof's end set: {0}")]
+    Arrival(String),
     #[error("a checker with looser rounding does not confirm the proof: {0}")]
     Unconfirmed(String),
 }
@@ -61,8 +63,9 @@ pub fn trajectory_proof(
     let theta_ddot = file
         .dynamics_text()
         .ok_or(TrajectoryProofError::NoDynamics)?;
+    let arrival = matches!(tube.stop, Stop::Arrival(_));
     let event = match &tube.stop {
-        Stop::End => None,
+        Stop::End | Stop::Arrival(_) => None,
         Stop::Event if tube.events.len() == 1 => Some(&tube.events[0]),
         Stop::Event => {
             let kinds: Vec<&str> = tube.events.iter().map(|e| e.kind.as_str()).collect();
@@ -87,7 +90,7 @@ pub fn trajectory_proof(
     let mut crossing: Option<(Interval, [Interval; 2])> = None;
     for (j, (t0, d)) in data.iter().enumerate() {
         let last = j + 1 == data.len();
-        let to = if last && event.is_none() {
+        let to = if last && event.is_none() && !arrival {
             json!("end")
         } else {
             json!(hex(t0 + d.h.inf()))
@@ -159,7 +162,29 @@ pub fn trajectory_proof(
     }
 
     let box_json = |x: Interval| widened(x, slack);
+    let mut evidence =
+        json!({ "order": data.first().map_or(2, |(_, d)| d.order()), "steps": steps });
     let outcome = match event {
+        None if arrival => {
+            let (t0, d) = data
+                .last()
+                .ok_or(TrajectoryProofError::NotProved(tube.stop_text()))?;
+            let (e, proved) = motion
+                .arrival_from(t0 + d.h.inf(), d.end.hull, slack)
+                .map_err(TrajectoryProofError::Arrival)?;
+            evidence["arrival"] = json!({
+                "band": proved.band.map(hex),
+                "root": proved.root.map(hex),
+            });
+            (
+                "arrival",
+                json!({
+                    "time": padded(e.time),
+                    "t": box_json(e.theta),
+                    "w": box_json(e.theta_dot),
+                }),
+            )
+        }
         None => (
             "end",
             json!({
@@ -197,7 +222,7 @@ pub fn trajectory_proof(
         "title": format!("{}: certified trajectory", file.name),
         "producer": super::producer(),
         "statement": statement,
-        "evidence": { "order": data.first().map_or(2, |(_, d)| d.order()), "steps": steps },
+        "evidence": evidence,
     }))
 }
 
