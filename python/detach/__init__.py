@@ -499,6 +499,13 @@ class Reach:
             raise ValueError("this paving has no proof: run Scene.reach(..., proof=True)")
         _detach.write_proof(self._proof[0], str(path))
 
+    def plot(self, ax=None, legend=True):
+        """Draws the paving with matplotlib: leaves proved to reach the
+        target, proved to avoid it, undecided; returns the axes."""
+        from ._plot import plot_reach
+
+        return plot_reach(self, ax=ax, legend=legend)
+
     def __len__(self):
         return len(self.leaves)
 

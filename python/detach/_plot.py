@@ -119,3 +119,40 @@ def plot_band(band, ax=None, color="black"):
     ax.set_xlabel("θ")
     ax.set_ylabel("θ̇")
     return ax
+
+
+#: Fills of a reach paving's fates (0 reaches, 1 avoids, 2 undecided), the
+#: colours of `detach reach --picture`.
+REACH_COLOURS = ("#4477aa", "#f2f2ec", "#a0a0a0")
+
+
+def plot_reach(reach, ax=None, legend=True):
+    """A reach paving: each leaf filled by its fate (proved to reach the
+    target, proved to avoid it, undecided)."""
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import PolyCollection
+    from matplotlib.patches import Patch
+
+    if ax is None:
+        _, ax = plt.subplots()
+    leaves = reach.leaves
+    t0, t1 = leaves["theta_lo"], leaves["theta_hi"]
+    w0, w1 = leaves["theta_dot_lo"], leaves["theta_dot_hi"]
+    quads = np.stack(
+        [np.stack([t0, w0], 1), np.stack([t1, w0], 1), np.stack([t1, w1], 1), np.stack([t0, w1], 1)],
+        1,
+    )
+    colours = [REACH_COLOURS[int(f)] for f in leaves["fate"]]
+    ax.add_collection(PolyCollection(quads, facecolors=colours, edgecolors="none"))
+    ax.autoscale_view()
+    ax.set_xlabel("θ")
+    ax.set_ylabel("θ̇")
+    inner, outer = reach.area()
+    note = "" if reach.complete else " [box budget reached: coarser]"
+    ax.set_title(f"reaching states: area in [{inner:.6g}, {outer:.6g}]{note}")
+    if legend:
+        names = ("proved to reach", "proved to avoid", "undecided")
+        ax.legend(handles=[Patch(facecolor=c, edgecolor="#222222", label=n)
+                           for c, n in zip(REACH_COLOURS, names)],
+                  loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
+    return ax

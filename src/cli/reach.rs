@@ -4,6 +4,7 @@
 use super::atlas::{split_window, windowed_domain};
 use super::{CliError, CliResult, SceneSource};
 use detach::certificate::reach::reach_proof;
+use detach::figures::reach::{write_reach_plane, ReachCaption};
 use detach::motion::reach::{reach, Fate, ReachOptions, ReachRun};
 use detach::motion::{interval_json, Motion, Until};
 use detach::number::param::enclose_decimal;
@@ -31,8 +32,8 @@ pub struct ReachArgs {
     /// The time within which the target is to be reached (decimal text).
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub t: String,
-    /// The target, comma-separated: `U=0`, `N=0` (detachment onset),
-    /// `cell` (leaving the start cell), `domain`.
+    /// The target, comma-separated: `U=0`, `N=0` (detachment onset), `V=0`
+    /// (the singular line), `cell` (leaving the start cell), `domain`.
     #[arg(long, default_value = "cell")]
     pub until: String,
     /// Boxes narrower than this fraction of the window per axis are not
@@ -49,6 +50,10 @@ pub struct ReachArgs {
     /// written; `detach verify` or `detach-check` re-checks it).
     #[arg(long, value_name = "FILE")]
     pub proof: Option<std::path::PathBuf>,
+    /// Also draw the paving to FILE (`.svg` or `.png`): boxes proved to
+    /// reach, proved to avoid, undecided.
+    #[arg(long, value_name = "FILE")]
+    pub picture: Option<std::path::PathBuf>,
 }
 
 pub fn run_reach(args: &ReachArgs) -> CliResult {
@@ -71,6 +76,17 @@ pub fn run_reach(args: &ReachArgs) -> CliResult {
             "--t must be a number > 0, got `{}`",
             args.t
         )));
+    }
+    if let Some(path) = &args.picture {
+        if !matches!(
+            path.extension().and_then(|e| e.to_str()),
+            Some("svg" | "png")
+        ) {
+            return Err(CliError::usage(format!(
+                "--picture must name a .svg or .png file, got {}",
+                path.display()
+            )));
+        }
     }
     let until = Until::parse_list(&args.until).map_err(CliError::usage)?;
     if until.is_empty() {
@@ -115,6 +131,15 @@ pub fn run_reach(args: &ReachArgs) -> CliResult {
                  (their certificates need more room than a checker is given)"
             );
         }
+    }
+    if let Some(path) = &args.picture {
+        let caption = ReachCaption {
+            scene: scene.name(),
+            target: &args.until,
+            t: &args.t,
+        };
+        write_reach_plane(&run, &caption, path).map_err(CliError::runtime)?;
+        eprintln!("wrote {}", detach::files::shown(path));
     }
     if args.json {
         let doc = run_json(&run, args);

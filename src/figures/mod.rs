@@ -22,6 +22,7 @@ mod palette;
 pub mod params;
 mod portrait;
 mod raster;
+pub mod reach;
 mod regions;
 pub mod roots;
 pub mod stability;

@@ -146,6 +146,14 @@ fn decide(motion: &Motion, bx: [[f64; 2]; 2], t_end: Interval, settings: &FlowSe
         }
     }
     match (&tube.stop, first_open.iter().all(Option::is_none)) {
+        // The singular line is a target: its arrival is proved by T.
+        (Stop::Arrival(_), _) if tube.end_time.sup() <= t_end.inf() => {
+            let from = first_open
+                .iter()
+                .flatten()
+                .fold(tube.end_time.inf(), |a, &b| a.min(b));
+            Fate::Reaches(Interval::try_from((from, tube.end_time.sup())).unwrap_or(tube.end_time))
+        }
         (Stop::End, true) => Fate::Avoids,
         (Stop::End, false) => Fate::Undecided(
             "a target's function may vanish along the tube without a sign change proved".into(),
