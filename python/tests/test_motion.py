@@ -211,3 +211,42 @@ def test_a_saved_reach_proof_verifies_and_a_larger_inner_area_does_not(tmp_path)
     assert detach.verify(tmp_path / "more.json").verdict == "INVALID"
     with pytest.raises(ValueError, match="no proof"):
         scene.reach("0.3", until="U=0", **window).save_proof(tmp_path / "x.json")
+
+
+ARRIVALS = json.loads((REPO / "tests" / "data" / "arrival-reference.json").read_text())
+
+
+def test_the_rod_reaches_its_singular_line_when_the_reference_says():
+    # tests/data/arrival_reference.py: Runge-Kutta in the desingularised time
+    # (30 digits), not detach's integrator. With U=0 watched as well the
+    # arrival is not proved (U vanishes at the node itself): the run says so.
+    rod = detach.Scene.load("painleve-rod", **ARRIVALS["params"])
+    for case in ARRIVALS["arrivals"]:
+        run = rod.flow((case["theta0"], case["theta_dot0"]), "1", until="V=0")
+        assert run.stop == "reaches the singular line V = 0", run.stop
+        (event,) = run.events
+        assert event.kind == "V=0"
+        assert holds(event.time, case["time"]) and holds(event.theta, case["theta"])
+        assert holds(event.theta_dot, case["theta_dot"])
+    blocked = rod.flow(("0.8", "4"), "1", until="U=0,V=0")
+    assert "U=0` may vanish before the singular line" in blocked.stop
+
+
+def test_a_reach_paving_of_the_singular_line_plots_its_fates():
+    # From (0.8, 3) the rod reaches V = 0 at t = 0.02555 (the reference
+    # above): its leaf reaches within 0.1; the plot fills one patch a leaf in
+    # the fate's colour.
+    rod = detach.Scene.load("painleve-rod", **ARRIVALS["params"])
+    reach = rod.reach("0.1", until="V=0", theta=("0.75", "0.85"), theta_dot=("2.5", "3.5"),
+                      eps=1 / 8)
+    (i,) = leaf_at(reach, "0.8", "3.0001")
+    assert reach.leaves["fate"][i] == 0
+    ax = reach.plot()
+    (quads,) = ax.collections
+    from matplotlib.colors import to_rgba
+    from detach._plot import REACH_COLOURS
+
+    faces = quads.get_facecolors()
+    assert len(faces) == len(reach)
+    for f, fate in zip(faces, reach.leaves["fate"]):
+        assert tuple(f) == to_rgba(REACH_COLOURS[int(fate)])

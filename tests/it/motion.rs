@@ -485,3 +485,71 @@ fn reach_proofs_check_and_fail_when_mutated() {
     ));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn arrivals_at_the_rods_singular_line_hold_the_reference_and_their_proofs_check() {
+    // Reference: tests/data/arrival_reference.py (Runge–Kutta in the
+    // desingularised time, 30 digits, extrapolated; not detach's code). At
+    // μ = 1.5 each start runs into the stable node on V = 0 in finite time.
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/arrival-reference.json"
+    );
+    let data: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let owned = params(&data);
+    let pairs: Vec<(&str, &str)> = owned
+        .iter()
+        .map(|(k, v)| (k.as_str(), v.as_str()))
+        .collect();
+    let problem = detach::api::Problem::load("painleve-rod", &pairs).unwrap();
+    for case in data["arrivals"].as_array().unwrap() {
+        let from = [
+            case["theta0"].as_str().unwrap(),
+            case["theta_dot0"].as_str().unwrap(),
+        ];
+        let mut request = FlowRequest::parse(from[0], from[1], "1").unwrap();
+        request.until = vec![Until::Singular];
+        let (tube, proof) = problem.flow_with_proof(&request, "1").unwrap();
+        assert!(
+            matches!(tube.stop, Stop::Arrival(_)),
+            "{from:?}: {:?}",
+            tube.stop
+        );
+        let e = &tube.events[0];
+        let r = case["time"].as_str().unwrap();
+        assert!(contains_text(e.time, r), "{from:?}: {:?} ∌ {r}", e.time);
+        assert!(e.time.wid() < 1e-10, "{from:?}: width {:e}", e.time.wid());
+        assert!(contains_text(e.theta, case["theta"].as_str().unwrap()));
+        assert!(contains_text(
+            e.theta_dot,
+            case["theta_dot"].as_str().unwrap()
+        ));
+        assert!(e.theta_dot.wid() < 1e-5, "{:?}", e.theta_dot);
+
+        assert_eq!(verdict(&proof), "Valid", "{from:?}");
+        let time = claimed(&proof["statement"]["arrival"]["time"]);
+        assert!(contains_text(time, r), "{from:?}: {time:?} ∌ {r}");
+        // Mutants: a window after the reference time, a band that misses
+        // the node's θ̇ (its faces no longer bracket θ̈'s sign change), a
+        // bracket with V of one sign across it.
+        let later = r.parse::<f64>().unwrap() + 1e-9;
+        let mut moved = proof.clone();
+        moved["statement"]["arrival"]["time"] =
+            serde_json::json!([format!("{later:e}"), format!("{:e}", later + 1e-9)]);
+        let hex = |x: f64| Value::String(detach::certificate::numbers::hex(x));
+        let band = &proof["evidence"]["arrival"]["band"];
+        let node: f64 = case["theta_dot"].as_str().unwrap().parse().unwrap();
+        let mut narrow = proof.clone();
+        narrow["evidence"]["arrival"]["band"][0] = hex(node + 1e-9);
+        let mut short = proof.clone();
+        short["evidence"]["arrival"]["root"][1] = proof["evidence"]["arrival"]["root"][0].clone();
+        short["evidence"]["arrival"]["root"][0] = hex(0.8);
+        for (what, p) in [("window", moved), ("band", narrow), ("bracket", short)] {
+            assert!(
+                verdict(&p).starts_with("Invalid"),
+                "{what}: {} ({band})",
+                verdict(&p)
+            );
+        }
+    }
+}
