@@ -702,11 +702,7 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
     match &st.outcome {
         Outcomes::Event { .. } if stopped => Ok(()),
         Outcomes::End { t, w, .. } => {
-            let inside = |x: DecInterval, (lo, hi): (Interval, Interval)| {
-                let x = hull_of(x);
-                x.inf() >= lo.sup() && x.sup() <= hi.inf()
-            };
-            if inside(e[0], *t) && inside(e[1], *w) {
+            if inside(hull_of(e[0]), *t) && inside(hull_of(e[1]), *w) {
                 Ok(())
             } else {
                 Err(format!(
@@ -721,6 +717,11 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
             check_arrival(st, e, pt(to))
         }
     }
+}
+
+/// Whether `x` lies inside the claimed `[lo, hi]` (ends as enclosures).
+fn inside(x: Interval, (lo, hi): (Interval, Interval)) -> bool {
+    x.inf() >= lo.sup() && x.sup() <= hi.inf()
 }
 
 /// The arrival rules on the final set `e` at the exact time `tau`.
@@ -808,15 +809,13 @@ fn check_arrival(st: &Statement, e: V, tau: DecInterval) -> Result<(), String> {
     let lo = gap(near, near_end, speed.sup()).inf().max(0.0);
     let hi = gap(far, far_end, speed.inf()).sup();
     let when = hull_of(tau.add(d(iv(lo, hi).ok_or("bad arrival window")?)));
-    if !(when.inf() >= time.0.sup() && when.sup() <= time.1.inf()) {
+    if !inside(when, time) {
         return Err(format!(
             "the arrival time [{:e}, {:e}] is not inside the claimed window",
             when.inf(),
             when.sup()
         ));
     }
-    let inside =
-        |x: Interval, (lo, hi): (Interval, Interval)| x.inf() >= lo.sup() && x.sup() <= hi.inf();
     if !(inside(iv(r0, r1).ok_or("bad bracket")?, t) && inside(band, w)) {
         return Err("the arrival state is not inside the claimed box".into());
     }
@@ -884,7 +883,7 @@ fn check_event(
         return Err("not an event claim".into());
     };
     let when = hull_of(tau.add(d(iv(a, b).ok_or("bad window")?)));
-    if !(when.inf() >= time.0.sup() && when.sup() <= time.1.inf()) {
+    if !inside(when, *time) {
         return Err(format!(
             "the crossing time [{:e}, {:e}] is not inside the claimed window",
             when.inf(),
@@ -892,11 +891,7 @@ fn check_event(
         ));
     }
     let y = model.enclose(d(iv(a, b).ok_or("bad window")?));
-    let inside = |x: DecInterval, (lo, hi): (Interval, Interval)| {
-        let x = hull_of(x);
-        x.inf() >= lo.sup() && x.sup() <= hi.inf()
-    };
-    if !(inside(y[0], *t) && inside(y[1], *wb)) {
+    if !(inside(hull_of(y[0]), *t) && inside(hull_of(y[1]), *wb)) {
         return Err(format!(
             "the state at the crossing {} is not inside the claimed box",
             show_v(&y)

@@ -2,10 +2,12 @@
 //! by which of the atlas's sets are proved non-empty on it (every set
 //! decided), grey where one is undecided, the scene's given point marked.
 
+use super::canvas::Figure;
 use super::{draw_err, tick_label, write_figure, Area, FigureError};
 use crate::params::model::{ParamAtlas, SetStatus};
 use crate::params::Family;
 use crate::scene::Cell;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -96,6 +98,37 @@ pub fn write_param_plane(family: &Family, atlas: &ParamAtlas, stem: &Path) -> Re
     Ok(())
 }
 
+/// The axes of a plane of boxes over `range` (x, y), labelled `desc`: the
+/// parameter plane's and a reach paving's.
+pub(super) fn box_plane<'b, 'a>(
+    body: &'b Area<'a>,
+    range: [[f64; 2]; 2],
+    desc: [&str; 2],
+) -> Result<ChartContext<'b, Figure<'a>, Cartesian2d<RangedCoordf64, RangedCoordf64>>, FigureError>
+{
+    let [rx, ry] = range;
+    let (_, x_step) = super::nice_ticks(rx[0], rx[1], 8);
+    let (_, y_step) = super::nice_ticks(ry[0], ry[1], 8);
+    let mut chart = ChartBuilder::on(body)
+        .margin(20)
+        .x_label_area_size(50)
+        .y_label_area_size(70)
+        .build_cartesian_2d(rx[0]..rx[1], ry[0]..ry[1])
+        .map_err(draw_err)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc(desc[0])
+        .y_desc(desc[1])
+        .x_label_formatter(&|v| tick_label(*v, x_step))
+        .y_label_formatter(&|v| tick_label(*v, y_step))
+        .label_style(("sans-serif", 16).into_font().color(&INK))
+        .axis_style(INK)
+        .draw()
+        .map_err(draw_err)?;
+    Ok(chart)
+}
+
 fn render(root: &Area, family: &Family, atlas: &ParamAtlas) -> Result<(), FigureError> {
     root.fill(&WHITE).map_err(draw_err)?;
     let [x, y] = [&atlas.axes[0], &atlas.axes[1]];
@@ -132,25 +165,9 @@ fn render(root: &Area, family: &Family, atlas: &ParamAtlas) -> Result<(), Figure
     let (w, h) = root.dim_in_pixel();
     let body = root.clone().shrink((0, header), (w, h - header));
     let (rx, ry) = (family.root[0], family.root[1]);
-    let (_, x_step) = super::nice_ticks(rx[0], rx[1], 8);
-    let (_, y_step) = super::nice_ticks(ry[0], ry[1], 8);
-    let mut chart = ChartBuilder::on(&body)
-        .margin(20)
-        .x_label_area_size(50)
-        .y_label_area_size(70)
-        .build_cartesian_2d(rx[0]..rx[1], ry[0]..ry[1])
-        .map_err(draw_err)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc(super::param_markup(&x.name))
-        .y_desc(super::param_markup(&y.name))
-        .x_label_formatter(&|v| tick_label(*v, x_step))
-        .y_label_formatter(&|v| tick_label(*v, y_step))
-        .label_style(("sans-serif", 16).into_font().color(&INK))
-        .axis_style(INK)
-        .draw()
-        .map_err(draw_err)?;
+    let x_desc = super::param_markup(&x.name);
+    let y_desc = super::param_markup(&y.name);
+    let mut chart = box_plane(&body, [rx, ry], [&x_desc, &y_desc])?;
     let rects = atlas
         .leaves
         .iter()

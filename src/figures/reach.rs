@@ -2,8 +2,8 @@
 //! motion is proved to do within T — reach the target, avoid it — or grey
 //! where neither is proved.
 
-use super::params::class_colour;
-use super::{draw_err, tick_label, write_figure, Area, FigureError};
+use super::params::{box_plane, class_colour};
+use super::{draw_err, write_figure, Area, FigureError};
 use crate::motion::reach::{Fate, ReachRun};
 use plotters::prelude::*;
 use std::path::Path;
@@ -77,26 +77,7 @@ fn render(root: &Area, run: &ReachRun, caption: &ReachCaption) -> Result<(), Fig
     let header = 100;
     let (w, h) = root.dim_in_pixel();
     let body = root.clone().shrink((0, header), (w, h - header));
-    let [rx, ry] = run.window;
-    let (_, x_step) = super::nice_ticks(rx[0], rx[1], 8);
-    let (_, y_step) = super::nice_ticks(ry[0], ry[1], 8);
-    let mut chart = ChartBuilder::on(&body)
-        .margin(20)
-        .x_label_area_size(50)
-        .y_label_area_size(70)
-        .build_cartesian_2d(rx[0]..rx[1], ry[0]..ry[1])
-        .map_err(draw_err)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc("θ")
-        .y_desc("θ̇")
-        .x_label_formatter(&|v| tick_label(*v, x_step))
-        .y_label_formatter(&|v| tick_label(*v, y_step))
-        .label_style(("sans-serif", 16).into_font().color(&INK))
-        .axis_style(INK)
-        .draw()
-        .map_err(draw_err)?;
+    let mut chart = box_plane(&body, run.window, ["θ", "θ̇"])?;
     let rects = run.leaves.iter().map(|l| {
         Rectangle::new(
             [(l.theta[0], l.theta_dot[1]), (l.theta[1], l.theta_dot[0])],

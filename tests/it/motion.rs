@@ -237,6 +237,18 @@ fn flow_refuses_bad_input() {
         ],
         "theta",
     );
+    assert_bad_input(
+        &[
+            "reach",
+            "--scene",
+            "painleve-rod",
+            "--t",
+            "0.1",
+            "--picture",
+            "reach.pdf",
+        ],
+        "--picture must name a .svg or .png file",
+    );
 }
 
 /// `detach reach` on the rod around the reference event of
