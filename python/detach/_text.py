@@ -6,6 +6,12 @@ import decimal
 import numbers
 
 
+#: Decimals written out as text must lie within the range of doubles
+#: (about 1e±308, subnormals to 1e-324) and have at most so many digits.
+MAX_EXPONENT = 400
+MAX_DIGITS = 10_000
+
+
 def decimal_text(name, value):
     """`value` as the decimal text detach encloses.
 
@@ -23,6 +29,13 @@ def decimal_text(name, value):
     if isinstance(value, decimal.Decimal):
         if not value.is_finite():
             raise ValueError(f"{name}: {value} is not a finite number")
+        # Written out before it is sent: bound the text it expands to.
+        if value and not -MAX_EXPONENT <= value.adjusted() <= MAX_EXPONENT:
+            raise ValueError(
+                f"{name}: {value} is beyond the range of doubles (|exponent| > {MAX_EXPONENT})"
+            )
+        if len(value.as_tuple().digits) > MAX_DIGITS:
+            raise ValueError(f"{name}: {value} has more than {MAX_DIGITS} digits")
         return format(value, "f")
     if isinstance(value, float):
         raise ValueError(

@@ -72,6 +72,16 @@ def test_a_float_parameter_is_refused_with_its_exact_value():
     assert s.params["mu"] == "1.5" and s.params["g"] == "10"
     with pytest.raises(ValueError, match="theta"):
         detach.Scene.load("ice-disc").pave(theta=(0.5, 1))
+    # A Decimal's exponent is bounded before it is written out as digits
+    # (1e999999999 would be a billion characters).
+    for huge in ("1e999999999", "-1e-999999999", "1e401"):
+        with pytest.raises(ValueError, match="beyond the range of doubles"):
+            detach.Scene.load("painleve-rod", mu=decimal.Decimal(huge))
+    with pytest.raises(ValueError, match="more than 10000 digits"):
+        detach.Scene.load("painleve-rod", mu=decimal.Decimal("1." + "1" * 10001))
+    # Inside the bound the text reaches detach, which says it is too large.
+    with pytest.raises(ValueError, match="mu"):
+        detach.Scene.load("painleve-rod", mu=decimal.Decimal("1e399"))
 
 
 def test_unknown_method_is_refused():
