@@ -82,14 +82,18 @@ pub fn read_regular(path: &Path, cap: u64) -> Result<Vec<u8>, String> {
     Ok(bytes)
 }
 
-/// The `.json` entries directly in `dir`, sorted by name (whatever their
+/// The `.json` entries directly in `dir` that are not hidden (a leading
+/// `.`: detach's temporaries among them), sorted by name (whatever their
 /// type: a pipe or a folder named `x.json` is then refused by its check,
 /// not skipped). An entry that cannot be listed fails the whole folder.
 pub fn json_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     let mut files = Vec::new();
     for e in std::fs::read_dir(dir)? {
         let p = e?.path();
-        if p.extension().is_some_and(|x| x == "json") {
+        let hidden = p
+            .file_name()
+            .is_some_and(|n| n.as_encoded_bytes().starts_with(b"."));
+        if !hidden && p.extension().is_some_and(|x| x == "json") {
             files.push(p);
         }
     }
@@ -128,8 +132,13 @@ pub fn manifest_entries(dir: &Path) -> Result<Option<Vec<ManifestEntry>>, String
             continue;
         }
         let bad = |why: &str| format!("{} line {}: {why}", path.display(), i + 1);
-        let Some((hash, name)) = line.split_once("  ") else {
-            return Err(bad("not `SHA256  NAME`"));
+        // `sha256sum` writes `HASH  NAME` (text mode) or `HASH *NAME` (binary).
+        let Some((hash, name)) = line
+            .split_once("  ")
+            .or_else(|| line.split_once(" *"))
+            .filter(|(h, _)| !h.contains(' '))
+        else {
+            return Err(bad("not `SHA256  NAME` or `SHA256 *NAME`"));
         };
         if hash.len() != 64 || !hash.bytes().all(|b| b.is_ascii_hexdigit()) {
             return Err(bad("the hash is not 64 hex digits"));
@@ -187,6 +196,21 @@ mod tests {
     }
 
     #[test]
+    fn a_folder_lists_its_json_but_not_hidden_temporaries() {
+        let d = tmp("listing");
+        for name in ["b.json", "a.json", ".a.123-9f.tmp.json", ".x.json", "c.txt"] {
+            std::fs::write(d.join(name), "{}").unwrap();
+        }
+        let names: Vec<_> = json_files(&d)
+            .unwrap()
+            .iter()
+            .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(names, ["a.json", "b.json"]);
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
     fn manifest_names_stay_inside_the_folder() {
         let d = tmp("names");
         let h = "0".repeat(64);
@@ -203,9 +227,16 @@ mod tests {
             std::fs::write(d.join(MANIFEST), format!("{h}  {name}\n")).unwrap();
             assert!(manifest_entries(&d).is_err(), "{name:?} accepted");
         }
-        std::fs::write(d.join(MANIFEST), format!("{h}  a.json\n")).unwrap();
-        let e = manifest_entries(&d).unwrap().unwrap();
-        assert_eq!(e[0].path, d.join("a.json"));
+        // Both of sha256sum's forms name the same file.
+        for line in [format!("{h}  a.json\n"), format!("{h} *a.json\n")] {
+            std::fs::write(d.join(MANIFEST), line).unwrap();
+            let e = manifest_entries(&d).unwrap().unwrap();
+            assert_eq!(e[0].path, d.join("a.json"));
+        }
+        for line in [format!("{h} a.json\n"), format!("{h}\t*a.json\n")] {
+            std::fs::write(d.join(MANIFEST), line).unwrap();
+            assert!(manifest_entries(&d).is_err());
+        }
         std::fs::write(d.join(MANIFEST), format!("{}  a.json\n", "g".repeat(64))).unwrap();
         assert!(manifest_entries(&d).unwrap_err().contains("hex"));
         std::fs::remove_file(d.join(MANIFEST)).unwrap();
