@@ -636,19 +636,10 @@ impl Trajectory {
                 "pieces must be in 1..=1000, got {pieces}"
             )));
         }
-        let rows = self.tube.band(pieces);
+        let rows = self.tube.band_rows(pieces);
         let mut bytes = Vec::with_capacity(rows.len() * 48);
-        for (t, x) in rows {
-            for v in [
-                t.inf(),
-                t.sup(),
-                x[0].inf(),
-                x[0].sup(),
-                x[1].inf(),
-                x[1].sup(),
-            ] {
-                bytes.extend_from_slice(&v.to_ne_bytes());
-            }
+        for v in rows.iter().flatten() {
+            bytes.extend_from_slice(&v.to_ne_bytes());
         }
         Ok(PyBytes::new(py, &bytes))
     }

@@ -63,9 +63,9 @@ pub fn trajectory_proof(
     let theta_ddot = file
         .dynamics_text()
         .ok_or(TrajectoryProofError::NoDynamics)?;
-    let arrival = matches!(tube.stop, Stop::Arrival(_));
+    let arrival = matches!(tube.stop, Stop::Arrival);
     let event = match &tube.stop {
-        Stop::End | Stop::Arrival(_) => None,
+        Stop::End | Stop::Arrival => None,
         Stop::Event if tube.events.len() == 1 => Some(&tube.events[0]),
         Stop::Event => {
             let kinds: Vec<&str> = tube.events.iter().map(|e| e.kind.as_str()).collect();

@@ -281,20 +281,7 @@ pub fn flow(req: &Value) -> Result<Value, ViewError> {
     let (t, th, om) = (s("t")?, s("theta")?, s("theta_dot")?);
     let request = FlowRequest::parse(&th, &om, &t).map_err(|e| e.to_string())?;
     let tube = problem.flow(&request)?;
-    let band: Vec<[f64; 6]> = tube
-        .band(2)
-        .iter()
-        .map(|(t, b)| {
-            [
-                t.inf(),
-                t.sup(),
-                b[0].inf(),
-                b[0].sup(),
-                b[1].inf(),
-                b[1].sup(),
-            ]
-        })
-        .collect();
+    let band = tube.band_rows(2);
     let mut out = tube.json(&t);
     out["band"] = json!(band);
     Ok(out)

@@ -20,9 +20,10 @@
 use super::event::{Event, Watched};
 use super::flow::sign;
 use super::lohner::{point, Vector};
-use crate::number::scalar::{is_continuous, Dual, Scalar};
+use super::singular::{enclose, gradient};
+use crate::number::scalar::is_continuous;
 use crate::scene::expr::{Program, Quotient};
-use inari::{DecInterval, Interval};
+use inari::Interval;
 
 /// The event's kind: θ̈'s denominator vanishes (the rod's V).
 pub const KIND: &str = "V=0";
@@ -36,31 +37,14 @@ pub struct Arrival {
     pub root: [f64; 2],
 }
 
-fn eval<T: Scalar>(p: &Program, theta: T, theta_dot: T) -> T {
-    let mut out = [theta];
-    p.eval(theta, theta_dot, &mut out);
-    out[0]
-}
-
 fn value(p: &Program, theta: Interval, theta_dot: Interval) -> Option<Interval> {
-    let v = eval(p, DecInterval::new(theta), DecInterval::new(theta_dot));
+    let v = enclose(p, [theta, theta_dot]);
     is_continuous(v).then(|| v.interval().expect("defined"))
 }
 
 /// The sign of `p` over the box, when it is continuous there and not 0.
 fn sign_of(p: &Program, theta: Interval, theta_dot: Interval) -> Option<f64> {
     value(p, theta, theta_dot).and_then(sign)
-}
-
-/// Value and gradient of `p` over the box, when `p` is C¹ there.
-fn gradient(p: &Program, theta: Interval, theta_dot: Interval) -> Option<[Interval; 2]> {
-    let d = eval(
-        p,
-        Dual::variable(DecInterval::new(theta), 0),
-        Dual::variable(DecInterval::new(theta_dot), 1),
-    );
-    let ok = is_continuous(d.value) && d.grad.iter().all(|&g| is_continuous(g));
-    ok.then(|| d.grad.map(|g| g.interval().expect("continuous")))
 }
 
 /// Sign tests at a point hold on the point widened by this much (relative):
@@ -124,8 +108,8 @@ pub fn certify(
         }
     }
     let strip = hull(far_end, far);
-    let slope = gradient(g, strip, e[1])
-        .map(|d| d[0])
+    let slope = gradient(g, [strip, e[1]])
+        .map(|(_, d)| d[0])
         .filter(|d| sign(*d).is_some())
         .ok_or("θ̈'s denominator is not proved monotone up to its zero")?;
     let face = |w: f64, want: f64| {
@@ -153,7 +137,7 @@ pub fn certify(
     let b = push(e[1].sup(), 1.0, -1.0)
         .ok_or("no band of θ̇ is proved invariant up to the singular line (upper face)")?;
     let band = Interval::try_from((a, b)).expect("a ≤ b");
-    if gradient(f, strip, band).is_none() {
+    if gradient(f, [strip, band]).is_none() {
         return Err("θ̈'s numerator is not proved C¹ up to the singular line".into());
     }
     let region = [strip, band];

@@ -61,8 +61,8 @@ pub enum Stop {
     /// The step budget ran out.
     Budget,
     /// The singular line g = 0 of θ̈ = f/g is reached (the one event, of
-    /// kind `V=0`), with what proves it.
-    Arrival(super::arrival::Arrival),
+    /// kind `V=0`; [`super::arrival`] proves it).
+    Arrival,
 }
 
 /// A certified tube: the solutions from every initial state of the start
@@ -124,7 +124,7 @@ impl Tube {
             Stop::Undecided(why) => format!("undecided: {why}"),
             Stop::StepFailed(why) => format!("stopped: {why}"),
             Stop::Budget => "stopped: step budget reached".into(),
-            Stop::Arrival(_) => "reaches the singular line V = 0".into(),
+            Stop::Arrival => "reaches the singular line V = 0".into(),
         }
     }
 
@@ -143,6 +143,23 @@ impl Tube {
             "stop": self.stop_text(),
             "steps": self.len(),
         })
+    }
+
+    /// [`Tube::band`] as rows `[t_lo, t_hi, θ_lo, θ_hi, θ̇_lo, θ̇_hi]`.
+    pub fn band_rows(&self, pieces: usize) -> Vec<[f64; 6]> {
+        self.band(pieces)
+            .iter()
+            .map(|(t, x)| {
+                [
+                    t.inf(),
+                    t.sup(),
+                    x[0].inf(),
+                    x[0].sup(),
+                    x[1].inf(),
+                    x[1].sup(),
+                ]
+            })
+            .collect()
     }
 
     /// Enclosures of the states over `pieces` equal sub-intervals of each

@@ -185,8 +185,9 @@ impl<'a> Motion<'a> {
         t_end: Interval,
         settings: &FlowSettings,
     ) -> Result<Tube, FlowError> {
-        let tube = flow::integrate(&self.tape, settings, start, t_end, &self.watched())?;
-        Ok(self.to_singular_line(tube, &self.watched()))
+        let watched = self.watched();
+        let tube = flow::integrate(&self.tape, settings, start, t_end, &watched)?;
+        Ok(self.to_singular_line(tube, &watched))
     }
 
     /// A run that stopped for want of a step, carried to the singular line
@@ -197,11 +198,11 @@ impl<'a> Motion<'a> {
             return tube;
         };
         match arrival::certify(q, others, tube.end_time.inf(), padded(tube.end, 1.0)) {
-            Ok((event, evidence)) => {
+            Ok((event, _)) => {
                 tube.end_time = event.time;
                 tube.end = [event.theta, event.theta_dot];
                 tube.events = vec![event];
-                tube.stop = Stop::Arrival(evidence);
+                tube.stop = Stop::Arrival;
             }
             Err(not) => {
                 tube.stop = Stop::StepFailed(format!(
@@ -239,11 +240,6 @@ impl<'a> Motion<'a> {
             .as_ref()
             .ok_or("the singular line is not watched")?;
         arrival::certify(q, &self.watched(), t, padded(e, room))
-    }
-
-    /// Whether a run is carried to the singular line when it reaches it.
-    pub fn watches_singular_line(&self) -> bool {
-        self.singular.is_some()
     }
 
     /// What each of [`Motion::watched`] is, in the same order.

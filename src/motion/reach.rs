@@ -147,7 +147,7 @@ fn decide(motion: &Motion, bx: [[f64; 2]; 2], t_end: Interval, settings: &FlowSe
     }
     match (&tube.stop, first_open.iter().all(Option::is_none)) {
         // The singular line is a target: its arrival is proved by T.
-        (Stop::Arrival(_), _) if tube.end_time.sup() <= t_end.inf() => {
+        (Stop::Arrival, _) if tube.end_time.sup() <= t_end.inf() => {
             let from = first_open
                 .iter()
                 .flatten()

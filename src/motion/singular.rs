@@ -192,12 +192,12 @@ fn eval1<T: Scalar>(p: &Program, theta: T, theta_dot: T) -> T {
 }
 
 /// Decorated enclosure over a box.
-fn enclose(p: &Program, x: [Interval; 2]) -> DecInterval {
+pub(super) fn enclose(p: &Program, x: [Interval; 2]) -> DecInterval {
     eval1(p, DecInterval::new(x[0]), DecInterval::new(x[1]))
 }
 
 /// Value and gradient over a box, when `p` is proved C¹ on it.
-fn gradient(p: &Program, x: [Interval; 2]) -> Option<(Interval, [Interval; 2])> {
+pub(super) fn gradient(p: &Program, x: [Interval; 2]) -> Option<(Interval, [Interval; 2])> {
     let d = eval1(
         p,
         Dual::variable(DecInterval::new(x[0]), 0),
