@@ -60,6 +60,7 @@
 
 mod area;
 mod band;
+mod empty;
 mod encoding;
 mod eval;
 mod expr;

@@ -5,12 +5,13 @@ use inari::{DecInterval, Interval};
 use std::collections::HashMap;
 
 use super::area::{AreaSum, LeafArea};
+use super::empty::{empty_tree, factor_table, Reasons};
 use super::encoding::{base64_decode, decimal_enclosure, parse_hex_f64, BitReader};
-use super::eval::{apply, continuous, defined, loosen_i, show, Dual, Num, Op, Program};
+use super::eval::{apply, loosen_i, show, Op, Program};
 use super::json::{arr_of, as_obj, decls, obj_of, opt_str, pair_of, str_of, u64_of, Obj};
-use super::param_atlas::{empty_tree, factor_table, Reasons};
+use super::leaf::{convex_holds, holds, monotone_bound};
 use super::roots::constant;
-use super::tree::{labels, walk};
+use super::tree::{iv, labels, walk};
 use super::{Outcome, Unreadable};
 
 /// Cached intervals per axis before the cache is emptied (the preorder walk
@@ -374,116 +375,6 @@ pub fn check(root: &Obj) -> Result<Outcome, Unreadable> {
     Ok(Outcome::of(result, claim, checked, "leaves"))
 }
 
-fn iv(a: f64, b: f64) -> Interval {
-    Interval::try_from((a, b)).unwrap_or(Interval::EMPTY)
-}
-
-/// The value `v` is defined and proves the label (in: `sup < 0`, out: `inf > 0`).
-pub(crate) fn holds(v: DecInterval, want_in: bool) -> bool {
-    defined(v)
-        && v.interval().is_some_and(|i| {
-            if want_in {
-                i.sup() < 0.0
-            } else {
-                i.inf() > 0.0
-            }
-        })
-}
-
-/// The monotone test (FORMAT.md, step 3): where a partial derivative of the
-/// expression has a constant sign on `t × w`, the largest value (for `in`;
-/// the smallest for `out`) lies on one end of that variable, so the variable
-/// is replaced by that end and the expression evaluated naturally on the
-/// reduced box. Requires the value and both partials to be continuous
-/// (`≥ dac`), which makes the function differentiable on the box (the rules
-/// at non-differentiable points, `sqrt` and `abs` at 0, are undefined).
-/// Returns `NAI` when no variable can be fixed.
-pub(crate) fn monotone_bound(
-    prog: &Program,
-    root: u32,
-    t: Interval,
-    w: Interval,
-    want_in: bool,
-) -> DecInterval {
-    let (td, wd) = (DecInterval::new(t), DecInterval::new(w));
-    let seed = |k: usize| -> Dual<DecInterval> {
-        let vars = if k == 0 {
-            [Dual::variable(td), Num::constant(wd)]
-        } else {
-            [Num::constant(td), Dual::variable(wd)]
-        };
-        prog.value(&vars, root)
-    };
-    let (dt, dw) = (seed(0), seed(1));
-    if !(continuous(dt.v) && continuous(dt.d) && continuous(dw.d)) {
-        return DecInterval::NAI;
-    }
-    let mut fixed = false;
-    let mut end = |x: Interval, d: DecInterval| -> Interval {
-        let d = d.interval().unwrap_or(Interval::ENTIRE);
-        // Nondecreasing: the largest value at the upper end, the smallest at the lower.
-        let pick = if d.inf() >= 0.0 {
-            Some(want_in)
-        } else if d.sup() <= 0.0 {
-            Some(!want_in)
-        } else {
-            None
-        };
-        match pick {
-            Some(upper) => {
-                fixed = true;
-                let e = if upper { x.sup() } else { x.inf() };
-                iv(e, e)
-            }
-            None => x,
-        }
-    };
-    let (t1, w1) = (end(t, dt.d), end(w, dw.d));
-    if !fixed {
-        return DecInterval::NAI;
-    }
-    prog.value(&[DecInterval::new(t1), DecInterval::new(w1)], root)
-}
-
-/// The convex test (FORMAT.md, step 3): evaluate the expression on `t × w`
-/// in nested forward-mode duals seeded in `w` (its second derivative in `w`).
-/// If the value and both derivatives are continuous (`≥ dac`) and the second
-/// derivative has `inf ≥ 0` (for `in`; `sup ≤ 0` for `out`), the expression is
-/// convex (concave) in `w` for every `t`, so its largest (smallest) value on
-/// the box lies on `t × {w0}` or `t × {w1}`; the label holds if it holds on
-/// both segments, each by its natural value or the monotone test.
-pub(crate) fn convex_holds(
-    prog: &Program,
-    root: u32,
-    t: Interval,
-    w: Interval,
-    want_in: bool,
-) -> bool {
-    let td = DecInterval::new(t);
-    let vars = [
-        Num::constant(td),
-        Dual::variable(Dual::variable(DecInterval::new(w))),
-    ];
-    let g: Dual<Dual<DecInterval>> = prog.value(&vars, root);
-    if ![g.v.v, g.v.d, g.d.v, g.d.d].into_iter().all(continuous) {
-        return false;
-    }
-    let Some(d2) = g.d.d.interval() else {
-        return false;
-    };
-    let shape = if want_in {
-        d2.inf() >= 0.0
-    } else {
-        d2.sup() <= 0.0
-    };
-    shape
-        && [w.inf(), w.sup()].into_iter().all(|e| {
-            let we = iv(e, e);
-            holds(prog.value(&[td, DecInterval::new(we)], root), want_in)
-                || holds(monotone_bound(prog, root, t, we, want_in), want_in)
-        })
-}
-
 fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
     // 1. The domain and R ⊂ D.
     let d: Vec<Interval> = ["t_lo", "t_hi", "w_lo", "w_hi"]
@@ -647,6 +538,7 @@ fn verify(st: &Statement, checked: &mut u64) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::eval::defined;
 
     fn compiled(text: &str) -> (Program, u32) {
         let mut prog = Program::new(&["t", "w"]).unwrap();

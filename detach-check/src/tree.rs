@@ -1,7 +1,19 @@
 //! The `tree/1` bisection tree (`proofs/FORMAT.md`): replayed in preorder
 //! from a root box, each leaf's box and labels handed to the claim's check.
 
+use inari::Interval;
+
 use super::encoding::BitReader;
+
+/// `[a, b]`, empty when it is not an interval.
+pub fn iv(a: f64, b: f64) -> Interval {
+    Interval::try_from((a, b)).unwrap_or(Interval::EMPTY)
+}
+
+/// A box `[t_lo, t_hi, w_lo, w_hi]` as messages show it.
+pub fn show_box(b: &[f64; 4]) -> String {
+    format!("[{:e}, {:e}] x [{:e}, {:e}]", b[0], b[1], b[2], b[3])
+}
 
 /// What the walk saw: its nodes and leaves.
 pub struct Walked {
