@@ -15,17 +15,22 @@
 //! for a in &paved.areas {
 //!     assert!(a.inner <= a.outer);
 //! }
-//! # Ok::<(), String>(())
+//! # Ok::<(), detach::api::Error>(())
 //! ```
 
-use crate::area::{certified_areas, Provenance};
+mod error;
+
+pub use error::{Error, ErrorKind};
+
+use crate::area::{certified_areas, AreasError, Provenance};
 use crate::motion::{self, singular};
 use crate::number::param::{parse_assignment, ParamSet};
 use crate::params::report::atlas_json;
 use crate::params::{search, AtlasRun, DecideOptions, Family, SearchOptions, Source};
 use crate::pave::{pave_scene_method, standard_cell_bounds, MethodOptions, PaveOptions};
 use crate::quadrature::AreaOptions;
-use crate::scene::{Domain, SceneText};
+use crate::scene::file::SceneFault;
+use crate::scene::{Domain, SceneFileError, SceneText};
 use std::path::Path;
 use std::time::Instant;
 
@@ -72,34 +77,33 @@ impl Problem {
     /// let disc = detach::api::Problem::load("ice-disc", &[("c0", "1")])?;
     /// assert_eq!(disc.scene.name(), "ice-disc");
     /// assert!(detach::api::Problem::load("ice-disc", &[("c0", "one")]).is_err());
-    /// # Ok::<(), String>(())
+    /// # Ok::<(), detach::api::Error>(())
     /// ```
-    pub fn load(name: &str, params: &[(&str, &str)]) -> Result<Problem, String> {
-        let (scene, params) = Scene::by_name(name, &owned(params))?;
+    pub fn load(name: &str, params: &[(&str, &str)]) -> Result<Problem, Error> {
+        let source = Source::by_name(name).map_err(|m| Error::new(ErrorKind::UnknownName, m))?;
+        let (scene, params) = source.scene(&owned(params))?;
         Ok(Problem {
             scene,
             params,
             variant: Variant::Derived,
-            source: Source::by_name(name)?,
+            source,
         })
     }
 
     /// The same in another reading: `Printed` applies to the paper's scenes
-    /// only (the command line's message otherwise).
-    pub fn in_reading(mut self, variant: Variant) -> Result<Problem, String> {
-        if self.scene.id().is_none() && variant == Variant::Printed {
-            return Err("--variant printed applies to the paper's scenes; \
-                        a scene file has one reading"
-                .into());
+    /// only.
+    pub fn in_reading(mut self, variant: Variant) -> Result<Problem, Error> {
+        if self.scene.id().is_none() {
+            one_reading(variant)?;
         }
         self.variant = variant;
         Ok(self)
     }
 
     /// A scene file (TOML, `docs/scene-files.md`).
-    pub fn from_file(path: &Path, params: &[(&str, &str)]) -> Result<Problem, String> {
-        let text = SceneText::read(path).map_err(|e| e.to_string())?;
-        let f = text.compile(&owned(params)).map_err(|e| e.to_string())?;
+    pub fn from_file(path: &Path, params: &[(&str, &str)]) -> Result<Problem, Error> {
+        let text = SceneText::read(path)?;
+        let f = text.compile(&owned(params))?;
         Ok(Problem {
             params: f.params.clone(),
             scene: Scene::File(Box::new(f)),
@@ -123,14 +127,14 @@ impl Problem {
     /// "#;
     /// let ball = detach::api::Problem::from_toml(text, "ball.toml", &[("g", "1")])?;
     /// assert_eq!(ball.params.texts(), vec![("g", "1".to_string())]);
-    /// # Ok::<(), String>(())
+    /// # Ok::<(), detach::api::Error>(())
     /// ```
-    pub fn from_toml(text: &str, source: &str, params: &[(&str, &str)]) -> Result<Problem, String> {
+    pub fn from_toml(text: &str, source: &str, params: &[(&str, &str)]) -> Result<Problem, Error> {
         let text = SceneText {
             file: source.to_string(),
             text: text.to_string().into(),
         };
-        let f = text.compile(&owned(params)).map_err(|e| e.to_string())?;
+        let f = text.compile(&owned(params))?;
         Ok(Problem {
             params: f.params.clone(),
             scene: Scene::File(Box::new(f)),
@@ -145,15 +149,12 @@ impl Problem {
         &self,
         theta: Option<[&str; 2]>,
         theta_dot: Option<[&str; 2]>,
-    ) -> Result<(Domain, Vec<String>), String> {
-        self.scene
-            .domain()
-            .window_clipped(theta, theta_dot)
-            .map_err(|e| e.to_string())
+    ) -> Result<(Domain, Vec<String>), Error> {
+        Ok(self.scene.domain().window_clipped(theta, theta_dot)?)
     }
 
     /// Paves Ω and Ω₀ as `detach pave` does.
-    pub fn pave(&self, req: &PaveRequest) -> Result<Paved, String> {
+    pub fn pave(&self, req: &PaveRequest) -> Result<Paved, Error> {
         self.pave_with_progress(req, |_, _, _| {})
     }
 
@@ -171,17 +172,14 @@ impl Problem {
     ///     if level < 6 { ControlFlow::Continue(()) } else { ControlFlow::Break(()) }
     /// })?;
     /// assert_eq!(paved.paving.stop, StopReason::Interrupted);
-    /// # Ok::<(), String>(())
+    /// # Ok::<(), detach::api::Error>(())
     /// ```
     pub fn pave_with_progress<F: LevelFlow>(
         &self,
         req: &PaveRequest,
         progress: impl FnMut(u32, usize, usize) -> F,
-    ) -> Result<Paved, String> {
+    ) -> Result<Paved, Error> {
         let opts = req.options()?;
-        fn window(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
-            w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()])
-        }
         let (domain, _) = self.domain(window(&req.theta), window(&req.theta_dot))?;
         let mo = match req.region {
             None => MethodOptions::new(req.method),
@@ -189,14 +187,10 @@ impl Problem {
         };
         let start = Instant::now();
         let paving = pave_scene_method(&self.scene, self.variant, &domain, opts, &mo, progress)
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| Error::new(ErrorKind::Computation, e))?;
         let elapsed_s = start.elapsed().as_secs_f64();
-        let bounds = standard_cell_bounds(
-            &paving,
-            &self.scene,
-            self.variant,
-            domain.uncovered_area_sup(),
-        );
+        let proved = crate::area::proved_empty_cells(&self.scene, self.variant);
+        let bounds = standard_cell_bounds(&paving, proved, domain.uncovered_area_sup());
         let areas = Cell::ALL
             .into_iter()
             .zip(bounds)
@@ -232,19 +226,13 @@ impl Problem {
     /// let areas = disc.area(6)?;
     /// assert_eq!(areas.len(), 6);
     /// assert!(areas[0].inner <= areas[0].outer);
-    /// # Ok::<(), String>(())
+    /// # Ok::<(), detach::api::Error>(())
     /// ```
-    pub fn area(&self, digits: i32) -> Result<Vec<SetArea>, String> {
-        if !(1..=15).contains(&digits) {
-            return Err(format!("--digits must be between 1 and 15, got {digits}"));
-        }
-        let opts = AreaOptions {
-            tol: 10f64.powi(-digits),
-            max_pieces: 1 << 20,
-        };
-        let domain = self.scene.domain();
-        let areas = certified_areas(&self.scene, self.variant, &domain, &Cell::ALL, opts)
-            .map_err(|e| e.to_string())?;
+    pub fn area(&self, digits: i32) -> Result<Vec<SetArea>, Error> {
+        let areas = self.certified_areas(&AreaRequest {
+            digits,
+            ..AreaRequest::default()
+        })?;
         let out = areas
             .sets
             .iter()
@@ -263,6 +251,62 @@ impl Problem {
             .collect();
         Ok(out)
     }
+}
+
+/// What to measure: `detach area`'s options.
+#[derive(Clone, Debug)]
+pub struct AreaRequest {
+    /// The sets, each once, in [`Cell::ALL`] order when empty.
+    pub sets: Vec<Cell>,
+    /// Decimal places to certify, 1 to 15: the width target is 10⁻ᵈ.
+    pub digits: i32,
+    /// Most θ-pieces per set.
+    pub max_pieces: usize,
+    /// Windows `[lo, hi]` (decimal text, `pi`, `pi/N`) inside the domain.
+    pub theta: Option<[String; 2]>,
+    pub theta_dot: Option<[String; 2]>,
+}
+
+impl Default for AreaRequest {
+    fn default() -> Self {
+        AreaRequest {
+            sets: Vec::new(),
+            digits: 10,
+            max_pieces: 1 << 20,
+            theta: None,
+            theta_dot: None,
+        }
+    }
+}
+
+impl Problem {
+    /// The certified areas of `req`'s sets with how each was obtained, as
+    /// `detach area --json` reports them.
+    pub fn certified_areas(&self, req: &AreaRequest) -> Result<crate::area::CertifiedAreas, Error> {
+        let (domain, _) = self.domain(window(&req.theta), window(&req.theta_dot))?;
+        let tol = area_tolerance(req.digits)?;
+        if req.max_pieces == 0 {
+            return Err(Error::invalid_option("max_pieces", " must be at least 1"));
+        }
+        let mut sets = Vec::new();
+        for c in &req.sets {
+            if !sets.contains(c) {
+                sets.push(*c);
+            }
+        }
+        if sets.is_empty() {
+            sets = Cell::ALL.to_vec();
+        }
+        let opts = AreaOptions {
+            tol,
+            max_pieces: req.max_pieces,
+        };
+        certified_areas(&self.scene, self.variant, &domain, &sets, opts).map_err(areas_error)
+    }
+}
+
+fn window(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
+    w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()])
 }
 
 /// What to pave: `detach pave`'s options.
@@ -295,25 +339,86 @@ impl Default for PaveRequest {
 }
 
 impl PaveRequest {
-    /// The paving options, refused with the command line's messages.
-    pub fn options(&self) -> Result<PaveOptions, String> {
-        let (eps, max_boxes) = (self.eps, self.max_boxes);
-        if !(eps.is_finite() && eps > 0.0 && eps <= 1.0) {
-            return Err(format!(
-                "--eps must be a finite number in (0, 1], got {eps}"
-            ));
-        }
-        if max_boxes == 0 {
-            return Err("--max-boxes must be at least 1".into());
-        }
-        if max_boxes > MAX_LEAVES {
-            return Err(format!(
-                "--max-boxes {max_boxes} is over the memory budget of {MAX_LEAVES} leaves \
+    /// The paving options, checked ([`pave_options`]).
+    pub fn options(&self) -> Result<PaveOptions, Error> {
+        pave_options(self.eps, self.max_boxes)
+    }
+}
+
+/// A paving's resolution `eps` in (0, 1] and leaf budget `max_boxes` in
+/// 1..=[`MAX_LEAVES`].
+pub fn pave_options(eps: f64, max_boxes: usize) -> Result<PaveOptions, Error> {
+    if !(eps.is_finite() && eps > 0.0 && eps <= 1.0) {
+        return Err(Error::invalid_option(
+            "eps",
+            format!(" must be a finite number in (0, 1], got {eps}"),
+        ));
+    }
+    Ok(PaveOptions {
+        eps,
+        max_boxes: leaf_budget(max_boxes)?,
+    })
+}
+
+/// A leaf budget `max_boxes` in 1..=[`MAX_LEAVES`].
+pub fn leaf_budget(max_boxes: usize) -> Result<usize, Error> {
+    if max_boxes == 0 {
+        return Err(Error::invalid_option("max_boxes", " must be at least 1"));
+    }
+    if max_boxes > MAX_LEAVES {
+        return Err(Error::invalid_option(
+            "max_boxes",
+            format!(
+                " {max_boxes} is over the memory budget of {MAX_LEAVES} leaves \
                  (about 230 bytes each while paving, so {} GB)",
                 MAX_LEAVES * 230 / 1_000_000_000
-            ));
+            ),
+        ));
+    }
+    Ok(max_boxes)
+}
+
+/// The width target 10⁻ᵈ of `digits` decimal places, `digits` in 1..=15.
+pub fn area_tolerance(digits: i32) -> Result<f64, Error> {
+    if !(1..=15).contains(&digits) {
+        return Err(Error::invalid_option(
+            "digits",
+            format!(" must be between 1 and 15, got {digits}"),
+        ));
+    }
+    Ok(10f64.powi(-digits))
+}
+
+/// A scene file has one reading: `Printed` is refused for it.
+pub fn one_reading(variant: Variant) -> Result<(), Error> {
+    match variant {
+        Variant::Printed => Err(Error::invalid_option(
+            "variant",
+            " printed applies to the paper's scenes; a scene file has one reading",
+        )),
+        Variant::Derived => Ok(()),
+    }
+}
+
+/// An areas error: a width below binary64's rounding names `digits`.
+pub fn areas_error(e: AreasError) -> Error {
+    match e {
+        AreasError::BelowRounding { digits, .. } => {
+            Error::invalid_option("digits", format!(": {e}; ask for at most {digits}"))
         }
-        Ok(PaveOptions { eps, max_boxes })
+        AreasError::Refused(_) => Error::new(ErrorKind::InvalidOption, e),
+        AreasError::Paving(_) => Error::new(ErrorKind::Computation, e),
+    }
+}
+
+impl From<SceneFileError> for Error {
+    fn from(e: SceneFileError) -> Error {
+        let kind = match e.fault {
+            SceneFault::Read(k) => ErrorKind::Io(k),
+            SceneFault::Content => ErrorKind::SceneFile,
+            SceneFault::Override => ErrorKind::InvalidParameter,
+        };
+        Error::new(kind, e)
     }
 }
 
@@ -323,16 +428,11 @@ impl PaveRequest {
 /// ```
 /// use detach::api::{cell_named, Cell};
 /// assert_eq!(cell_named("omega0"), Ok(Cell::Omega0));
-/// assert!(cell_named("omega1").unwrap_err().starts_with("unknown region `omega1`"));
+/// assert!(cell_named("omega1").unwrap_err().to_string().starts_with("unknown region `omega1`"));
 /// ```
-pub fn cell_named(name: &str) -> Result<Cell, String> {
-    Cell::ALL
-        .into_iter()
-        .find(|c| c.name() == name)
-        .ok_or_else(|| {
-            let known: Vec<&str> = Cell::ALL.iter().map(|c| c.name()).collect();
-            format!("unknown region `{name}` (known: {})", known.join(", "))
-        })
+pub fn cell_named(name: &str) -> Result<Cell, Error> {
+    name.parse()
+        .map_err(|e| Error::new(ErrorKind::UnknownName, e))
 }
 
 /// How a set's area bounds were obtained.
@@ -416,15 +516,15 @@ impl Paved {
     /// paved.write_proof(&rod, &path)?;
     /// assert_eq!(verify(&path)?.verdict, Verdict::Valid);
     /// # std::fs::remove_file(&path).ok();
-    /// # Ok::<(), String>(())
+    /// # Ok::<(), detach::api::Error>(())
     /// ```
-    pub fn write_proof(&self, problem: &Problem, path: &Path) -> Result<(), String> {
+    pub fn write_proof(&self, problem: &Problem, path: &Path) -> Result<(), Error> {
         write_valid(&self.proof(problem), path)
     }
 
     /// [`Paved::proof`] as the bytes of its file, once the checker says
     /// VALID.
-    pub fn checked_proof_bytes(&self, problem: &Problem) -> Result<Vec<u8>, String> {
+    pub fn checked_proof_bytes(&self, problem: &Problem) -> Result<Vec<u8>, Error> {
         let bytes = crate::certificate::to_bytes(&self.proof(problem));
         checked(&bytes, "the proof")?;
         Ok(bytes)
@@ -433,27 +533,30 @@ impl Paved {
 
 /// Writes a proof file (such as [`Problem::flow_with_proof`]'s) to `path`
 /// once the checker says VALID.
-pub fn write_checked_proof(proof: &serde_json::Value, path: &Path) -> Result<(), String> {
+pub fn write_checked_proof(proof: &serde_json::Value, path: &Path) -> Result<(), Error> {
     write_valid(proof, path)
 }
 
 /// Writes a proof file to `path` once the checker says VALID.
-fn write_valid(proof: &serde_json::Value, path: &Path) -> Result<(), String> {
+fn write_valid(proof: &serde_json::Value, path: &Path) -> Result<(), Error> {
     let bytes = crate::certificate::to_bytes(proof);
     let shown = crate::files::shown(path);
     checked(&bytes, &shown)?;
-    crate::files::write_atomic(path, &bytes).map_err(|e| format!("cannot write {shown}: {e}"))
+    crate::files::write_atomic(path, &bytes).map_err(|e| Error::io("write", &shown, &e))
 }
 
 /// `Ok` when the checker says the proof file `bytes` (named `shown` in
 /// messages) is VALID.
-fn checked(bytes: &[u8], shown: &str) -> Result<(), String> {
+fn checked(bytes: &[u8], shown: &str) -> Result<(), Error> {
+    let rejected = |m: String| Error::new(ErrorKind::ProofRejected, m);
     let report = crate::check::check_bytes(bytes)
-        .map_err(|e| format!("{shown}: the checker cannot read it: {e}"))?;
+        .map_err(|e| rejected(format!("{shown}: the checker cannot read it: {e}")))?;
     match &report.verdict {
         Verdict::Valid => Ok(()),
-        Verdict::Invalid(why) => Err(format!("{shown}: the checker rejects it: {why}")),
-        Verdict::Unchecked(why) => Err(format!("{shown}: the checker cannot check it: {why}")),
+        Verdict::Invalid(why) => Err(rejected(format!("{shown}: the checker rejects it: {why}"))),
+        Verdict::Unchecked(why) => Err(rejected(format!(
+            "{shown}: the checker cannot check it: {why}"
+        ))),
     }
 }
 
@@ -476,7 +579,7 @@ fn checked(bytes: &[u8], shown: &str) -> Result<(), String> {
 /// let t = &atlas.json()["thresholds"][0]["enclosure"];
 /// let (lo, hi): (f64, f64) = (t[0].as_str().unwrap().parse().unwrap(), t[1].as_str().unwrap().parse().unwrap());
 /// assert!(lo < 4.0 / 3.0 && 4.0 / 3.0 < hi);
-/// # Ok::<(), String>(())
+/// # Ok::<(), detach::api::Error>(())
 /// ```
 #[derive(Clone, Debug)]
 pub struct ParamRequest {
@@ -513,10 +616,15 @@ impl ParamRequest {
     /// let a = detach::api::ParamRequest::axis("mu = 0:2.5")?;
     /// assert_eq!((a.name.as_str(), a.lo.as_str(), a.hi.as_str()), ("mu", "0", "2.5"));
     /// assert!(detach::api::ParamRequest::axis("mu=2").is_err());
-    /// # Ok::<(), String>(())
+    /// # Ok::<(), detach::api::Error>(())
     /// ```
-    pub fn axis(text: &str) -> Result<ParamAxis, String> {
-        let bad = || format!("expected NAME=LO:HI, got `{text}`");
+    pub fn axis(text: &str) -> Result<ParamAxis, Error> {
+        let bad = || {
+            Error::new(
+                ErrorKind::InvalidOption,
+                format!("expected NAME=LO:HI, got `{text}`"),
+            )
+        };
         let (name, range) = parse_assignment(text).map_err(|_| bad())?;
         let (lo, hi) = range.split_once(':').ok_or_else(bad)?;
         Ok(ParamAxis {
@@ -610,9 +718,12 @@ impl ParamAtlasRun {
 
     /// The atlas as a proof file (`proofs/FORMAT.md`), as `detach params
     /// --proof` writes it; a shard states no whole atlas and has none.
-    pub fn proof(&self) -> Result<serde_json::Value, String> {
+    pub fn proof(&self) -> Result<serde_json::Value, Error> {
         if self.shard.is_some() {
-            return Err("--proof states a whole atlas: run without --shard".into());
+            return Err(Error::invalid_option(
+                "shard",
+                ": a proof states a whole atlas, not a shard of it",
+            ));
         }
         let statement = crate::certificate::params::ParamAtlasStatement {
             scene: &self.family.base,
@@ -625,10 +736,11 @@ impl ParamAtlasRun {
             ),
         };
         crate::certificate::params::param_atlas_proof(&statement, &self.run.atlas)
+            .map_err(|e| Error::new(ErrorKind::Computation, e))
     }
 
     /// Writes [`ParamAtlasRun::proof`] to `path` once the checker says VALID.
-    pub fn write_proof(&self, path: &Path) -> Result<(), String> {
+    pub fn write_proof(&self, path: &Path) -> Result<(), Error> {
         write_valid(&self.proof()?, path)
     }
 }
@@ -643,12 +755,12 @@ impl Problem {
     /// use detach::api::{FlowRequest, Problem};
     ///
     /// let disc = Problem::load("viscous-disc", &[])?;
-    /// let tube = disc.flow(&FlowRequest::parse("-1.5", "1", "1").map_err(|e| e.to_string())?)?;
+    /// let tube = disc.flow(&FlowRequest::parse("-1.5", "1", "1")?)?;
     /// assert!(tube.end[0].wid() < 1e-12);
-    /// # Ok::<(), String>(())
+    /// # Ok::<(), detach::api::Error>(())
     /// ```
-    pub fn flow(&self, request: &FlowRequest) -> Result<Tube, String> {
-        motion::flow(self.scene.reading(self.variant), request).map_err(|e| e.to_string())
+    pub fn flow(&self, request: &FlowRequest) -> Result<Tube, Error> {
+        Ok(motion::flow(self.scene.reading(self.variant), request)?)
     }
 
     /// [`Problem::flow`] and its `trajectory` proof file (JSON), confirmed
@@ -659,18 +771,21 @@ impl Problem {
         &self,
         request: &FlowRequest,
         t_text: &str,
-    ) -> Result<(Tube, serde_json::Value), String> {
+    ) -> Result<(Tube, serde_json::Value), Error> {
         if request.settings.backward {
-            return Err("a trajectory proof is of forward time only".into());
+            return Err(Error::new(
+                ErrorKind::Unsupported,
+                "a trajectory proof is of forward time only",
+            ));
         }
         let file = self.scene.reading(self.variant);
-        let motion = motion::Motion::new(file, &request.until).map_err(|e| e.to_string())?;
+        let motion = motion::Motion::new(file, &request.until)?;
         let tube = motion
             .run(request.start, request.t_end, &request.settings)
-            .map_err(|e| e.to_string())?;
+            .map_err(motion::MotionError::from)?;
         let proof =
             crate::certificate::trajectory::checked_trajectory_proof(file, &motion, &tube, t_text)
-                .map_err(|e| e.to_string())?;
+                .map_err(trajectory_proof_error)?;
         Ok((tube, proof))
     }
 
@@ -684,26 +799,46 @@ impl Problem {
         t: &str,
         until: &[Until],
         opts: &ReachOptions,
-    ) -> Result<ReachRun, String> {
+    ) -> Result<ReachRun, Error> {
+        self.reach_with_progress(theta, theta_dot, t, until, opts, |_, _, _| {
+            std::ops::ControlFlow::Continue(())
+        })
+    }
+
+    /// [`Problem::reach`], calling `progress(depth, open boxes, leaves)` as
+    /// the paving goes down; a `Break` stops it there, the open boxes
+    /// undecided.
+    pub fn reach_with_progress(
+        &self,
+        theta: Option<[&str; 2]>,
+        theta_dot: Option<[&str; 2]>,
+        t: &str,
+        until: &[Until],
+        opts: &ReachOptions,
+        progress: impl FnMut(usize, usize, usize) -> std::ops::ControlFlow<()>,
+    ) -> Result<ReachRun, Error> {
         let (domain, _) = self.domain(theta, theta_dot)?;
-        let t_end = crate::number::param::enclose_decimal("t", t).map_err(|e| e.to_string())?;
-        if !(t_end.inf() > 0.0 && t_end.is_common_interval()) {
-            return Err(format!("t must be a number > 0, got `{t}`"));
-        }
+        let t_end = end_time(t)?;
         if until.is_empty() {
-            return Err("no target: give at least one of U=0, N=0, cell, domain".into());
+            return Err(Error::invalid_option(
+                "until",
+                ": no target: give at least one of U=0, N=0, cell, domain",
+            ));
         }
         if !(opts.eps.is_finite() && opts.eps > 0.0 && opts.eps < 1.0) {
-            return Err(format!("eps must be a number in (0, 1), got {}", opts.eps));
+            return Err(Error::invalid_option(
+                "eps",
+                format!(" must be a number in (0, 1), got {}", opts.eps),
+            ));
         }
-        let motion = motion::Motion::new(self.scene.reading(self.variant), until)
-            .map_err(|e| e.to_string())?;
+        leaf_budget(opts.max_boxes)?;
+        let motion = motion::Motion::new(self.scene.reading(self.variant), until)?;
         Ok(motion::reach::reach(
             &motion,
             domain.inner_box(),
             t_end,
             opts,
-            |_, _, _| std::ops::ControlFlow::Continue(()),
+            progress,
         ))
     }
 
@@ -717,12 +852,12 @@ impl Problem {
         t: &str,
         until: &[Until],
         opts: &ReachOptions,
-    ) -> Result<(serde_json::Value, usize), String> {
-        let t_end = crate::number::param::enclose_decimal("t", t).map_err(|e| e.to_string())?;
+    ) -> Result<(serde_json::Value, usize), Error> {
+        let t_end = end_time(t)?;
         let file = self.scene.reading(self.variant);
-        let motion = motion::Motion::new(file, until).map_err(|e| e.to_string())?;
+        let motion = motion::Motion::new(file, until)?;
         crate::certificate::reach::reach_proof(file, &motion, run, t_end, t, opts)
-            .map_err(|e| e.to_string())
+            .map_err(trajectory_proof_error)
     }
 
     /// The equilibria and singular points in the domain (or a window of
@@ -731,16 +866,20 @@ impl Problem {
         &self,
         theta: Option<[&str; 2]>,
         theta_dot: Option<[&str; 2]>,
-    ) -> Result<SingularReport, String> {
+    ) -> Result<SingularReport, Error> {
         let (domain, _) = self.domain(theta, theta_dot)?;
         let file = self.scene.reading(self.variant);
         if !file.has_dynamics() {
-            return Err(format!(
-                "scene `{}` has no [dynamics]: there is no θ̈ to find equilibria of",
-                self.scene.name()
+            return Err(Error::new(
+                ErrorKind::Unsupported,
+                format!(
+                    "scene `{}` has no [dynamics]: there is no θ̈ to find equilibria of",
+                    self.scene.name()
+                ),
             ));
         }
         singular::find(file, &domain, &Default::default())
+            .map_err(|e| Error::new(ErrorKind::Computation, e))
     }
 
     /// Where in `axis` the number or the type of the points changes: the
@@ -751,16 +890,16 @@ impl Problem {
         theta: Option<[&str; 2]>,
         theta_dot: Option<[&str; 2]>,
         opts: &ScanOptions,
-    ) -> Result<Scan, String> {
+    ) -> Result<Scan, Error> {
         let (domain, _) = self.domain(theta, theta_dot)?;
         let family = self.family(vec![axis])?;
-        singular::scan(&family, &domain, opts)
+        singular::scan(&family, &domain, opts).map_err(|e| Error::new(ErrorKind::Unsupported, e))
     }
 
     /// The scene as a family over `axes`, the other parameters at this
     /// problem's values: the scene `detach singular --x` rebuilds per
     /// parameter box.
-    pub fn family(&self, axes: Vec<ParamAxis>) -> Result<Family, String> {
+    pub fn family(&self, axes: Vec<ParamAxis>) -> Result<Family, Error> {
         let overrides = self
             .params
             .texts()
@@ -768,13 +907,14 @@ impl Problem {
             .map(|(n, t)| (n.to_string(), t))
             .collect();
         Family::new(self.source.clone(), self.variant, overrides, axes)
+            .map_err(|e| Error::new(ErrorKind::InvalidOption, e))
     }
 
     /// A certified parameter atlas, as `detach params` computes it: the
     /// scene rebuilt with the request's parameters as intervals, and each
     /// set's emptiness decided on boxes of them (the others at this
     /// problem's values).
-    pub fn param_atlas(&self, req: &ParamRequest) -> Result<ParamAtlasRun, String> {
+    pub fn param_atlas(&self, req: &ParamRequest) -> Result<ParamAtlasRun, Error> {
         self.param_atlas_with_progress(req, |_, _, _| {})
     }
 
@@ -786,21 +926,13 @@ impl Problem {
         &self,
         req: &ParamRequest,
         progress: impl FnMut(u32, usize, usize) -> F,
-    ) -> Result<ParamAtlasRun, String> {
-        let overrides = self
-            .params
-            .texts()
-            .into_iter()
-            .map(|(n, t)| (n.to_string(), t))
-            .collect();
-        let family = Family::new(
-            self.source.clone(),
-            self.variant,
-            overrides,
-            req.axes.clone(),
-        )?;
+    ) -> Result<ParamAtlasRun, Error> {
+        let family = self.family(req.axes.clone())?;
         if req.sets.is_empty() {
-            return Err("give at least one set to decide".into());
+            return Err(Error::invalid_option(
+                "sets",
+                ": give at least one set to decide",
+            ));
         }
         let mut sets: Vec<Cell> = Vec::new();
         for c in &req.sets {
@@ -809,6 +941,15 @@ impl Problem {
             }
         }
         let eps = req.resolution();
+        if !(eps.is_finite() && eps > 0.0 && eps <= 1.0) {
+            return Err(Error::invalid_option(
+                "eps",
+                format!(" must be a finite number in (0, 1], got {eps}"),
+            ));
+        }
+        if req.max_boxes == 0 {
+            return Err(Error::invalid_option("max_boxes", " must be at least 1"));
+        }
         let opts = SearchOptions {
             eps,
             max_boxes: req.max_boxes,
@@ -816,7 +957,8 @@ impl Problem {
             shard: req.shard,
         };
         let start = Instant::now();
-        let run = search(&family, &sets, &opts, progress)?;
+        let run = search(&family, &sets, &opts, progress)
+            .map_err(|e| Error::new(ErrorKind::InvalidOption, e))?;
         Ok(ParamAtlasRun {
             family,
             run,
@@ -838,8 +980,42 @@ pub fn status_index(s: &SetStatus) -> usize {
 
 /// Checks a proof file with the independent checker ([`crate::check`]), as
 /// `detach verify FILE` does: `Err` when it cannot be read.
-pub fn verify(path: &Path) -> Result<Report, String> {
-    crate::check::check_file(path).map_err(|e| e.to_string())
+pub fn verify(path: &Path) -> Result<Report, Error> {
+    crate::check::check_file(path).map_err(|e| {
+        let shown = crate::files::shown(path);
+        match std::fs::metadata(path) {
+            Err(io) => Error::io("read", &shown, &io),
+            Ok(_) => Error::new(ErrorKind::ProofRejected, e),
+        }
+    })
+}
+
+/// An end time `t`: decimal text of a number > 0.
+fn end_time(t: &str) -> Result<inari::Interval, Error> {
+    let t_end = crate::number::param::enclose_decimal("t", t)?;
+    if !(t_end.inf() > 0.0 && t_end.is_common_interval()) {
+        return Err(Error::invalid_option(
+            "t",
+            format!(" must be a number > 0, got `{t}`"),
+        ));
+    }
+    Ok(t_end)
+}
+
+impl From<motion::MotionError> for Error {
+    fn from(e: motion::MotionError) -> Error {
+        use motion::MotionError as M;
+        match e {
+            M::NoDynamics(_) => Error::new(ErrorKind::Unsupported, e),
+            M::Param(p) => p.into(),
+            M::Until(_) => Error::invalid_option("until", format!(": {e}")),
+            M::Range(..) | M::Flow(_) => Error::new(ErrorKind::InvalidOption, e),
+        }
+    }
+}
+
+fn trajectory_proof_error(e: impl std::fmt::Display) -> Error {
+    Error::new(ErrorKind::Unsupported, e)
 }
 
 #[cfg(test)]

@@ -225,6 +225,13 @@ pub fn certified_areas(
     Ok(CertifiedAreas { sets, notes })
 }
 
+/// Which of Ω, Ω₀ and the four cells ([`Cell`] order) the scene proves empty
+/// on its whole domain ([`crate::params::proved_empty`]): what a paving's
+/// area bounds take as 0 ([`crate::pave::standard_cell_bounds`]).
+pub fn proved_empty_cells(scene: &Scene, variant: Variant) -> [bool; 6] {
+    Cell::ALL.map(|c| crate::params::proved_empty(scene, variant, c))
+}
+
 /// The set's area as exactly 0 when it is proved empty on the scene's whole
 /// domain (so on any window of it).
 fn proved_empty(scene: &Scene, variant: Variant, cell: Cell) -> Option<SetArea> {

@@ -1,10 +1,9 @@
 //! `detach area`: certified areas of regions and cells by quadrature over θ.
 
-use super::{CliError, CliResult};
-use detach::area::{certified_areas, AreasError, Provenance, Source};
+use super::CliResult;
+use detach::area::{Provenance, Source};
 use detach::certificate::numbers::{fixed, Round};
-use detach::quadrature::AreaOptions;
-use detach::scene::{Cell, Variant};
+use detach::scene::Variant;
 use serde::Serialize;
 
 #[derive(clap::Args, Debug)]
@@ -93,46 +92,26 @@ struct AreaReport {
 
 pub fn run_area(args: &AreaArgs) -> CliResult {
     let overrides = super::parse_overrides(&args.params)?;
-    let (scene, params) = args.source.build(&overrides, args.variant)?;
+    let problem = args.source.problem(&overrides, args.variant)?;
+    let (scene, params) = (&problem.scene, &problem.params);
     let (th, thd) = (
         super::atlas::split_window("theta", &args.theta)?,
         super::atlas::split_window("theta-dot", &args.theta_dot)?,
     );
-    let domain = super::atlas::windowed_domain(&scene, &th, &thd)?;
-    if !(1..=15).contains(&args.digits) {
-        return Err(CliError::usage(format!(
-            "--digits must be between 1 and 15, got {}",
-            args.digits
-        )));
-    }
-    if args.max_pieces == 0 {
-        return Err(CliError::usage("--max-pieces must be at least 1"));
-    }
-    let mut wanted = Vec::new();
+    // The clipping notes, once.
+    super::atlas::windowed_domain(scene, &th, &thd)?;
+    let mut sets = Vec::new();
     for r in &args.region {
-        let cell = r
-            .parse::<Cell>()
-            .map_err(|e| CliError::usage(e.to_string()))?;
-        if !wanted.contains(&cell) {
-            wanted.push(cell);
-        }
+        sets.push(detach::api::cell_named(r)?);
     }
-    if wanted.is_empty() {
-        wanted = Cell::ALL.to_vec();
-    }
-    let tol = 10f64.powi(-args.digits);
-    let opts = AreaOptions {
-        tol,
+    let tol = detach::api::area_tolerance(args.digits)?;
+    let areas = problem.certified_areas(&detach::api::AreaRequest {
+        sets,
+        digits: args.digits,
         max_pieces: args.max_pieces,
-    };
-    let areas =
-        certified_areas(&scene, args.variant, &domain, &wanted, opts).map_err(|e| match e {
-            AreasError::BelowRounding { digits, .. } => {
-                CliError::usage(format!("{e}; ask for --digits {digits} or fewer"))
-            }
-            AreasError::Refused(_) => CliError::usage(e),
-            AreasError::Paving(_) => CliError::runtime(e),
-        })?;
+        theta: th.clone(),
+        theta_dot: thd.clone(),
+    })?;
     let regions = areas
         .sets
         .iter()

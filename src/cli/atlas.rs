@@ -127,6 +127,11 @@ pub(super) fn split_window(
     }
 }
 
+/// A window's ends as the library takes them.
+pub(super) fn as_refs(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
+    w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()])
+}
+
 /// The scene's domain restricted to the windows `--theta`, `--theta-dot`
 /// (`LO:HI` text, `None` keeps the side), with a note for an end clipped to
 /// the domain.
@@ -135,13 +140,10 @@ pub(super) fn windowed_domain(
     th: &Option<[String; 2]>,
     thd: &Option<[String; 2]>,
 ) -> Result<Domain, CliError> {
-    fn as_refs(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
-        w.as_ref().map(|[a, b]| [a.as_str(), b.as_str()])
-    }
     let (domain, clipped) = scene
         .domain()
         .window_clipped(as_refs(th), as_refs(thd))
-        .map_err(CliError::usage)?;
+        .map_err(detach::api::Error::from)?;
     for c in clipped {
         eprintln!(
             "detach: note: window end {c} is within rounding of the domain's end; \
@@ -187,6 +189,9 @@ struct RegionReport {
 struct StopDetail {
     reason: detach::pave::StopReason,
     text: &'static str,
+    /// The budget's flag, when the budget stopped refinement.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    option: Option<String>,
     #[serde(flatten)]
     budget: Option<detach::pave::BudgetStop>,
 }
@@ -282,7 +287,8 @@ fn summarise(
     elapsed_s: f64,
 ) -> PaveReport {
     let uncovered = domain.uncovered_area_sup();
-    let regions = standard_cell_bounds(paving, scene, variant, uncovered)
+    let proved = detach::area::proved_empty_cells(scene, variant);
+    let regions = standard_cell_bounds(paving, proved, uncovered)
         .into_iter()
         .enumerate()
         .map(|(i, (b, empty))| RegionReport {
@@ -322,6 +328,7 @@ fn summarise(
         stop_reason: StopDetail {
             reason: paving.stop,
             text: paving.stop.describe(),
+            option: paving.budget.map(|b| super::flag(b.option)),
             budget: paving.budget,
         },
         elapsed_s,
@@ -368,13 +375,14 @@ fn print_table(r: &PaveReport) {
     if let Some(b) = &r.stop_reason.budget {
         outln!(
             "  {} {} stopped refinement; eps {:e} needs at least {} leaves \
-             (about {:.1e} by the growth of the last levels): raise {} (at most {MAX_LEAVES}) or eps",
-            b.option,
+             (about {:.1e} by the growth of the last levels): raise {} (at most {}) or eps",
+            super::flag(b.option),
             b.max_boxes,
             r.eps,
             b.leaves_needed_at_least,
             b.leaves_needed_estimate,
-            b.option
+            super::flag(b.option),
+            detach::api::MAX_LEAVES
         );
         match b.complete_at_eps {
             Some(e) => outln!("  the result is the complete paving at eps {e:e}"),
@@ -425,32 +433,11 @@ fn print_table(r: &PaveReport) {
     }
 }
 
-/// Hard memory budget of one paving, in leaves (peak memory is about 230
-/// bytes per leaf).
-pub const MAX_LEAVES: usize = 20_000_000;
-
 fn options(flags: &PaveFlags, default_eps: f64) -> Result<PaveOptions, CliError> {
-    let eps = flags.eps.unwrap_or(default_eps);
-    if !(eps.is_finite() && eps > 0.0 && eps <= 1.0) {
-        return Err(CliError::usage(format!(
-            "--eps must be a finite number in (0, 1], got {eps}"
-        )));
-    }
-    if flags.max_boxes == 0 {
-        return Err(CliError::usage("--max-boxes must be at least 1"));
-    }
-    if flags.max_boxes > MAX_LEAVES {
-        return Err(CliError::usage(format!(
-            "--max-boxes {} is over the memory budget of {MAX_LEAVES} leaves \
-             (about 230 bytes each while paving, so {} GB)",
-            flags.max_boxes,
-            MAX_LEAVES * 230 / 1_000_000_000
-        )));
-    }
-    Ok(PaveOptions {
-        eps,
-        max_boxes: flags.max_boxes,
-    })
+    Ok(detach::api::pave_options(
+        flags.eps.unwrap_or(default_eps),
+        flags.max_boxes,
+    )?)
 }
 
 pub fn run_pave(args: &PaveArgs) -> CliResult {
@@ -554,7 +541,7 @@ pub fn run_atlas(args: &AtlasArgs) -> CliResult {
     });
     let overrides = parse_overrides(&args.flags.params)?;
     if !args.scene_file.is_empty() || !shipped.is_empty() {
-        super::one_reading(args.flags.variant)?;
+        detach::api::one_reading(args.flags.variant)?;
     }
     // Each file read once; its declared parameters route the overrides.
     let files = shipped

@@ -47,7 +47,7 @@ pub fn run_explore(args: &ExploreArgs) -> CliResult {
         config.ip = ip;
     }
     config.port = args.port;
-    let explorer = Explorer::start(config).map_err(CliError::usage)?;
+    let explorer = Explorer::start(config)?;
     // The URL on stdout (scripts read it); the rest on stderr.
     outln!("{}", explorer.url);
     super::stdout_status()?;

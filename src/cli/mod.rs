@@ -116,6 +116,23 @@ impl CliError {
 
 pub type CliResult = Result<(), CliError>;
 
+/// The command line's flag for a library field name: `max_boxes` →
+/// `--max-boxes`. The one place where the library's names become flags.
+pub fn flag(field: &str) -> String {
+    format!("--{}", field.replace('_', "-"))
+}
+
+/// A library error as the command line says it: its option named as a
+/// flag; bad input exits 2, a failed run 1.
+impl From<detach::api::Error> for CliError {
+    fn from(e: detach::api::Error) -> CliError {
+        CliError {
+            message: e.naming(flag),
+            code: if e.is_input() { 2 } else { 1 },
+        }
+    }
+}
+
 /// The machine a measurement ran on: `uname -a`, cores, threads, load.
 pub fn machine() -> serde_json::Value {
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
@@ -227,17 +244,17 @@ impl SceneSource {
             .map(|(n, v)| (n.as_str(), v.as_str()))
             .collect();
         let problem = match (&self.scene, &self.scene_file) {
-            (Some(name), _) => Problem::load(name, &pairs).map_err(CliError::usage)?,
-            (None, Some(path)) => Problem::from_file(path, &pairs).map_err(CliError::usage)?,
+            (Some(name), _) => Problem::load(name, &pairs).map_err(usage)?,
+            (None, Some(path)) => Problem::from_file(path, &pairs).map_err(usage)?,
             (None, None) => return Err(CliError::usage("give --scene NAME or --scene-file FILE")),
         };
         if problem.scene.id().is_none() {
-            one_reading(variant)?;
+            detach::api::one_reading(variant)?;
         }
         for w in problem.scene.warnings() {
             eprintln!("warning: {w}");
         }
-        problem.in_reading(variant).map_err(CliError::usage)
+        Ok(problem.in_reading(variant)?)
     }
 
     /// [`SceneSource::problem`]'s scene and parameters.
@@ -273,12 +290,8 @@ pub fn progress_bar(levels: u64, label: &str) -> indicatif::ProgressBar {
     bar
 }
 
-/// A scene file has one reading: `--variant printed` is refused for it.
-pub fn one_reading(variant: detach::scene::Variant) -> CliResult {
-    match variant {
-        detach::scene::Variant::Printed => Err(CliError::usage(
-            "--variant printed applies to the paper's scenes; a scene file has one reading",
-        )),
-        detach::scene::Variant::Derived => Ok(()),
-    }
+/// A scene that cannot be built is bad input (exit 2), an unreadable file
+/// included, as it always was for `--scene-file`.
+fn usage(e: detach::api::Error) -> CliError {
+    CliError::usage(e.naming(flag))
 }

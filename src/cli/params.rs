@@ -112,13 +112,12 @@ pub fn run_params(args: &ParamsArgs) -> CliResult {
         (dims as f64 * (1.0 / req.resolution()).log2().ceil().clamp(0.0, 1100.0)) as u64 + 1;
     let bar = super::progress_bar(levels, problem.scene.name());
     bar.enable_steady_tick(std::time::Duration::from_millis(500));
-    let atlas = problem
-        .param_atlas_with_progress(&req, |level, open, boxes| {
-            bar.set_position(level as u64);
-            bar.set_message(format!("{open} open, {boxes} boxes"));
-        })
-        .map_err(CliError::usage)?;
+    let atlas = problem.param_atlas_with_progress(&req, |level, open, boxes| {
+        bar.set_position(level as u64);
+        bar.set_message(format!("{open} open, {boxes} boxes"));
+    });
     bar.finish_and_clear();
+    let atlas = atlas?;
     let json = atlas.json();
     let text = serde_json::to_string_pretty(&json).expect("serialisable");
     if let Some(dir) = &args.out {
@@ -133,7 +132,7 @@ pub fn run_params(args: &ParamsArgs) -> CliResult {
         }
     }
     if let Some(path) = &args.proof {
-        super::write_checked(path, &atlas.proof().map_err(CliError::runtime)?)?;
+        super::write_checked(path, &atlas.proof()?)?;
     }
     if args.json {
         outln!("{text}");

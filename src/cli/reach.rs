@@ -1,13 +1,11 @@
 //! `detach reach`: the initial states of a window from which the motion
 //! reaches a target within a time, as a certified paving.
 
-use super::atlas::{split_window, windowed_domain};
+use super::atlas::{as_refs, split_window, windowed_domain};
 use super::{CliError, CliResult, SceneSource};
-use detach::certificate::reach::reach_proof;
 use detach::figures::reach::{write_reach_plane, ReachCaption};
-use detach::motion::reach::{reach, Fate, ReachOptions, ReachRun};
-use detach::motion::{interval_json, Motion, Until};
-use detach::number::param::enclose_decimal;
+use detach::motion::reach::{Fate, ReachOptions, ReachRun};
+use detach::motion::{interval_json, Until};
 use detach::params::report::exact_decimal;
 use detach::scene::Variant;
 use serde_json::json;
@@ -60,23 +58,6 @@ pub fn run_reach(args: &ReachArgs) -> CliResult {
     let overrides = super::parse_overrides(&args.params)?;
     let problem = args.source.problem(&overrides, Variant::Derived)?;
     let scene = &problem.scene;
-    let file = scene.reading(Variant::Derived);
-    if !(args.eps.is_finite() && args.eps > 0.0 && args.eps < 1.0) {
-        return Err(CliError::usage(format!(
-            "--eps must be a number in (0, 1), got {}",
-            args.eps
-        )));
-    }
-    if args.max_boxes == 0 {
-        return Err(CliError::usage("--max-boxes must be at least 1"));
-    }
-    let t_end = enclose_decimal("t", &args.t).map_err(CliError::usage)?;
-    if !(t_end.inf() > 0.0 && t_end.is_common_interval()) {
-        return Err(CliError::usage(format!(
-            "--t must be a number > 0, got `{}`",
-            args.t
-        )));
-    }
     if let Some(path) = &args.picture {
         if !matches!(
             path.extension().and_then(|e| e.to_str()),
@@ -88,28 +69,33 @@ pub fn run_reach(args: &ReachArgs) -> CliResult {
             )));
         }
     }
-    let until = Until::parse_list(&args.until).map_err(CliError::usage)?;
-    if until.is_empty() {
-        return Err(CliError::usage("--until names no target"));
-    }
+    let until = Until::parse_list(&args.until).map_err(detach::api::Error::from)?;
     let th = split_window("theta", &args.theta)?;
     let thd = split_window("theta-dot", &args.theta_dot)?;
-    let window = windowed_domain(scene, &th, &thd)?.inner_box();
-    let motion = Motion::new(file, &until).map_err(CliError::usage)?;
+    // The clipping notes, once.
+    windowed_domain(scene, &th, &thd)?;
     let opts = ReachOptions {
         eps: args.eps,
         max_boxes: args.max_boxes,
         ..ReachOptions::default()
     };
-    let levels = (2.0 * (1.0 / args.eps).log2().ceil()) as u64 + 1;
+    let levels = (2.0 * (1.0 / args.eps).log2().ceil()).clamp(0.0, 4096.0) as u64 + 1;
     let bar = super::progress_bar(levels, scene.name());
     bar.enable_steady_tick(std::time::Duration::from_millis(500));
-    let run = reach(&motion, window, t_end, &opts, |depth, open, leaves| {
-        bar.set_position(depth as u64);
-        bar.set_message(format!("{open} open, {leaves} leaves"));
-        ControlFlow::Continue(())
-    });
+    let run = problem.reach_with_progress(
+        as_refs(&th),
+        as_refs(&thd),
+        &args.t,
+        &until,
+        &opts,
+        |depth, open, leaves| {
+            bar.set_position(depth as u64);
+            bar.set_message(format!("{open} open, {leaves} leaves"));
+            ControlFlow::Continue(())
+        },
+    );
     bar.finish_and_clear();
+    let run = run?;
     if !run.complete {
         eprintln!(
             "detach: note: the box budget (--max-boxes {}) ended the paving; the open boxes \
@@ -118,8 +104,11 @@ pub fn run_reach(args: &ReachArgs) -> CliResult {
         );
     }
     if let Some(path) = &args.proof {
-        let (proof, dropped) = reach_proof(file, &motion, &run, t_end, &args.t, &opts)
-            .map_err(|e| CliError::runtime(format!("no proof written: {e}")))?;
+        let (proof, dropped) = problem
+            .reach_proof(&run, &args.t, &until, &opts)
+            .map_err(|e| {
+                CliError::runtime(format!("no proof written: {}", e.naming(super::flag)))
+            })?;
         let (bytes, _, units) = super::write_checked(path, &proof)?;
         eprintln!(
             "wrote {} ({bytes} B, {units}, checked VALID)",

@@ -166,7 +166,7 @@ pub fn run_singular(args: &SingularArgs) -> CliResult {
         }
         opts.eps = eps;
     }
-    let family = problem.family(vec![axis]).map_err(CliError::usage)?;
+    let family = problem.family(vec![axis])?;
     let s = singular::scan(&family, &domain, &opts).map_err(CliError::usage)?;
     if args.json {
         let mut doc = singular::scan_json(&s, family.root[0]);

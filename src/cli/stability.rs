@@ -8,7 +8,7 @@ use super::{CliError, CliResult};
 use detach::certificate::numbers::{decimal, Round};
 use detach::figures::stability::{draw_stability_map, StabilityPanel};
 use detach::pave::stability::{method_maps, run_stress_cases, stress_cases};
-use detach::pave::{PaveOptions, StopReason};
+use detach::pave::StopReason;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -40,19 +40,7 @@ struct MapRun {
 }
 
 pub fn run_stability(args: &StabilityArgs) -> CliResult {
-    if !(args.eps.is_finite() && args.eps > 0.0 && args.eps <= 1.0) {
-        return Err(CliError::usage(format!(
-            "--eps must be a finite number in (0, 1], got {}",
-            args.eps
-        )));
-    }
-    if args.max_boxes == 0 {
-        return Err(CliError::usage("--max-boxes must be at least 1"));
-    }
-    let opts = PaveOptions {
-        eps: args.eps,
-        max_boxes: args.max_boxes,
-    };
+    let opts = detach::api::pave_options(args.eps, args.max_boxes)?;
     let cases = stress_cases().map_err(CliError::usage)?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::runtime(format!("cannot create {}: {e}", args.out.display())))?;

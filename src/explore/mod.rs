@@ -15,6 +15,7 @@ pub mod guard;
 pub mod jobs;
 pub mod views;
 
+use crate::api::{Error, ErrorKind};
 use jobs::{Budget, Latest, Slots, Ticket};
 use serde_json::{json, Value};
 use std::io::Read;
@@ -101,19 +102,24 @@ pub struct Explorer {
 impl Explorer {
     /// Binds and starts serving. Fails on a scene that does not load, a
     /// port in use, or no random source for the token.
-    pub fn start(config: Config) -> Result<Explorer, String> {
+    pub fn start(config: Config) -> Result<Explorer, Error> {
         let first = first_request(&config);
-        views::problem_of(&first).map_err(|e| format!("cannot explore: {e}"))?;
-        let token = guard::new_token()?;
-        let server = Server::http(SocketAddr::new(config.ip, config.port))
-            .map_err(|e| format!("cannot listen on {}:{}: {e}", config.ip, config.port))?;
-        let addr = server
-            .server_addr()
-            .to_ip()
-            .ok_or("the server is not on an IP address")?;
+        views::problem_of(&first)?;
+        let token = guard::new_token().map_err(|e| Error::new(ErrorKind::Computation, e))?;
+        let at = SocketAddr::new(config.ip, config.port);
+        let server = Server::http(at).map_err(|e| match e.downcast::<std::io::Error>() {
+            Ok(io) => Error::io("listen on", &at.to_string(), &io),
+            Err(e) => Error::new(
+                ErrorKind::Computation,
+                format!("cannot listen on {at}: {e}"),
+            ),
+        })?;
+        let addr = server.server_addr().to_ip().ok_or_else(|| {
+            Error::new(ErrorKind::Computation, "the server is not on an IP address")
+        })?;
         let scratch = std::env::temp_dir().join(format!("detach-explore-{}", &token[..12]));
         std::fs::create_dir_all(&scratch)
-            .map_err(|e| format!("cannot make {}: {e}", scratch.display()))?;
+            .map_err(|e| Error::io("make", &scratch.display().to_string(), &e))?;
         let served = guard::hosts_served(addr);
         let url = format!("http://{}/?token={token}", served[0]);
         let shared = Arc::new(Shared {

@@ -5,7 +5,9 @@
 //! takes the request's JSON and the [`Ticket`] it runs under.
 
 use super::jobs::{Cut, Ticket};
-use crate::api::{Cell, FlowRequest, Method, ParamRequest, PaveRequest, Paved, Problem};
+use crate::api::{
+    Cell, Error, ErrorKind, FlowRequest, Method, ParamRequest, PaveRequest, Paved, Problem,
+};
 use crate::certificate::numbers::{area_text, Round};
 use crate::figures::{rasterize, Class, PictureInfo};
 use crate::number::param::ParamSpec;
@@ -42,8 +44,8 @@ fn params_of(req: &Value) -> Result<Vec<(String, String)>, ViewError> {
 
 /// The problem a request names: `{"text": …}` (an edited or loaded scene
 /// file) or `{"scene": NAME}`, with `params`.
-pub fn problem_of(req: &Value) -> Result<Problem, ViewError> {
-    let params = params_of(req)?;
+pub fn problem_of(req: &Value) -> Result<Problem, Error> {
+    let params = params_of(req).map_err(|e| Error::new(ErrorKind::InvalidParameter, e))?;
     let pairs: Vec<(&str, &str)> = params
         .iter()
         .map(|(n, t)| (n.as_str(), t.as_str()))
@@ -54,7 +56,10 @@ pub fn problem_of(req: &Value) -> Result<Problem, ViewError> {
             Problem::from_toml(&text, &source, &pairs)
         }
         (None, Some(name)) => Problem::load(&name, &pairs),
-        (None, None) => Err("name a scene or give its text".into()),
+        (None, None) => Err(Error::new(
+            ErrorKind::UnknownName,
+            "name a scene or give its text",
+        )),
     }
 }
 
@@ -148,7 +153,7 @@ fn pave(problem: &Problem, req: &Value, ticket: &Ticket) -> Result<Paved, ViewEr
         method,
         ..PaveRequest::default()
     };
-    problem.pave_with_progress(&pave, |_, _, _| ticket.flow())
+    Ok(problem.pave_with_progress(&pave, |_, _, _| ticket.flow())?)
 }
 
 fn cut_json(ticket: &Ticket) -> Value {
@@ -218,7 +223,12 @@ fn paved_method(req: &Value) -> String {
 /// `{"name", "lo", "hi"}` as `detach params --x NAME=LO:HI`.
 fn axis_of(v: &Value) -> Result<crate::api::ParamAxis, ViewError> {
     let s = |k: &str| v.get(k).and_then(Value::as_str).unwrap_or("");
-    ParamRequest::axis(&format!("{}={}:{}", s("name"), s("lo"), s("hi")))
+    Ok(ParamRequest::axis(&format!(
+        "{}={}:{}",
+        s("name"),
+        s("lo"),
+        s("hi")
+    ))?)
 }
 
 /// The parameter plane of one or two parameters (`x`, `y`): per box, the
@@ -382,10 +392,17 @@ mod tests {
         assert!(problem_of(&json!({})).is_err());
         let rod = problem_of(&json!({"scene": "painleve-rod", "params": {"mu": "0.5"}})).unwrap();
         assert_eq!(rod.params.get("mu").inf(), 0.5);
-        let e = problem_of(&json!({"scene": "painleve-rod", "params": {"mu": 0.5}})).err();
-        assert!(e.unwrap_or_default().contains("decimal text"));
+        let e = problem_of(&json!({"scene": "painleve-rod", "params": {"mu": 0.5}}))
+            .err()
+            .expect("refused");
+        assert_eq!(e.kind(), ErrorKind::InvalidParameter);
+        assert!(e.to_string().contains("decimal text"));
         let e = problem_of(&json!({"scene": "painleve-rod", "text": "name = \"x\"\n[domain\n"}));
-        let e = e.err().unwrap_or_default();
-        assert!(e.contains("line 2"), "a TOML error names its line: {e}");
+        let e = e.err().expect("refused");
+        assert_eq!(e.kind(), ErrorKind::SceneFile);
+        assert!(
+            e.to_string().contains("line 2"),
+            "a TOML error names its line: {e}"
+        );
     }
 }

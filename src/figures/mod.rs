@@ -250,7 +250,8 @@ fn prepare(paving: &Paving, info: &PictureInfo, style: &AtlasStyle) -> Prepared 
 /// The cells a scene proves empty: both paradoxes when Ω₀ is Ω by
 /// construction, non-uniqueness when Ω₀ ⊂ Ω is proved.
 fn empty_classes(paving: &Paving, info: &PictureInfo) -> [Option<&'static str>; 6] {
-    let empty = crate::pave::empty_cells(paving, info.scene, info.variant);
+    let proved = crate::area::proved_empty_cells(info.scene, info.variant);
+    let empty = crate::pave::empty_cells(paving, proved);
     Class::ALL.map(|c| {
         c.cell()
             .and_then(|cell| empty[cell.index()])

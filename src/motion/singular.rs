@@ -644,7 +644,7 @@ impl Default for ScanOptions {
 /// undecided; thresholds between decided boxes of different signatures.
 pub fn scan(family: &Family, domain: &Domain, opts: &ScanOptions) -> Result<Scan, String> {
     if family.axes.len() != 1 {
-        return Err("give one parameter to vary (--x NAME=LO:HI)".into());
+        return Err("give one parameter to vary (NAME=LO:HI)".into());
     }
     let [lo, hi] = family.root[0];
     let mut boxes = Vec::new();

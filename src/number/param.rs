@@ -26,9 +26,7 @@ pub struct Param {
 
 #[derive(Debug, Error, PartialEq)]
 pub enum ParamError {
-    #[error(
-        "parameter `{name}`: `{text}` is not a finite decimal number (examples: 9.81, -0.5, 2e-3)"
-    )]
+    #[error("parameter `{name}`: {}", self.reason())]
     NotDecimal { name: String, text: String },
     #[error("unknown parameter `{name}` for scene `{scene}` (known: {known})")]
     Unknown {
@@ -36,13 +34,9 @@ pub enum ParamError {
         scene: String,
         known: String,
     },
-    #[error(
-        "parameter `{name}`: `{text}` is too large for double precision (magnitude above 1.8e308)"
-    )]
+    #[error("parameter `{name}`: {}", self.reason())]
     TooLarge { name: String, text: String },
-    #[error(
-        "parameter `{name}`: `{text}` is too small for double precision (nonzero, magnitude below 4.9e-324): write 0 if you mean 0"
-    )]
+    #[error("parameter `{name}`: {}", self.reason())]
     TooSmall { name: String, text: String },
     #[error("parameter `{name}` is given twice (`{first}` and `{second}`): give it once")]
     Repeated {
@@ -54,25 +48,38 @@ pub enum ParamError {
     NotAssignment(String),
     #[error("parameter `{name}`: {reason}")]
     Invalid { name: String, reason: String },
-    /// A window end (`--theta`, `--theta-dot`), not a parameter.
-    #[error("--{name}: {reason}")]
+    /// A window end (`theta`, `theta_dot`), not a parameter.
+    #[error("{name}: {reason}")]
     Window { name: String, reason: String },
 }
 
 impl ParamError {
-    /// The message without its `parameter `name`: ` lead, for a caller
-    /// that names the value otherwise (a window option, a file's key).
-    pub fn reason(&self, name: &str) -> String {
-        let text = self.to_string();
-        let prefix = format!("parameter `{name}`: ");
-        text.strip_prefix(&prefix).unwrap_or(&text).to_string()
+    /// What is wrong with the value, without naming it: for a caller that
+    /// names the value otherwise (a window, a file's key).
+    pub fn reason(&self) -> String {
+        match self {
+            ParamError::NotDecimal { text, .. } => {
+                format!("`{text}` is not a finite decimal number (examples: 9.81, -0.5, 2e-3)")
+            }
+            ParamError::TooLarge { text, .. } => {
+                format!("`{text}` is too large for double precision (magnitude above 1.8e308)")
+            }
+            ParamError::TooSmall { text, .. } => format!(
+                "`{text}` is too small for double precision (nonzero, magnitude below \
+                 4.9e-324): write 0 if you mean 0"
+            ),
+            ParamError::Invalid { reason, .. } | ParamError::Window { reason, .. } => {
+                reason.clone()
+            }
+            other => other.to_string(),
+        }
     }
 
-    /// The same error said of the window option `--name`.
+    /// The same error said of the window `name` (`theta`, `theta_dot`).
     pub fn of_window(self, name: &str) -> ParamError {
         ParamError::Window {
             name: name.to_string(),
-            reason: self.reason(name),
+            reason: self.reason(),
         }
     }
 }

@@ -27,6 +27,21 @@ impl Source {
             )
         })
     }
+
+    /// The scene with `name=value` parameter overrides.
+    pub fn scene(
+        &self,
+        overrides: &[(String, String)],
+    ) -> Result<(Scene, ParamSet), crate::scene::SceneFileError> {
+        match self {
+            Source::Paper(id) => Scene::build(*id, overrides),
+            Source::File(text) => {
+                let f = text.compile(overrides)?;
+                let params = f.params.clone();
+                Ok((Scene::File(Box::new(f)), params))
+            }
+        }
+    }
 }
 
 /// A scene whose parameters `axes` vary over a box.
@@ -58,7 +73,7 @@ impl Family {
         }
         if axes.len() == 2 && axes[0].name == axes[1].name {
             return Err(format!(
-                "--x and --y both vary `{}`: give two different parameters",
+                "both axes vary `{}`: give two different parameters",
                 axes[0].name
             ));
         }

@@ -239,18 +239,15 @@ impl Emptiness {
 }
 
 /// Which of Ω, Ω₀ and the four cells ([`Cell`] order) are empty whatever
-/// the leaves: those asking opposite signs of one function (Ω₀ ≡ Ω),
-/// and any proved empty on the scene's whole domain ([`crate::params::proved_empty`]).
-pub fn empty_cells(
-    paving: &Paving,
-    scene: &crate::scene::Scene,
-    variant: crate::scene::Variant,
-) -> [Option<Emptiness>; 6] {
+/// the leaves: those asking opposite signs of one function (Ω₀ ≡ Ω), and
+/// those `proved` empty on the scene's whole domain (by the caller, from a
+/// layer above: `crate::area::proved_empty_cells`).
+pub fn empty_cells(paving: &Paving, proved: [bool; 6]) -> [Option<Emptiness>; 6] {
     let cells = standard_cells();
     std::array::from_fn(|i| {
         if cells[i].contradictory(&paving.same_as) {
             Some(Emptiness::Omega0IsOmega)
-        } else if crate::params::proved_empty(scene, variant, Cell::ALL[i]) {
+        } else if proved[i] {
             Some(Emptiness::Proved)
         } else {
             None
@@ -263,11 +260,10 @@ pub fn empty_cells(
 /// or proved empty has both bounds 0.
 pub fn standard_cell_bounds(
     paving: &Paving,
-    scene: &crate::scene::Scene,
-    variant: crate::scene::Variant,
+    proved: [bool; 6],
     uncovered_sup: f64,
 ) -> [(AreaBounds, Option<Emptiness>); 6] {
-    let empty = empty_cells(paving, scene, variant);
+    let empty = empty_cells(paving, proved);
     let bounds = paving.area_bounds_all(&standard_cells(), uncovered_sup);
     std::array::from_fn(|i| match empty[i] {
         Some(Emptiness::Proved) => (Sums::ZERO.bounds(true, uncovered_sup), empty[i]),

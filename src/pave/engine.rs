@@ -319,7 +319,7 @@ impl BudgetStop {
         };
         let estimate = leaves as f64 + n * ((2.0 - g) * series + g.powf(d));
         BudgetStop {
-            option: "--max-boxes",
+            option: "max_boxes",
             max_boxes: opts.max_boxes,
             leaves_needed_at_least: needed,
             leaves_needed_estimate: estimate.max(needed as f64).min(f64::MAX),

@@ -663,7 +663,9 @@ impl std::fmt::Display for StopReason {
 /// What the asked resolution needs when the leaf budget stopped refinement.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct BudgetStop {
-    /// The option that sets the budget.
+    /// The option that sets the budget, by its field name (`max_boxes`); a
+    /// front end names it its own way.
+    #[serde(skip)]
     pub option: &'static str,
     pub max_boxes: usize,
     /// A lower bound: the leaves of the level the budget stopped, each box

@@ -58,6 +58,18 @@ pub const SHIPPED: [(&str, &str); 1] = [(
 pub struct SceneFileError {
     pub file: String,
     pub message: String,
+    pub fault: SceneFault,
+}
+
+/// What a refused scene file is refused for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SceneFault {
+    /// The file cannot be opened or read.
+    Read(std::io::ErrorKind),
+    /// Its text: TOML, tables, keys, formulas.
+    Content,
+    /// The file compiles alone; the parameter overrides given with it do not.
+    Override,
 }
 
 /// Names a file may not give a parameter or definition: the variables of
@@ -79,6 +91,19 @@ const RESERVED: [&str; 16] = [
     "sign",
     "min",
     "max",
+];
+
+/// The keys and tables of a scene file, as [`Raw`] reads them.
+const TOP_LEVEL: [&str; 9] = [
+    "name",
+    "title",
+    "domain",
+    "parameters",
+    "definitions",
+    "regions",
+    "dynamics",
+    "conditions",
+    "functions",
 ];
 
 #[derive(Deserialize)]
@@ -390,7 +415,14 @@ impl SceneText {
         let fail = |message: String| SceneFileError {
             file: file.clone(),
             message,
+            fault: SceneFault::Content,
         };
+        if let Err(e) = std::fs::metadata(path) {
+            return Err(SceneFileError {
+                fault: SceneFault::Read(e.kind()),
+                ..fail(format!("cannot read: {e}"))
+            });
+        }
         let bytes = crate::check::read_regular(path, MAX_SCENE_FILE_BYTES).map_err(fail)?;
         let text = String::from_utf8(bytes).map_err(|e| fail(format!("not UTF-8 text: {e}")))?;
         Ok(SceneText {
@@ -423,6 +455,12 @@ impl SceneText {
         FileScene::parse(&self.text, overrides).map_err(|message| SceneFileError {
             file: self.file.clone(),
             message,
+            // Only on failure: whether the file alone compiles.
+            fault: if !overrides.is_empty() && FileScene::parse(&self.text, &[]).is_ok() {
+                SceneFault::Override
+            } else {
+                SceneFault::Content
+            },
         })
     }
 }
@@ -455,6 +493,18 @@ impl FileScene {
         boxes: &[(String, Interval)],
     ) -> Result<FileScene, String> {
         let table: toml::Table = toml::from_str(text).map_err(|e| toml_message(text, &e))?;
+        // Before what is missing: `[region]` for `[regions]` is the fault.
+        if let Some((key, value)) = table.iter().find(|(k, _)| !TOP_LEVEL.contains(&k.as_str())) {
+            let what = if value.is_table() {
+                format!("`[{key}]`: unknown table")
+            } else {
+                format!("`{key}`: unknown key")
+            };
+            return Err(format!(
+                "{what} (a scene file has {})",
+                TOP_LEVEL.join(", ")
+            ));
+        }
         for path in ["name", "domain.theta", "domain.theta_dot", "regions.omega"] {
             let mut at = Some(&table);
             let mut found = None;

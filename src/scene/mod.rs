@@ -252,7 +252,7 @@ impl Domain {
         };
         let theta = side("theta", self.theta, theta).map_err(|e| e.of_window("theta"))?;
         let theta_dot =
-            side("theta-dot", self.theta_dot, theta_dot).map_err(|e| e.of_window("theta-dot"))?;
+            side("theta_dot", self.theta_dot, theta_dot).map_err(|e| e.of_window("theta_dot"))?;
         Ok((Domain { theta, theta_dot }, clipped))
     }
 

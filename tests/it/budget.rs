@@ -126,7 +126,7 @@ fn a_budget_stop_says_what_eps_needs_and_which_option_sets_it() {
     assert!(full.complete && full.budget.is_none());
     let cut = run(1.0 / 256.0, 2_000);
     let b = cut.budget.expect("stopped by the budget");
-    assert_eq!((b.option, b.max_boxes), ("--max-boxes", 2_000));
+    assert_eq!((b.option, b.max_boxes), ("max_boxes", 2_000));
     // The lower bound holds: the complete paving has at least that many.
     assert!(b.leaves_needed_at_least > 2_000);
     assert!(b.leaves_needed_at_least <= full.leaves.len());

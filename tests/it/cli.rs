@@ -399,10 +399,11 @@ fn area_refuses_places_below_binary64_rounding() {
     for set in ["Ω (omega)", "Ω₀ (omega0)", "Ω∩Ω̄₀ (omega_and_not_omega0)"] {
         assert!(err.contains(set), "{err}");
     }
+    assert!(err.starts_with("detach: --digits: "), "{err}");
     let digits = err
-        .split("--digits ")
+        .split("ask for at most ")
         .nth(1)
-        .and_then(|t| t.split(' ').next())
+        .map(str::trim)
         .unwrap_or_else(|| panic!("{err}"));
     assert_eq!(digits, "12", "{err}");
     let out = detach(&["area", "--scene", "viscous-disc", "--digits", digits]);

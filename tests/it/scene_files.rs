@@ -294,7 +294,7 @@ fn bad_scene_files_are_refused_clearly() {
     assert!(FileScene::parse(GOOD, &[]).is_ok());
     let dir = std::env::temp_dir().join(format!("detach-bad-scenes-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let cases: [(&str, String, &str); 20] = [
+    let cases: [(&str, String, &str); 22] = [
         (
             "position",
             GOOD.replace("U < 0", "U + $ < 0"),
@@ -346,6 +346,16 @@ fn bad_scene_files_are_refused_clearly() {
             "no-region",
             GOOD.replace("omega = \"U < 0\"", ""),
             "`regions.omega`: missing",
+        ),
+        (
+            "misspelt-table",
+            GOOD.replace("[regions]", "[region]"),
+            "`[region]`: unknown table (a scene file has name, title, domain,",
+        ),
+        (
+            "unknown-key",
+            format!("colour = \"red\"\n{GOOD}"),
+            "`colour`: unknown key",
         ),
         (
             "no-domain",
