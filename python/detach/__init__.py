@@ -14,6 +14,7 @@ the Rust library the CLI is built from, so results equal the CLI's.
 from __future__ import annotations
 
 import decimal
+import fractions
 import json
 from dataclasses import dataclass
 from typing import Optional
@@ -21,9 +22,13 @@ from typing import Optional
 import numpy as np
 
 from . import _detach
+from ._detach import DetachError, ProofRejected, SceneFileError
 from ._text import decimal_text
 
 __all__ = [
+    "DetachError",
+    "SceneFileError",
+    "ProofRejected",
     "Scene",
     "Paving",
     "ParamAtlas",
@@ -95,7 +100,7 @@ def _window(name, window):
     try:
         lo, hi = window
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be (lo, hi), got {window!r}") from None
+        raise DetachError(f"{name} must be (lo, hi), got {window!r}") from None
     return [decimal_text(name, lo), decimal_text(name, hi)]
 
 
@@ -184,9 +189,9 @@ class Scene:
         between levels and raises `Interrupted`, which carries the valid,
         coarser paving reached."""
         if isinstance(max_boxes, bool) or not isinstance(max_boxes, int) or max_boxes < 0:
-            raise ValueError(f"--max-boxes must be a positive integer, got {max_boxes!r}")
+            raise DetachError(f"max_boxes must be a positive integer, got {max_boxes!r}")
         native, interrupted = self._native.pave(
-            float(eps),
+            _eps(eps),
             max_boxes,
             method,
             region,
@@ -218,12 +223,12 @@ class Scene:
         released while it runs; Ctrl-C stops it between levels and raises
         `Interrupted`, which carries the valid, coarser atlas reached."""
         if isinstance(max_boxes, bool) or not isinstance(max_boxes, int) or max_boxes < 1:
-            raise ValueError(f"max-boxes must be a positive integer, got {max_boxes!r}")
+            raise DetachError(f"max_boxes must be a positive integer, got {max_boxes!r}")
         if isinstance(sets, str):
             sets = [sets]
         axes = [_axis("x", x)] + ([] if y is None else [_axis("y", y)])
         native, interrupted = self._native.param_atlas(
-            axes, list(sets), None if eps is None else float(eps), max_boxes
+            axes, list(sets), None if eps is None else _eps(eps), max_boxes
         )
         atlas = ParamAtlas(native, self)
         if interrupted:
@@ -243,7 +248,7 @@ class Scene:
         try:
             theta, theta_dot = start
         except (TypeError, ValueError):
-            raise ValueError(f"start must be (theta, theta_dot), got {start!r}") from None
+            raise DetachError(f"start must be (theta, theta_dot), got {start!r}") from None
         native = self._native.flow(
             _state("theta", theta),
             _state("theta_dot", theta_dot),
@@ -260,7 +265,7 @@ class Scene:
         Jupyter the returned `Explorer` shows the page inline; its `params`
         are those of the page's last drawn atlas."""
         if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
-            raise ValueError(f"port must be an integer in 0..=65535, got {port!r}")
+            raise DetachError(f"port must be an integer in 0..=65535, got {port!r}")
         scene, text = (self.name, None) if self._toml is None else (None, self._toml)
         return Explorer(_detach.Explorer(scene, text, list(self.params.items()), port))
 
@@ -274,9 +279,9 @@ class Scene:
         `reach` proof (`Reach.save_proof`). The GIL is released while it
         runs."""
         if isinstance(max_boxes, bool) or not isinstance(max_boxes, int) or max_boxes < 1:
-            raise ValueError(f"max_boxes must be a positive integer, got {max_boxes!r}")
+            raise DetachError(f"max_boxes must be a positive integer, got {max_boxes!r}")
         leaves, complete, made = self._native.reach(
-            decimal_text("t", t), str(until), float(eps), max_boxes,
+            decimal_text("t", t), str(until), _eps(eps), max_boxes,
             _window("theta", theta), _window("theta_dot", theta_dot), bool(proof),
         )
         return Reach(leaves, complete, made)
@@ -294,7 +299,7 @@ class Scene:
             return json.loads(self._native.singular_points(*window))
         return json.loads(
             self._native.singular_scan(
-                _axis("x", x), None if eps is None else float(eps), *window
+                _axis("x", x), None if eps is None else _eps(eps), *window
             )
         )
 
@@ -307,6 +312,24 @@ class Scene:
         }
 
 
+def _eps(eps):
+    """A resolution as a float: a number, or text such as `"1/64"` or
+    `"0.01"` (a resolution is a size asked for, not a certified value)."""
+    if isinstance(eps, bool):
+        raise DetachError(f"eps must be a number in (0, 1], got {eps!r}")
+    if isinstance(eps, str):
+        try:
+            return float(fractions.Fraction(eps.strip()))
+        except (ValueError, ZeroDivisionError):
+            raise DetachError(
+                f"eps must be a number in (0, 1] such as 1/256 or '1/256', got {eps!r}"
+            ) from None
+    try:
+        return float(eps)
+    except (TypeError, ValueError):
+        raise DetachError(f"eps must be a number in (0, 1], got {eps!r}") from None
+
+
 def _state(name, value):
     """One coordinate of a start: a number's text, or `LO:HI` for a pair."""
     if isinstance(value, (tuple, list)):
@@ -317,7 +340,7 @@ def _state(name, value):
 
 def _order(order):
     if isinstance(order, bool) or not isinstance(order, int):
-        raise ValueError(f"order must be an integer in 2..=60, got {order!r}")
+        raise DetachError(f"order must be an integer in 2..=60, got {order!r}")
     return order
 
 
@@ -496,7 +519,7 @@ class Reach:
         the independent checker says VALID, as `detach reach --proof`; the
         paving must have been made with `Scene.reach(..., proof=True)`."""
         if self._proof is None:
-            raise ValueError("this paving has no proof: run Scene.reach(..., proof=True)")
+            raise DetachError("this paving has no proof: run Scene.reach(..., proof=True)")
         _detach.write_proof(self._proof[0], str(path))
 
     def plot(self, ax=None, legend=True):
@@ -546,11 +569,11 @@ def _axis(flag, axis):
         try:
             return _detach.param_axis(axis)
         except ValueError as e:
-            raise ValueError(f"{flag}: {e}") from None
+            raise DetachError(f"{flag}: {e}") from None
     try:
         name, lo, hi = axis
     except (TypeError, ValueError):
-        raise ValueError(f"{flag} must be 'NAME=LO:HI' or (name, lo, hi), got {axis!r}") from None
+        raise DetachError(f"{flag} must be 'NAME=LO:HI' or (name, lo, hi), got {axis!r}") from None
     return (str(name), decimal_text(name, lo), decimal_text(name, hi))
 
 
@@ -715,7 +738,8 @@ class Verification:
 
 def verify(path):
     """Checks a proof file with the independent checker, as `detach verify`
-    does; a file that cannot be read raises ValueError."""
+    does; a file that cannot be read raises OSError (FileNotFoundError
+    when it is missing)."""
     return Verification(*_detach.verify(str(path)))
 
 

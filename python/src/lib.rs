@@ -7,8 +7,13 @@ use detach::api::{
     ParamAtlasRun, ParamAxis, ParamRequest, PaveRequest, Paved, Problem, ReachOptions, ScanOptions,
     Tube, Until, Variant, Verdict,
 };
+use detach::api::{Error, ErrorKind};
 use detach::figures::Class;
-use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
+use pyo3::create_exception;
+use pyo3::exceptions::{
+    PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyPermissionError, PyRuntimeError,
+    PyValueError,
+};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 use std::ops::ControlFlow;
@@ -17,8 +22,44 @@ use std::path::PathBuf;
 /// One set's area: `(name, label, lower, upper, how)`.
 type AreaRow = (String, String, f64, f64, String);
 
-fn value_error(message: String) -> PyErr {
-    PyValueError::new_err(message)
+create_exception!(
+    _detach,
+    DetachError,
+    PyValueError,
+    "An input detach refuses (an option, a parameter, a name) or a computation that failed."
+);
+create_exception!(
+    _detach,
+    SceneFileError,
+    DetachError,
+    "A scene file (or TOML text) that is not one: its TOML, its tables, its formulas."
+);
+create_exception!(
+    _detach,
+    ProofRejected,
+    DetachError,
+    "The checker rejects a proof, or cannot check it; nothing was written."
+);
+
+/// The library's error as the Python exception of its kind: a failed read or
+/// write is an `OSError` (its subclass by cause), the rest `DetachError`s.
+/// The sentence names the library's fields, which are the Python arguments.
+fn py_err(e: Error) -> PyErr {
+    use std::io::ErrorKind as Io;
+    let text = e.to_string();
+    match e.kind() {
+        ErrorKind::SceneFile => SceneFileError::new_err(text),
+        ErrorKind::ProofRejected => ProofRejected::new_err(text),
+        ErrorKind::Io(Io::NotFound) => PyFileNotFoundError::new_err(text),
+        ErrorKind::Io(Io::PermissionDenied) => PyPermissionError::new_err(text),
+        ErrorKind::Io(_) => PyOSError::new_err(text),
+        _ => DetachError::new_err(text),
+    }
+}
+
+/// An argument of this module refused: `name` and what follows it.
+fn invalid(name: &'static str, rest: impl std::fmt::Display) -> PyErr {
+    py_err(Error::invalid_option(name, rest))
 }
 
 /// Between two levels of a long computation: Python's pending signals
@@ -58,22 +99,24 @@ impl Scene {
     /// `derived` or `printed`.
     #[staticmethod]
     fn load(name: &str, params: Vec<(String, String)>, variant: &str) -> PyResult<Scene> {
-        let variant: Variant = variant.parse().map_err(value_error)?;
+        let variant: Variant = variant
+            .parse()
+            .map_err(|e| invalid("variant", format!(": {e}")))?;
         let problem = Problem::load(name, &pairs(&params))
             .and_then(|p| p.in_reading(variant))
-            .map_err(value_error)?;
+            .map_err(py_err)?;
         Ok(Scene { problem })
     }
 
     #[staticmethod]
     fn from_file(path: PathBuf, params: Vec<(String, String)>) -> PyResult<Scene> {
-        let problem = Problem::from_file(&path, &pairs(&params)).map_err(value_error)?;
+        let problem = Problem::from_file(&path, &pairs(&params)).map_err(py_err)?;
         Ok(Scene { problem })
     }
 
     #[staticmethod]
     fn from_toml(text: &str, source: &str, params: Vec<(String, String)>) -> PyResult<Scene> {
-        let problem = Problem::from_toml(text, source, &pairs(&params)).map_err(value_error)?;
+        let problem = Problem::from_toml(text, source, &pairs(&params)).map_err(py_err)?;
         Ok(Scene { problem })
     }
 
@@ -130,8 +173,10 @@ impl Scene {
         let req = PaveRequest {
             eps,
             max_boxes,
-            method: method.parse::<Method>().map_err(value_error)?,
-            region: region.map(cell_named).transpose().map_err(value_error)?,
+            method: method
+                .parse::<Method>()
+                .map_err(|e| invalid("method", format!(": {e}")))?,
+            region: region.map(cell_named).transpose().map_err(py_err)?,
             theta,
             theta_dot,
         };
@@ -140,7 +185,7 @@ impl Scene {
             self.problem
                 .pave_with_progress(&req, |_, _, _| interrupted(&mut signal))
         });
-        let paved = paved.map_err(value_error)?;
+        let paved = paved.map_err(py_err)?;
         match signal {
             // Another exception raised by a signal handler goes on as it is.
             Some(e) if !e.is_instance_of::<PyKeyboardInterrupt>(py) => Err(e),
@@ -170,7 +215,7 @@ impl Scene {
                 .iter()
                 .map(|s| cell_named(s))
                 .collect::<Result<_, _>>()
-                .map_err(value_error)?,
+                .map_err(py_err)?,
             eps,
             max_boxes,
             shard: None,
@@ -180,7 +225,7 @@ impl Scene {
             self.problem
                 .param_atlas_with_progress(&req, |_, _, _| interrupted(&mut signal))
         });
-        let run = run.map_err(value_error)?;
+        let run = run.map_err(py_err)?;
         match signal {
             Some(e) if !e.is_instance_of::<PyKeyboardInterrupt>(py) => Err(e),
             s => Ok((ParamAtlas { run }, s.is_some())),
@@ -202,21 +247,18 @@ impl Scene {
         proof: bool,
     ) -> PyResult<Trajectory> {
         if !(2..=60).contains(&order) {
-            return Err(value_error(format!("order must be in 2..=60, got {order}")));
+            return Err(invalid("order", format!(" must be in 2..=60, got {order}")));
         }
-        let mut request =
-            FlowRequest::parse(theta, theta_dot, t).map_err(|e| value_error(e.to_string()))?;
-        request.until = Until::parse_list(until).map_err(|e| value_error(e.to_string()))?;
+        let mut request = FlowRequest::parse(theta, theta_dot, t).map_err(|e| py_err(e.into()))?;
+        request.until = Until::parse_list(until).map_err(|e| py_err(e.into()))?;
         request.settings.order = order;
         let (tube, proof) = if proof {
             let (tube, p) = py
                 .detach(|| self.problem.flow_with_proof(&request, t))
-                .map_err(value_error)?;
+                .map_err(py_err)?;
             (tube, Some(p))
         } else {
-            let tube = py
-                .detach(|| self.problem.flow(&request))
-                .map_err(value_error)?;
+            let tube = py.detach(|| self.problem.flow(&request)).map_err(py_err)?;
             (tube, None)
         };
         Ok(Trajectory {
@@ -241,9 +283,9 @@ impl Scene {
         theta_dot: Option<[String; 2]>,
         proof: bool,
     ) -> PyResult<ReachNative> {
-        let until = Until::parse_list(until).map_err(|e| value_error(e.to_string()))?;
+        let until = Until::parse_list(until).map_err(|e| py_err(e.into()))?;
         if max_boxes == 0 {
-            return Err(value_error("max_boxes must be at least 1".into()));
+            return Err(invalid("max_boxes", " must be at least 1"));
         }
         let opts = ReachOptions {
             eps,
@@ -270,7 +312,7 @@ impl Scene {
                         Ok((run, proof))
                     })
             })
-            .map_err(value_error)?;
+            .map_err(py_err)?;
         let (run, proof) = run;
         let leaves = run
             .leaves
@@ -302,7 +344,7 @@ impl Scene {
                 self.problem
                     .singular_points(window_refs(&theta), window_refs(&theta_dot))
             })
-            .map_err(value_error)?;
+            .map_err(py_err)?;
         Ok(detach::motion::singular::report_json(&report).to_string())
     }
 
@@ -320,9 +362,10 @@ impl Scene {
         let mut opts = ScanOptions::default();
         if let Some(eps) = eps {
             if !(eps.is_finite() && eps > 0.0 && eps < 1.0) {
-                return Err(value_error(format!(
-                    "eps must be a number in (0, 1), got {eps}"
-                )));
+                return Err(invalid(
+                    "eps",
+                    format!(" must be a number in (0, 1), got {eps}"),
+                ));
             }
             opts.eps = eps;
         }
@@ -336,7 +379,7 @@ impl Scene {
                     &opts,
                 )
             })
-            .map_err(value_error)?;
+            .map_err(py_err)?;
         // The boxes cover the range: its ends are theirs.
         let family_root = scan
             .boxes
@@ -349,9 +392,7 @@ impl Scene {
 
     /// Certified areas: `(name, label, lower, upper, how)` per set.
     fn area(&self, py: Python<'_>, digits: i32) -> PyResult<Vec<AreaRow>> {
-        let areas = py
-            .detach(|| self.problem.area(digits))
-            .map_err(value_error)?;
+        let areas = py.detach(|| self.problem.area(digits)).map_err(py_err)?;
         Ok(areas
             .into_iter()
             .map(|a| {
@@ -477,7 +518,7 @@ impl Paving {
     /// Writes the paving as a proof file, once the checker says VALID.
     fn save_proof(&self, py: Python<'_>, scene: &Scene, path: PathBuf) -> PyResult<()> {
         py.detach(|| self.paved.write_proof(&scene.problem, &path))
-            .map_err(value_error)
+            .map_err(py_err)
     }
 }
 
@@ -586,8 +627,7 @@ impl ParamAtlas {
 
     /// Writes the atlas as a proof file, once the checker says VALID.
     fn save_proof(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        py.detach(|| self.run.write_proof(&path))
-            .map_err(value_error)
+        py.detach(|| self.run.write_proof(&path)).map_err(py_err)
     }
 }
 
@@ -614,12 +654,13 @@ impl Trajectory {
     /// Writes the run's proof file, once the checker says VALID.
     fn save_proof(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
         let Some(proof) = &self.proof else {
-            return Err(value_error(
-                "this trajectory has no proof: run Scene.flow(..., proof=True)".to_string(),
-            ));
+            return Err(py_err(Error::new(
+                ErrorKind::Unsupported,
+                "this trajectory has no proof: run Scene.flow(..., proof=True)",
+            )));
         };
         py.detach(|| detach::api::write_checked_proof(proof, &path))
-            .map_err(value_error)
+            .map_err(py_err)
     }
 
     /// `{"events", "end", "stop", "steps"}` as `detach flow --json`.
@@ -632,9 +673,10 @@ impl Trajectory {
     /// holds every solution at every time of its time interval.
     fn band<'py>(&self, py: Python<'py>, pieces: usize) -> PyResult<Bound<'py, PyBytes>> {
         if !(1..=1000).contains(&pieces) {
-            return Err(value_error(format!(
-                "pieces must be in 1..=1000, got {pieces}"
-            )));
+            return Err(invalid(
+                "pieces",
+                format!(" must be in 1..=1000, got {pieces}"),
+            ));
         }
         let rows = self.tube.band_rows(pieces);
         let mut bytes = Vec::with_capacity(rows.len() * 48);
@@ -657,15 +699,19 @@ type ReachNative = (
 /// Writes a proof given as JSON text to `path`, once the checker says VALID.
 #[pyfunction]
 fn write_proof(py: Python<'_>, text: &str, path: PathBuf) -> PyResult<()> {
-    let proof: serde_json::Value =
-        serde_json::from_str(text).map_err(|e| value_error(e.to_string()))?;
+    let proof: serde_json::Value = serde_json::from_str(text).map_err(|e| {
+        py_err(Error::new(
+            ErrorKind::ProofRejected,
+            format!("not JSON: {e}"),
+        ))
+    })?;
     py.detach(|| detach::api::write_checked_proof(&proof, &path))
-        .map_err(value_error)
+        .map_err(py_err)
 }
 
 #[pyfunction]
 fn verify(py: Python<'_>, path: PathBuf) -> PyResult<(String, String, String)> {
-    let report = py.detach(|| check_file(&path)).map_err(value_error)?;
+    let report = py.detach(|| check_file(&path)).map_err(py_err)?;
     let (verdict, why) = match report.verdict {
         Verdict::Valid => ("VALID", String::new()),
         Verdict::Invalid(why) => ("INVALID", why),
@@ -694,7 +740,7 @@ fn palette() -> Vec<(String, String, String)> {
 /// `NAME=LO:HI` as `detach params --x` reads it: `(name, lo, hi)`.
 #[pyfunction]
 fn param_axis(text: &str) -> PyResult<(String, String, String)> {
-    let a = ParamRequest::axis(text).map_err(value_error)?;
+    let a = ParamRequest::axis(text).map_err(py_err)?;
     Ok((a.name, a.lo, a.hi))
 }
 
@@ -732,7 +778,7 @@ impl Explorer {
             port,
             ..Default::default()
         };
-        let e = detach::explore::Explorer::start(config).map_err(value_error)?;
+        let e = detach::explore::Explorer::start(config).map_err(py_err)?;
         Ok(Explorer {
             url: e.url.clone(),
             inner: std::sync::Mutex::new(Some(e)),
@@ -746,10 +792,13 @@ impl Explorer {
 
     /// The scene and parameters of the page's last atlas, as JSON text.
     fn state(&self) -> PyResult<String> {
-        let guard = self.inner.lock().map_err(|e| value_error(e.to_string()))?;
+        let guard = self
+            .inner
+            .lock()
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
         match guard.as_ref() {
             Some(e) => Ok(e.state().to_string()),
-            None => Err(value_error("this explorer is stopped".into())),
+            None => Err(PyRuntimeError::new_err("this explorer is stopped")),
         }
     }
 
@@ -773,5 +822,8 @@ fn _detach(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene_names, m)?)?;
     m.add_function(wrap_pyfunction!(param_axis, m)?)?;
     m.add("VERSION", detach::LONG_VERSION)?;
+    m.add("DetachError", m.py().get_type::<DetachError>())?;
+    m.add("SceneFileError", m.py().get_type::<SceneFileError>())?;
+    m.add("ProofRejected", m.py().get_type::<ProofRejected>())?;
     Ok(())
 }

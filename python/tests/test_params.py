@@ -81,9 +81,9 @@ def test_bad_requests_are_value_errors():
         ({"x": "mu=1"}, "NAME=LO:HI"),
         ({"x": ("mu", 1.0, 2)}, "float"),
         ({"x": "mu=1:2", "sets": ["paradox"]}, "unknown region `paradox`"),
-        ({"x": "mu=1:2", "y": "mu=0:1"}, "both vary `mu`"),
+        ({"x": "mu=1:2", "y": "mu=0:1"}, "both axes vary `mu`"),
         ({"x": "mu=1:2", "eps": 0}, "eps must be"),
-        ({"x": "mu=1:2", "max_boxes": 0}, "max-boxes"),
+        ({"x": "mu=1:2", "max_boxes": 0}, "max_boxes must be"),
     ]:
         with pytest.raises(ValueError) as e:
             rod.param_atlas(**kwargs)
