@@ -240,12 +240,11 @@ impl Problem {
                 cell: s.cell,
                 inner: s.lower(),
                 outer: s.upper(),
-                how: match s.provenance {
-                    _ if s.enclosure.proved_empty => How::Empty(Emptiness::Omega0IsOmega),
-                    Provenance::Quadrature => How::Quadrature,
-                    Provenance::Paving => How::Paving,
-                    Provenance::Intersection => How::QuadratureAndPaving,
-                    Provenance::ProvedEmpty => How::Empty(Emptiness::Proved),
+                how: match (s.emptiness(), s.provenance) {
+                    (Some(e), _) => How::Empty(e),
+                    (None, Provenance::Paving) => How::Paving,
+                    (None, Provenance::Intersection) => How::QuadratureAndPaving,
+                    (None, _) => How::Quadrature,
                 },
             })
             .collect();

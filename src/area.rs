@@ -3,7 +3,7 @@
 //! in where the quadrature does not apply and narrowing it where it missed
 //! its target. Each bound says which of the two gave it.
 
-use crate::pave::{pave_scene_method, Method, MethodOptions, PaveOptions, Paving};
+use crate::pave::{pave_scene_method, Emptiness, Method, MethodOptions, PaveOptions, Paving};
 use crate::quadrature::{cell_area, check_target, AreaEnclosure, AreaError, AreaOptions};
 use crate::scene::Cell;
 use crate::scene::{Domain, Scene, Variant};
@@ -74,6 +74,17 @@ impl SetArea {
     /// The upper bound, `-0` as `0`.
     pub fn upper(&self) -> f64 {
         self.enclosure.area.sup() + 0.0
+    }
+    /// Why the set is empty, when its bounds are 0 by a proof rather than
+    /// by measuring.
+    pub fn emptiness(&self) -> Option<Emptiness> {
+        if self.provenance == Provenance::ProvedEmpty {
+            Some(Emptiness::Proved)
+        } else {
+            self.enclosure
+                .proved_empty
+                .then_some(Emptiness::Omega0IsOmega)
+        }
     }
 }
 

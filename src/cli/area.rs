@@ -1,6 +1,7 @@
 //! `detach area`: certified areas of regions and cells by quadrature over θ.
 
 use super::CliResult;
+use detach::api::Emptiness;
 use detach::area::{Provenance, Source};
 use detach::certificate::numbers::{fixed, Round};
 use detach::scene::Variant;
@@ -65,9 +66,11 @@ struct RegionArea {
     /// (quadrature only).
     #[serde(skip_serializing_if = "Option::is_none")]
     undecided_pieces: Option<usize>,
-    /// Set when the cell is empty by construction.
+    /// Set when the cell is proved empty: why ([`Emptiness::describe`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     empty: Option<&'static str>,
+    #[serde(skip)]
+    emptiness: Option<Emptiness>,
     elapsed_s: f64,
 }
 
@@ -131,11 +134,8 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
                 at_rounding_floor: e.at_rounding_floor,
                 pieces: e.pieces,
                 undecided_pieces: (!by_paving).then_some(e.undecided_pieces),
-                empty: if s.provenance == Provenance::ProvedEmpty {
-                    Some("proved empty")
-                } else {
-                    e.proved_empty.then_some("omega0 = omega")
-                },
+                empty: s.emptiness().map(Emptiness::describe),
+                emptiness: s.emptiness(),
                 elapsed_s: s.elapsed_s,
             }
         })
@@ -181,8 +181,8 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
     let places = args.digits as usize + 2;
     for r in &report.regions {
         let label = super::atlas::pad(r.label, 8);
-        if r.empty.is_some() {
-            outln!("  {label} 0 (empty: Ω₀ = Ω)");
+        if let Some(e) = r.emptiness {
+            outln!("  {label} 0 (empty: {})", e.symbol());
             continue;
         }
         outln!(

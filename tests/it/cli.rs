@@ -414,6 +414,32 @@ fn area_refuses_places_below_binary64_rounding() {
     );
 }
 
+/// `detach area` says why a set is empty, as its `--json` does: the rod's
+/// paradox cells at μ = 0.5 < 4/3 and the smooth disc's are proved empty by
+/// a paving of the domain (the rod's Ω₀, `U/V < 0`, is not its Ω, `U < 0`,
+/// so "Ω₀ = Ω" would be false of it).
+#[test]
+fn area_says_why_a_set_is_empty() {
+    for args in [
+        &["area", "--scene", "painleve-rod", "--param", "mu=0.5", "--digits", "6"][..],
+        &["area", "--scene", "smooth-disc", "--digits", "6"][..],
+    ] {
+        let out = detach(args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let text = String::from_utf8(out.stdout).unwrap();
+        let report = json(&[args, &["--json"]].concat());
+        let proved = report["regions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|r| r["empty"] == "proved empty")
+            .count();
+        assert_eq!(proved, 2, "{report}");
+        assert_eq!(text.matches("0 (empty: proved empty)").count(), proved, "{text}");
+        assert!(!text.contains("Ω₀ = Ω"), "{text}");
+    }
+}
+
 /// A round-joined path (a polyline, or a phase band whose stroke is the
 /// certified band's own width in pixels: data, not style).
 const BAND: &str = "stroke-linejoin=\"round\"";
