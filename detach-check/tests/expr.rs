@@ -1,7 +1,7 @@
 //! The checker's expression language, number encodings and decorations,
 //! against values worked out by hand.
 
-use detach::check::{base64_decode, decimal_enclosure, eval_on_box, parse_hex_f64};
+use detach_check::{base64_decode, decimal_enclosure, eval_on_box, parse_hex_f64};
 use inari::{Decoration, Interval};
 
 fn iv(a: f64, b: f64) -> Interval {

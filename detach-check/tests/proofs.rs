@@ -1,7 +1,7 @@
 //! Hand-made proof files with known verdicts: each VALID file is true by
 //! hand computation, each mutation makes a check fail.
 
-use detach::check::{check_bytes, check_str, Report, Verdict};
+use detach_check::{check_bytes, check_str, Report, Verdict};
 use serde_json::{json, Value};
 
 fn run(v: &Value) -> Report {

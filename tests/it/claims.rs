@@ -6,8 +6,9 @@
 use detach::claims::{self, check, Verdict};
 use serde_json::Value;
 
-/// The ids the issue fixes, all of which must be in the registry.
-const ISSUE_IDS: [&str; 49] = [
+/// The paper's formulas and statements by id (F: a formula, S: a
+/// statement), all of which must be in the registry.
+const PAPER_IDS: [&str; 49] = [
     "F1.3",
     "F1.4",
     "F1.5",
@@ -84,9 +85,9 @@ fn num(x: &Value) -> f64 {
 }
 
 #[test]
-fn registry_holds_every_issue_id_once() {
+fn registry_holds_every_paper_id_once() {
     let ids = claims::ids();
-    for id in ISSUE_IDS {
+    for id in PAPER_IDS {
         assert!(ids.contains(&id), "{id} missing");
     }
     let mut sorted = ids.clone();

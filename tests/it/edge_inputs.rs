@@ -1,4 +1,4 @@
-//! The built binary on the inputs of the hardening audit: one-ulp windows,
+//! The built binary on edge inputs: one-ulp windows,
 //! budgets, closed pipes, provably empty cells, odd but valid inputs.
 
 use std::process::{Command, Stdio};
