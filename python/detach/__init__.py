@@ -57,15 +57,11 @@ LABELS = ("in", "out", "undecided", "undefined")
 #: A parameter box's status per set, as `detach params` reports it.
 STATUSES = ("nonempty", "empty", "undecided")
 #: A leaf's class: the four cells (both labels decided), then undecided and
-#: undefined; the order of `palette()`.
-CLASSES = (
-    "omega_and_omega0",
-    "not_omega_and_not_omega0",
-    "not_omega_and_omega0",
-    "omega_and_not_omega0",
-    "undecided",
-    "undefined",
-)
+#: undefined; the order of `palette()`. Read from the library.
+CLASSES = tuple(_detach.class_names())
+
+#: The library's defaults per call (the command line's), read from it.
+_DEFAULTS = json.loads(_detach.defaults())
 
 
 def scenes():
@@ -175,12 +171,13 @@ class Scene:
 
     def pave(
         self,
-        eps=1 / 1024,
-        method="slices",
+        *,
+        eps=_DEFAULTS["pave"]["eps"],
+        method=_DEFAULTS["pave"]["method"],
         region=None,
         theta=None,
         theta_dot=None,
-        max_boxes=4_000_000,
+        max_boxes=_DEFAULTS["pave"]["max_boxes"],
     ):
         """Paves Ω and Ω₀ as `detach pave` does (same defaults).
 
@@ -207,9 +204,10 @@ class Scene:
         self,
         x,
         y=None,
-        sets=("not_omega_and_omega0", "omega_and_not_omega0"),
+        *,
+        sets=tuple(_DEFAULTS["param_atlas"]["sets"]),
         eps=None,
-        max_boxes=100_000,
+        max_boxes=_DEFAULTS["param_atlas"]["max_boxes"],
     ):
         """A certified parameter atlas, as `detach params`: where in a range
         of one parameter (`x`) or two (`x`, `y`) each set is proved
@@ -235,7 +233,7 @@ class Scene:
             raise Interrupted(atlas)
         return atlas
 
-    def flow(self, start, t, until="cell,domain", order=20, proof=False):
+    def flow(self, start, t, *, until="cell,domain", order=_DEFAULTS["flow"]["order"], proof=False):
         """A certified trajectory, as `detach flow`: the tube of every
         solution from `start` over [0, t], up to the first event of `until`
         (`"U=0"`, `"N=0"`, `"cell"`, `"domain"`, `"none"`, comma-separated).
@@ -259,7 +257,7 @@ class Scene:
         )
         return Trajectory(native)
 
-    def explore(self, port=0):
+    def explore(self, *, port=0):
         """The page of `detach explore` for this scene at its parameters,
         served on 127.0.0.1 until `Explorer.stop` (or the kernel ends). In
         Jupyter the returned `Explorer` shows the page inline; its `params`
@@ -269,8 +267,8 @@ class Scene:
         scene, text = (self.name, None) if self._toml is None else (None, self._toml)
         return Explorer(_detach.Explorer(scene, text, list(self.params.items()), port))
 
-    def reach(self, t, until="cell", theta=None, theta_dot=None, eps=1 / 256,
-              max_boxes=100_000, proof=False):
+    def reach(self, t, *, until="cell", theta=None, theta_dot=None, eps=_DEFAULTS["reach"]["eps"],
+              max_boxes=_DEFAULTS["reach"]["max_boxes"], proof=False):
         """The initial states whose motion reaches the first event of
         `until` within time `t`, as `detach reach`: a certified paving of
         the domain (or the window `theta`, `theta_dot`), each leaf proved to
@@ -286,7 +284,7 @@ class Scene:
         )
         return Reach(leaves, complete, made)
 
-    def singular_points(self, theta=None, theta_dot=None, x=None, eps=None):
+    def singular_points(self, *, theta=None, theta_dot=None, x=None, eps=None):
         """The equilibria and singular points of the scene's `[dynamics]`,
         as `detach singular --json`: each proved unique in its box, with its
         type (`"saddle"`, `"stable node"`, ...). `theta`, `theta_dot`: a
@@ -303,7 +301,7 @@ class Scene:
             )
         )
 
-    def area(self, digits=10):
+    def area(self, *, digits=_DEFAULTS["area"]["digits"]):
         """Certified areas of Ω, Ω₀ and the four cells to `digits` places, as
         `detach area`: `{name: Area}`, each saying how it was obtained."""
         return {

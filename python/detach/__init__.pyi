@@ -76,6 +76,7 @@ class Scene:
     def warnings(self) -> list[str]: ...
     def pave(
         self,
+        *,
         eps: Eps = ...,
         method: Method = "slices",
         region: Optional[SetName] = None,
@@ -87,6 +88,7 @@ class Scene:
         self,
         x: Union[str, tuple[str, Number, Number]],
         y: Union[None, str, tuple[str, Number, Number]] = None,
+        *,
         sets: Union[SetName, Sequence[SetName]] = ...,
         eps: Optional[Eps] = None,
         max_boxes: int = 100_000,
@@ -95,14 +97,16 @@ class Scene:
         self,
         start: tuple[Union[Number, Window], Union[Number, Window]],
         t: Number,
+        *,
         until: str = "cell,domain",
         order: int = 20,
         proof: bool = False,
     ) -> Trajectory: ...
-    def explore(self, port: int = 0) -> Explorer: ...
+    def explore(self, *, port: int = 0) -> Explorer: ...
     def reach(
         self,
         t: Number,
+        *,
         until: str = "cell",
         theta: Optional[Window] = None,
         theta_dot: Optional[Window] = None,
@@ -112,12 +116,13 @@ class Scene:
     ) -> Reach: ...
     def singular_points(
         self,
+        *,
         theta: Optional[Window] = None,
         theta_dot: Optional[Window] = None,
         x: Union[None, str, tuple[str, Number, Number]] = None,
         eps: Optional[Eps] = None,
     ) -> dict[str, Any]: ...
-    def area(self, digits: int = 10) -> dict[str, Area]: ...
+    def area(self, *, digits: int = 10) -> dict[str, Area]: ...
 
 class Explorer:
     @property

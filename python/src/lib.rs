@@ -744,6 +744,44 @@ fn param_axis(text: &str) -> PyResult<(String, String, String)> {
     Ok((a.name, a.lo, a.hi))
 }
 
+/// The leaf classes by name in `palette()` order: the four cells, then
+/// `undecided` and `undefined`.
+#[pyfunction]
+fn class_names() -> Vec<&'static str> {
+    Class::ALL
+        .iter()
+        .map(|&c| match c.cell() {
+            Some(cell) => cell.name(),
+            None if c == Class::Undefined => "undefined",
+            None => "undecided",
+        })
+        .collect()
+}
+
+/// The library's defaults of each call, as JSON text: what the command line
+/// uses when an option is not given.
+#[pyfunction]
+fn defaults() -> String {
+    let pave = PaveRequest::default();
+    let params = ParamRequest::default();
+    let reach = ReachOptions::default();
+    let area = detach::api::AreaRequest::default();
+    let flow = FlowRequest::parse("0", "0", "1")
+        .map(|r| r.settings.order)
+        .unwrap_or(20);
+    serde_json::json!({
+        "pave": {"eps": pave.eps, "max_boxes": pave.max_boxes, "method": pave.method.name()},
+        "param_atlas": {
+            "max_boxes": params.max_boxes,
+            "sets": params.sets.iter().map(|c| c.name()).collect::<Vec<_>>(),
+        },
+        "reach": {"eps": reach.eps, "max_boxes": reach.max_boxes},
+        "flow": {"order": flow},
+        "area": {"digits": area.digits},
+    })
+    .to_string()
+}
+
 /// The shipped scene names: the paper's, then the scene files.
 #[pyfunction]
 fn scene_names() -> Vec<String> {
@@ -821,6 +859,8 @@ fn _detach(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(palette, m)?)?;
     m.add_function(wrap_pyfunction!(scene_names, m)?)?;
     m.add_function(wrap_pyfunction!(param_axis, m)?)?;
+    m.add_function(wrap_pyfunction!(class_names, m)?)?;
+    m.add_function(wrap_pyfunction!(defaults, m)?)?;
     m.add("VERSION", detach::LONG_VERSION)?;
     m.add("DetachError", m.py().get_type::<DetachError>())?;
     m.add("SceneFileError", m.py().get_type::<SceneFileError>())?;

@@ -100,3 +100,21 @@ def test_area_equals_cli(name, params):
         assert (a.lower, a.upper) == (r["lower"], r["upper"]), r["name"]
         assert a.how.split(" ")[0] in (r["method"], "empty:")
         assert a.lower <= a.upper
+
+
+def test_defaults_and_class_names_are_the_clis():
+    # The CLI's defaults, as its --json reports them, are the Python calls'.
+    cli = cli_json("pave", "--scene", "ice-disc", "--json")
+    paving = detach.Scene.load("ice-disc").pave()
+    assert (paving.eps, cli["method"], cli["max_boxes"]) == (cli["eps"], "slices", 4_000_000)
+    import inspect
+
+    pave = inspect.signature(detach.Scene.pave).parameters
+    assert (pave["method"].default, pave["max_boxes"].default) == (cli["method"], cli["max_boxes"])
+    # Every option after the scene's own arguments is keyword-only.
+    assert all(p.kind == p.KEYWORD_ONLY for n, p in pave.items() if n != "self")
+    # The class names: the four cells as the CLI's report names them (after
+    # omega and omega0), then the two undecided classes.
+    cells = [r["name"] for r in cli["regions"]]
+    assert cells[:2] == ["omega", "omega0"]
+    assert detach.CLASSES == (*cells[2:], "undecided", "undefined")
