@@ -421,11 +421,23 @@ fn area_refuses_places_below_binary64_rounding() {
 #[test]
 fn area_says_why_a_set_is_empty() {
     for args in [
-        &["area", "--scene", "painleve-rod", "--param", "mu=0.5", "--digits", "6"][..],
+        &[
+            "area",
+            "--scene",
+            "painleve-rod",
+            "--param",
+            "mu=0.5",
+            "--digits",
+            "6",
+        ][..],
         &["area", "--scene", "smooth-disc", "--digits", "6"][..],
     ] {
         let out = detach(args);
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         let text = String::from_utf8(out.stdout).unwrap();
         let report = json(&[args, &["--json"]].concat());
         let proved = report["regions"]
@@ -435,7 +447,11 @@ fn area_says_why_a_set_is_empty() {
             .filter(|r| r["empty"] == "proved empty")
             .count();
         assert_eq!(proved, 2, "{report}");
-        assert_eq!(text.matches("0 (empty: proved empty)").count(), proved, "{text}");
+        assert_eq!(
+            text.matches("0 (empty: proved empty)").count(),
+            proved,
+            "{text}"
+        );
         assert!(!text.contains("Ω₀ = Ω"), "{text}");
     }
 }
