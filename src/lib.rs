@@ -1,52 +1,47 @@
 //! detach: certified detachment regions and root bounds for mechanical systems
 //! with a unilateral constraint (A. P. Ivanov, 2008).
 //!
-//! Data flows one way: the systems of the paper ([`scene`]) → pavings
-//! ([`pave`]), areas by quadrature and roots ([`roots`]) → pictures and proof
-//! files ([`certificate`]). Every claimed number is an outward-rounded
-//! [`inari`] enclosure; `f64` is used only to steer searches and to draw, and
-//! such output says so.
+//! The way in is [`api`]: a [`api::Problem`] is a scene at parameters in one
+//! reading of the paper, and its calls pave, measure areas, build parameter
+//! atlases, integrate motion and write proof files, each failure an
+//! [`api::Error`] with a kind. Every claimed number is an outward-rounded
+//! [`inari`] enclosure; `f64` is used only to steer searches and to draw,
+//! and such output says so.
 //!
 //! # Example
 //!
-//! Pave Ω₀ of the disc on ice (§3, inequality (3.5)) with custom parameters
-//! and the `slices` method, and print certified bounds on its area:
+//! Pave the disc on ice (§3, inequality (3.5)) with custom parameters and
+//! the `slices` method, and print certified bounds on the area of Ω₀:
 //!
 //! ```
-//! use detach::pave::{pave_scene_method, Method, MethodOptions, PaveOptions};
-//! use detach::scene::{Cell, Scene, SceneId, Variant};
+//! use detach::api::{Cell, ErrorKind, Method, PaveRequest, Problem};
 //!
 //! // Parameters are decimal text, enclosed exactly (c₀ of (3.1), p_ψ of (2.3)).
-//! let overrides = [("c0".to_string(), "1".to_string()), ("p_psi".into(), "1.5".into())];
-//! let (scene, _params) = Scene::build(SceneId::IceDisc, &overrides)?;
-//!
-//! // Ω, Ω₀ and the four cells are named by `Cell` (`Cell::Omega`,
-//! // `Cell::Omega0`, `Cell::OmegaAndOmega0`, …); `spec()` gives its literals.
-//! let omega0 = Cell::Omega0.spec();
+//! let disc = Problem::load("ice-disc", &[("c0", "1"), ("p_psi", "1.5")])?;
 //!
 //! // The paving method: Slices (the default), Natural, Centred or Contract
-//! // (`"slices".parse::<Method>()` reads the command line's spelling).
-//! assert_eq!(Method::default(), Method::Slices);
-//! // `for_cell` refines only the constraints Ω₀ uses; `MethodOptions::new`
-//! // refines all of them.
-//! let method = MethodOptions::for_cell(Method::Slices, &omega0);
-//! let opts = PaveOptions { eps: 1.0 / 128.0, max_boxes: 100_000 };
-//! let domain = scene.domain();
-//! let paving = pave_scene_method(
-//!     &scene,
-//!     Variant::Derived,
-//!     &domain,
-//!     opts,
-//!     &method,
-//!     |_level, _open, _leaves| {},
-//! )?;
-//! let area = paving.area_bounds(&omega0, domain.uncovered_area_sup());
+//! // (`"slices".parse::<Method>()` reads the command line's spelling); a
+//! // `region` refines only the constraints that cell uses.
+//! let paved = disc.pave(&PaveRequest {
+//!     eps: 1.0 / 128.0,
+//!     max_boxes: 100_000,
+//!     method: Method::Slices,
+//!     region: Some(Cell::Omega0),
+//!     ..PaveRequest::default()
+//! })?;
+//! // Ω, Ω₀ and the four cells, in `Cell::ALL` order, each with its bounds.
+//! let omega0 = paved.areas.iter().find(|a| a.cell == Cell::Omega0).unwrap();
 //! println!(
 //!     "area of Ω₀ ∈ [{}, {}] ({} leaves, stopped: {})",
-//!     area.inner_area, area.outer_area, paving.leaves.len(), paving.stop
+//!     omega0.inner, omega0.outer, paved.paving.leaves.len(), paved.paving.stop
 //! );
-//! assert!(0.0 < area.inner_area && area.inner_area <= area.outer_area);
-//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! assert!(0.0 < omega0.inner && omega0.inner <= omega0.outer);
+//!
+//! // Bad input is an error of a kind, naming the option at fault.
+//! let e = disc.pave(&PaveRequest { eps: 0.0, ..PaveRequest::default() });
+//! let e = e.err().expect("eps 0 is refused");
+//! assert_eq!((e.kind(), e.option()), (ErrorKind::InvalidOption, Some("eps")));
+//! # Ok::<(), detach::api::Error>(())
 //! ```
 //!
 //! # Building a crate that depends on detach
