@@ -268,11 +268,12 @@ fn pendulums_give_centres_foci_nodes_and_saddles() {
     assert_eq!(at0.slower, Some(1));
 }
 
-fn rod_scan(range: &str) -> detach::motion::singular::Scan {
+/// The rod's scan over `range` at a resolution of `2^-log2_eps` of it.
+fn rod_scan(range: &str, log2_eps: i32) -> detach::motion::singular::Scan {
     let p = Problem::load("painleve-rod", &[]).unwrap();
     let family = p.family(vec![ParamRequest::axis(range).unwrap()]).unwrap();
     let opts = ScanOptions {
-        eps: 2f64.powi(-20),
+        eps: 2f64.powi(-log2_eps),
         ..ScanOptions::default()
     };
     scan(&family, &p.scene.domain(), &opts).unwrap()
@@ -284,7 +285,9 @@ fn the_rod_thresholds_enclose_four_thirds_and_eight_over_three_root_three() {
     // (μ² + 1)(27μ² − 64) (painleve_singular.py).
     let mu_c =
         Float::with_val(BITS, 8) / (Float::with_val(BITS, 3) * Float::with_val(BITS, 3).sqrt());
-    let s = rod_scan("mu=1.4:1.7");
+    // Resolutions coarse enough to be quick, fine enough that each width
+    // bound below holds (the enclosures are 5.5e-5 and 4.8e-4 wide).
+    let s = rod_scan("mu=1.4:1.7", 14);
     assert_eq!(s.thresholds.len(), 1, "{:?}", s.thresholds);
     let t = &s.thresholds[0];
     assert!(t.lo <= mu_c && mu_c <= t.hi, "[{}, {}]", t.lo, t.hi);
@@ -298,7 +301,7 @@ fn the_rod_thresholds_enclose_four_thirds_and_eight_over_three_root_three() {
     assert_eq!(slow(&t.above, "along"), 2);
 
     let four_thirds = Float::with_val(BITS, 4) / 3u32;
-    let s = rod_scan("mu=1.2:1.45");
+    let s = rod_scan("mu=1.2:1.45", 10);
     assert_eq!(s.thresholds.len(), 1, "{:?}", s.thresholds);
     let t = &s.thresholds[0];
     assert!(
