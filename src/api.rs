@@ -45,6 +45,22 @@ pub use crate::pave::{
 };
 pub use crate::scene::{Cell, Scene, Variant};
 
+/// What the library hands out for drawing and for JSON, for a front end
+/// that draws itself (the Python package): a leaf's class and its colour,
+/// a parameter atlas's classes, and the `--json` forms of singular points.
+pub mod show {
+    pub use crate::figures::params::{
+        class as param_class, class_colour, class_text, classes_present,
+    };
+    pub use crate::figures::Class;
+    pub use crate::motion::singular::{report_json, scan_json};
+    pub use crate::params::model::ParamLeaf;
+}
+
+/// The local page of `detach explore`.
+#[cfg(feature = "explore")]
+pub use crate::explore::{Config as ExploreConfig, Explorer};
+
 /// Most leaves one paving may be asked for (about 230 bytes each while
 /// paving), as `detach pave --max-boxes` allows.
 pub const MAX_LEAVES: usize = 20_000_000;

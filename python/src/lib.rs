@@ -2,13 +2,13 @@
 //! The pure-Python package (`python/detach/`) builds the numpy arrays,
 //! pictures and sympy scenes on top; every number comes from here.
 
+use detach::api::show::{self, Class};
 use detach::api::{
     cell_named, status_index, verify as check_file, Fate, FlowRequest, How, Label, Method,
     ParamAtlasRun, ParamAxis, ParamRequest, PaveRequest, Paved, Problem, ReachOptions, ScanOptions,
     Tube, Until, Variant, Verdict,
 };
 use detach::api::{Error, ErrorKind};
-use detach::figures::Class;
 use pyo3::create_exception;
 use pyo3::exceptions::{
     PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyPermissionError, PyRuntimeError,
@@ -345,7 +345,7 @@ impl Scene {
                     .singular_points(window_refs(&theta), window_refs(&theta_dot))
             })
             .map_err(py_err)?;
-        Ok(detach::motion::singular::report_json(&report).to_string())
+        Ok(show::report_json(&report).to_string())
     }
 
     /// Where in `(name, lo, hi)` the number or type of the points changes
@@ -387,7 +387,7 @@ impl Scene {
             .fold([f64::INFINITY, f64::NEG_INFINITY], |r, b| {
                 [r[0].min(b.lo), r[1].max(b.hi)]
             });
-        Ok(detach::motion::singular::scan_json(&scan, family_root).to_string())
+        Ok(show::scan_json(&scan, family_root).to_string())
     }
 
     /// Certified areas: `(name, label, lower, upper, how)` per set.
@@ -567,11 +567,11 @@ impl ParamAtlas {
     /// Per box, one status code per set (0 non-empty, 1 empty, 2
     /// undecided), then its class's index in `classes()`.
     fn statuses<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
-        let classes = detach::figures::params::classes_present(&self.run.run.atlas);
+        let classes = show::classes_present(&self.run.run.atlas);
         let mut bytes = Vec::new();
         for l in self.leaves() {
             bytes.extend(l.sets.iter().map(|s| status_index(s) as u8));
-            let c = detach::figures::params::class(&l.sets);
+            let c = show::param_class(&l.sets);
             bytes.push(classes.iter().position(|&k| k == c).unwrap_or(0) as u8);
         }
         PyBytes::new(py, &bytes)
@@ -581,12 +581,12 @@ impl ParamAtlas {
     /// `(text, "#rrggbb")`, undecided last.
     fn classes(&self) -> Vec<(String, String)> {
         let sets = &self.run.run.atlas.sets;
-        detach::figures::params::classes_present(&self.run.run.atlas)
+        show::classes_present(&self.run.run.atlas)
             .into_iter()
             .map(|c| {
-                let rgb = detach::figures::params::class_colour(c);
+                let rgb = show::class_colour(c);
                 (
-                    detach::figures::params::class_text(c, sets),
+                    show::class_text(c, sets),
                     format!("#{:02x}{:02x}{:02x}", rgb.0, rgb.1, rgb.2),
                 )
             })
@@ -632,7 +632,7 @@ impl ParamAtlas {
 }
 
 impl ParamAtlas {
-    fn leaves(&self) -> impl Iterator<Item = &detach::params::model::ParamLeaf> {
+    fn leaves(&self) -> impl Iterator<Item = &show::ParamLeaf> {
         let atlas = &self.run.run.atlas;
         atlas.leaves.iter().filter(|l| !l.bounds.is_empty())
     }
@@ -785,7 +785,7 @@ fn defaults() -> String {
 /// The shipped scene names: the paper's, then the scene files.
 #[pyfunction]
 fn scene_names() -> Vec<String> {
-    detach::scene::Scene::names()
+    detach::api::Scene::names()
         .into_iter()
         .map(str::to_string)
         .collect()
@@ -795,7 +795,7 @@ fn scene_names() -> Vec<String> {
 #[pyclass(module = "detach._detach", frozen)]
 struct Explorer {
     url: String,
-    inner: std::sync::Mutex<Option<detach::explore::Explorer>>,
+    inner: std::sync::Mutex<Option<detach::api::Explorer>>,
 }
 
 #[pymethods]
@@ -809,14 +809,14 @@ impl Explorer {
         params: Vec<(String, String)>,
         port: u16,
     ) -> PyResult<Explorer> {
-        let config = detach::explore::Config {
+        let config = detach::api::ExploreConfig {
             scene,
             scene_text: text,
             params,
             port,
             ..Default::default()
         };
-        let e = detach::explore::Explorer::start(config).map_err(py_err)?;
+        let e = detach::api::Explorer::start(config).map_err(py_err)?;
         Ok(Explorer {
             url: e.url.clone(),
             inner: std::sync::Mutex::new(Some(e)),
