@@ -178,13 +178,17 @@ class Scene:
         theta=None,
         theta_dot=None,
         max_boxes=_DEFAULTS["pave"]["max_boxes"],
+        progress=None,
     ):
         """Paves Ω and Ω₀ as `detach pave` does (same defaults).
 
         `theta`, `theta_dot`: windows `(lo, hi)` inside the domain (decimal
-        text, `"pi/2"`). The GIL is released while paving; Ctrl-C stops it
-        between levels and raises `Interrupted`, which carries the valid,
-        coarser paving reached."""
+        text, `"pi/2"`). `progress`: called as `progress(level, open,
+        leaves)` at the start of each level of the tree (quiet when None;
+        with tqdm, `bar.set_postfix(level=level, leaves=leaves)`); an
+        exception it raises stops the paving and is raised. The GIL is
+        released while paving; Ctrl-C stops it between levels and raises
+        `Interrupted`, which carries the valid, coarser paving reached."""
         if isinstance(max_boxes, bool) or not isinstance(max_boxes, int) or max_boxes < 0:
             raise DetachError(f"max_boxes must be a positive integer, got {max_boxes!r}")
         native, interrupted = self._native.pave(
@@ -194,6 +198,7 @@ class Scene:
             region,
             _window("theta", theta),
             _window("theta_dot", theta_dot),
+            _callable("progress", progress),
         )
         paving = Paving(native, self)
         if interrupted:
@@ -208,6 +213,7 @@ class Scene:
         sets=tuple(_DEFAULTS["param_atlas"]["sets"]),
         eps=None,
         max_boxes=_DEFAULTS["param_atlas"]["max_boxes"],
+        progress=None,
     ):
         """A certified parameter atlas, as `detach params`: where in a range
         of one parameter (`x`) or two (`x`, `y`) each set is proved
@@ -219,14 +225,16 @@ class Scene:
         per axis relative to its range (default 2⁻³⁴ in one parameter, so a
         threshold is enclosed to about 1e-10, and 1/256 in two). The GIL is
         released while it runs; Ctrl-C stops it between levels and raises
-        `Interrupted`, which carries the valid, coarser atlas reached."""
+        `Interrupted`, which carries the valid, coarser atlas reached.
+        `progress`: as for `pave`, `progress(level, open, boxes)`."""
         if isinstance(max_boxes, bool) or not isinstance(max_boxes, int) or max_boxes < 1:
             raise DetachError(f"max_boxes must be a positive integer, got {max_boxes!r}")
         if isinstance(sets, str):
             sets = [sets]
         axes = [_axis("x", x)] + ([] if y is None else [_axis("y", y)])
         native, interrupted = self._native.param_atlas(
-            axes, list(sets), None if eps is None else _eps(eps), max_boxes
+            axes, list(sets), None if eps is None else _eps(eps), max_boxes,
+            _callable("progress", progress),
         )
         atlas = ParamAtlas(native, self)
         if interrupted:
@@ -308,6 +316,12 @@ class Scene:
             name: Area(name, label, lower, upper, how)
             for name, label, lower, upper, how in self._native.area(int(digits))
         }
+
+
+def _callable(name, f):
+    if f is not None and not callable(f):
+        raise DetachError(f"{name} must be a callable or None, got {f!r}")
+    return f
 
 
 def _eps(eps):

@@ -3,7 +3,7 @@
 import decimal
 import fractions
 import os
-from typing import Any, Literal, Optional, Sequence, Union
+from typing import Any, Callable, Literal, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -83,6 +83,7 @@ class Scene:
         theta: Optional[Window] = None,
         theta_dot: Optional[Window] = None,
         max_boxes: int = 4_000_000,
+        progress: Optional[Callable[[int, int, int], object]] = None,
     ) -> Paving: ...
     def param_atlas(
         self,
@@ -92,6 +93,7 @@ class Scene:
         sets: Union[SetName, Sequence[SetName]] = ...,
         eps: Optional[Eps] = None,
         max_boxes: int = 100_000,
+        progress: Optional[Callable[[int, int, int], object]] = None,
     ) -> ParamAtlas: ...
     def flow(
         self,

@@ -62,12 +62,25 @@ fn invalid(name: &'static str, rest: impl std::fmt::Display) -> PyErr {
     py_err(Error::invalid_option(name, rest))
 }
 
-/// Between two levels of a long computation: Python's pending signals
-/// checked (with the GIL taken for that moment), the first error kept in
-/// `signal`, and the computation stopped once there is one.
-fn interrupted(signal: &mut Option<PyErr>) -> ControlFlow<()> {
+/// Between two levels of a long computation, with the GIL taken for that
+/// moment: Python's pending signals checked, then `progress(level, open,
+/// done)` called when given; the first error (a signal's or the
+/// callback's) kept in `signal`, and the computation stopped once there is
+/// one.
+fn interrupted(
+    signal: &mut Option<PyErr>,
+    progress: Option<&Py<PyAny>>,
+    (level, open, done): (u32, usize, usize),
+) -> ControlFlow<()> {
     if signal.is_none() {
-        *signal = Python::attach(|py| py.check_signals()).err();
+        *signal = Python::attach(|py| {
+            py.check_signals()?;
+            if let Some(f) = progress {
+                f.call1(py, (level, open, done))?;
+            }
+            Ok::<(), PyErr>(())
+        })
+        .err();
     }
     match signal {
         Some(_) => ControlFlow::Break(()),
@@ -169,6 +182,7 @@ impl Scene {
         region: Option<&str>,
         theta: Option<[String; 2]>,
         theta_dot: Option<[String; 2]>,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<(Paving, bool)> {
         let req = PaveRequest {
             eps,
@@ -182,8 +196,9 @@ impl Scene {
         };
         let mut signal: Option<PyErr> = None;
         let paved = py.detach(|| {
-            self.problem
-                .pave_with_progress(&req, |_, _, _| interrupted(&mut signal))
+            self.problem.pave_with_progress(&req, |l, o, n| {
+                interrupted(&mut signal, progress.as_ref(), (l, o, n))
+            })
         });
         let paved = paved.map_err(py_err)?;
         match signal {
@@ -205,6 +220,7 @@ impl Scene {
         sets: Vec<String>,
         eps: Option<f64>,
         max_boxes: usize,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<(ParamAtlas, bool)> {
         let req = ParamRequest {
             axes: axes
@@ -222,8 +238,9 @@ impl Scene {
         };
         let mut signal: Option<PyErr> = None;
         let run = py.detach(|| {
-            self.problem
-                .param_atlas_with_progress(&req, |_, _, _| interrupted(&mut signal))
+            self.problem.param_atlas_with_progress(&req, |l, o, n| {
+                interrupted(&mut signal, progress.as_ref(), (l, o, n))
+            })
         });
         let run = run.map_err(py_err)?;
         match signal {

@@ -87,3 +87,28 @@ def test_ctrl_c_returns_the_partial_atlas(tmp_path):
     path = tmp_path / "partial-atlas.json"
     partial.save_proof(path)
     assert detach.verify(path).valid
+
+
+def test_progress_is_called_per_level_and_its_exception_stops_the_run():
+    scene = detach.Scene.load("painleve-rod")
+    calls = []
+    paving = scene.pave(eps=1 / 64, progress=lambda *a: calls.append(a))
+    levels = [c[0] for c in calls]
+    # One call per level, in order, the leaves so far never more than the end's.
+    assert len(calls) >= 6 and levels == sorted(levels) and len(set(levels)) == len(levels)
+    assert all(0 <= leaves <= len(paving) for _, _, leaves in calls)
+
+    class Enough(Exception):
+        pass
+
+    def stop_at_level_3(level, open_boxes, leaves):
+        if level >= 3:
+            raise Enough()
+
+    with pytest.raises(Enough):
+        scene.pave(eps=1 / 1024, progress=stop_at_level_3)
+    with pytest.raises(detach.DetachError, match="progress must be a callable"):
+        scene.pave(progress="yes")
+    seen = []
+    scene.param_atlas("mu=1:2", eps=1 / 64, progress=lambda *a: seen.append(a))
+    assert seen and [s[0] for s in seen] == sorted(s[0] for s in seen)
