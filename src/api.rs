@@ -363,16 +363,43 @@ impl PaveRequest {
 /// A paving's resolution `eps` in (0, 1] and leaf budget `max_boxes` in
 /// 1..=[`MAX_LEAVES`].
 pub fn pave_options(eps: f64, max_boxes: usize) -> Result<PaveOptions, Error> {
+    Ok(PaveOptions {
+        eps: resolution(eps)?,
+        max_boxes: leaf_budget(max_boxes)?,
+    })
+}
+
+/// A relative resolution `eps` of a paving or a parameter atlas, in (0, 1].
+fn resolution(eps: f64) -> Result<f64, Error> {
     if !(eps.is_finite() && eps > 0.0 && eps <= 1.0) {
         return Err(Error::invalid_option(
             "eps",
             format!(" must be a finite number in (0, 1], got {eps}"),
         ));
     }
-    Ok(PaveOptions {
-        eps,
-        max_boxes: leaf_budget(max_boxes)?,
-    })
+    Ok(eps)
+}
+
+/// A resolution `eps` of a reach paving or a singular-point scan, in (0, 1).
+pub fn open_resolution(eps: f64) -> Result<f64, Error> {
+    if !(eps.is_finite() && eps > 0.0 && eps < 1.0) {
+        return Err(Error::invalid_option(
+            "eps",
+            format!(" must be a number in (0, 1), got {eps}"),
+        ));
+    }
+    Ok(eps)
+}
+
+/// The order of the Taylor steps of a flow, in 2..=60.
+pub fn flow_order(order: usize) -> Result<usize, Error> {
+    if !(2..=60).contains(&order) {
+        return Err(Error::invalid_option(
+            "order",
+            format!(" must be in 2..=60, got {order}"),
+        ));
+    }
+    Ok(order)
 }
 
 /// A leaf budget `max_boxes` in 1..=[`MAX_LEAVES`].
@@ -840,12 +867,7 @@ impl Problem {
                 ": no target: give at least one of U=0, N=0, cell, domain",
             ));
         }
-        if !(opts.eps.is_finite() && opts.eps > 0.0 && opts.eps < 1.0) {
-            return Err(Error::invalid_option(
-                "eps",
-                format!(" must be a number in (0, 1), got {}", opts.eps),
-            ));
-        }
+        open_resolution(opts.eps)?;
         leaf_budget(opts.max_boxes)?;
         let motion = motion::Motion::new(self.scene.reading(self.variant), until)?;
         Ok(motion::reach::reach(
@@ -955,13 +977,7 @@ impl Problem {
                 sets.push(*c);
             }
         }
-        let eps = req.resolution();
-        if !(eps.is_finite() && eps > 0.0 && eps <= 1.0) {
-            return Err(Error::invalid_option(
-                "eps",
-                format!(" must be a finite number in (0, 1], got {eps}"),
-            ));
-        }
+        let eps = resolution(req.resolution())?;
         if req.max_boxes == 0 {
             return Err(Error::invalid_option("max_boxes", " must be at least 1"));
         }

@@ -263,9 +263,7 @@ impl Scene {
         order: usize,
         proof: bool,
     ) -> PyResult<Trajectory> {
-        if !(2..=60).contains(&order) {
-            return Err(invalid("order", format!(" must be in 2..=60, got {order}")));
-        }
+        let order = detach::api::flow_order(order).map_err(py_err)?;
         let mut request = FlowRequest::parse(theta, theta_dot, t).map_err(|e| py_err(e.into()))?;
         request.until = Until::parse_list(until).map_err(|e| py_err(e.into()))?;
         request.settings.order = order;
@@ -301,9 +299,6 @@ impl Scene {
         proof: bool,
     ) -> PyResult<ReachNative> {
         let until = Until::parse_list(until).map_err(|e| py_err(e.into()))?;
-        if max_boxes == 0 {
-            return Err(invalid("max_boxes", " must be at least 1"));
-        }
         let opts = ReachOptions {
             eps,
             max_boxes,
@@ -378,13 +373,7 @@ impl Scene {
         let (name, lo, hi) = axis;
         let mut opts = ScanOptions::default();
         if let Some(eps) = eps {
-            if !(eps.is_finite() && eps > 0.0 && eps < 1.0) {
-                return Err(invalid(
-                    "eps",
-                    format!(" must be a number in (0, 1), got {eps}"),
-                ));
-            }
-            opts.eps = eps;
+            opts.eps = detach::api::open_resolution(eps).map_err(py_err)?;
         }
         let axis = ParamAxis { name, lo, hi };
         let scan = py

@@ -72,12 +72,7 @@ pub fn run_flow(args: &FlowArgs) -> CliResult {
             "--from takes a point; a box is --from-box TLO:THI,WLO:WHI",
         ));
     }
-    if !(2..=60).contains(&args.order) {
-        return Err(CliError::usage(format!(
-            "--order must be in 2..=60, got {}",
-            args.order
-        )));
-    }
+    detach::api::flow_order(args.order)?;
     let mut request = FlowRequest::parse(theta, theta_dot, &args.t).map_err(CliError::usage)?;
     request.until = Until::parse_list(&args.until).map_err(CliError::usage)?;
     request.settings.order = args.order;

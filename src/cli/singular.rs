@@ -159,12 +159,7 @@ pub fn run_singular(args: &SingularArgs) -> CliResult {
     let axis = ParamRequest::axis(x).map_err(|e| CliError::usage(format!("--x: {e}")))?;
     let mut opts = ScanOptions::default();
     if let Some(eps) = args.eps {
-        if !(eps.is_finite() && eps > 0.0 && eps < 1.0) {
-            return Err(CliError::usage(format!(
-                "--eps must be a number in (0, 1), got {eps}"
-            )));
-        }
-        opts.eps = eps;
+        opts.eps = detach::api::open_resolution(eps)?;
     }
     let family = problem.family(vec![axis])?;
     let s = singular::scan(&family, &domain, &opts).map_err(CliError::usage)?;
