@@ -66,11 +66,9 @@ struct RegionArea {
     /// (quadrature only).
     #[serde(skip_serializing_if = "Option::is_none")]
     undecided_pieces: Option<usize>,
-    /// Set when the cell is proved empty: why ([`Emptiness::describe`]).
+    /// Set when the cell is proved empty: why.
     #[serde(skip_serializing_if = "Option::is_none")]
-    empty: Option<&'static str>,
-    #[serde(skip)]
-    emptiness: Option<Emptiness>,
+    empty: Option<Emptiness>,
     elapsed_s: f64,
 }
 
@@ -134,8 +132,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
                 at_rounding_floor: e.at_rounding_floor,
                 pieces: e.pieces,
                 undecided_pieces: (!by_paving).then_some(e.undecided_pieces),
-                empty: s.emptiness().map(Emptiness::describe),
-                emptiness: s.emptiness(),
+                empty: s.emptiness(),
                 elapsed_s: s.elapsed_s,
             }
         })
@@ -181,7 +178,7 @@ pub fn run_area(args: &AreaArgs) -> CliResult {
     let places = args.digits as usize + 2;
     for r in &report.regions {
         let label = super::atlas::pad(r.label, 8);
-        if let Some(e) = r.emptiness {
+        if let Some(e) = r.empty {
             outln!("  {label} 0 (empty: {})", e.symbol());
             continue;
         }

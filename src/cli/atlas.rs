@@ -178,10 +178,11 @@ struct RegionReport {
     outer_area: f64,
     /// `outer_area − inner_area` rounded up: an upper bound.
     undecided_area: f64,
-    /// Set when the cell is empty by construction (e.g. `"omega0 = omega"`):
-    /// both areas are then exactly 0 and no box is counted.
+    /// Set when the cell is empty by construction or proved empty (in JSON
+    /// `"omega0 = omega"`, `"proved empty"`): both areas are then exactly 0
+    /// and no box is counted.
     #[serde(skip_serializing_if = "Option::is_none")]
-    empty: Option<&'static str>,
+    empty: Option<Emptiness>,
     boxes: BoxCounts,
 }
 
@@ -297,7 +298,7 @@ fn summarise(
             inner_area: b.inner_area,
             outer_area: b.outer_area,
             undecided_area: b.undecided_area(),
-            empty: empty.map(Emptiness::describe),
+            empty,
             boxes: BoxCounts {
                 inner: b.inner_boxes,
                 outer: b.outer_boxes,
@@ -404,10 +405,7 @@ fn print_table(r: &PaveReport) {
     }
     for g in &r.regions {
         if let Some(why) = g.empty {
-            let why = match why {
-                "omega0 = omega" => "Ω₀ = Ω",
-                other => other,
-            };
+            let why = why.symbol();
             outln!(
                 "  {} {:>12} {:>12} {:>12} {:>12} {:>12} {:>12}  empty ({why})",
                 pad(g.label, 7),

@@ -212,13 +212,16 @@ impl Sums {
     }
 }
 
-/// Why a cell is empty whatever the leaves.
+/// Why a cell is empty whatever the leaves; in JSON as [`Emptiness::describe`]
+/// says it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub enum Emptiness {
     /// Ω₀ is Ω by construction (the same function: an ideal constraint).
+    #[serde(rename = "omega0 = omega")]
     Omega0IsOmega,
     /// A paving of the whole domain proves it: every leaf has a literal of
     /// the cell proved false, or a factor rule ([`crate::params`]).
+    #[serde(rename = "proved empty")]
     Proved,
 }
 
