@@ -303,12 +303,7 @@ impl Problem {
         if req.max_pieces == 0 {
             return Err(Error::invalid_option("max_pieces", " must be at least 1"));
         }
-        let mut sets = Vec::new();
-        for c in &req.sets {
-            if !sets.contains(c) {
-                sets.push(*c);
-            }
-        }
+        let mut sets = each_once(&req.sets);
         if sets.is_empty() {
             sets = Cell::ALL.to_vec();
         }
@@ -318,6 +313,17 @@ impl Problem {
         };
         certified_areas(&self.scene, self.variant, &domain, &sets, opts).map_err(areas_error)
     }
+}
+
+/// `cells` in their order, each once.
+fn each_once(cells: &[Cell]) -> Vec<Cell> {
+    let mut once = Vec::new();
+    for c in cells {
+        if !once.contains(c) {
+            once.push(*c);
+        }
+    }
+    once
 }
 
 fn window(w: &Option<[String; 2]>) -> Option<[&str; 2]> {
@@ -971,12 +977,7 @@ impl Problem {
                 ": give at least one set to decide",
             ));
         }
-        let mut sets: Vec<Cell> = Vec::new();
-        for c in &req.sets {
-            if !sets.contains(c) {
-                sets.push(*c);
-            }
-        }
+        let sets = each_once(&req.sets);
         let eps = resolution(req.resolution())?;
         if req.max_boxes == 0 {
             return Err(Error::invalid_option("max_boxes", " must be at least 1"));
